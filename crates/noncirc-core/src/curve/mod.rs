@@ -1,0 +1,408 @@
+//! Pitch curves of the driving gear: `rho(psi) > 0`, periodic in `psi` (rad), radii in mm.
+
+mod cartesian;
+mod spline;
+
+pub use cartesian::{CartesianCurve, CartesianKind};
+pub use spline::PeriodicSpline;
+
+use crate::error::{finite, positive, Error, Result};
+use serde::{Deserialize, Serialize};
+
+pub(crate) const TAU: f64 = std::f64::consts::TAU;
+
+/// `rho` (mm) with its first and second derivatives in `psi` (mm/rad, mm/rad²).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Polar {
+    pub rho: f64,
+    pub d1: f64,
+    pub d2: f64,
+}
+
+/// How a pitch curve is specified (the serialisable form, angles in degrees).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum CurveSpec {
+    /// Periodic cubic spline of rho in psi through polar control points.
+    Spline {
+        radii_mm: Vec<f64>,
+        angles_deg: Vec<f64>,
+    },
+    /// Closed uniform cubic B-spline of the polar control points read as Cartesian points.
+    Bspline {
+        radii_mm: Vec<f64>,
+        angles_deg: Vec<f64>,
+    },
+    /// One closed Bézier curve of the control points, first point repeated at the end.
+    Bezier {
+        radii_mm: Vec<f64>,
+        angles_deg: Vec<f64>,
+    },
+    /// `rho = c0 + Σ_k (cos_k cos kψ + sin_k sin kψ)`, k = 1, 2, ...
+    Fourier {
+        c0_mm: f64,
+        cos_mm: Vec<f64>,
+        sin_mm: Vec<f64>,
+    },
+    /// Ellipse turning about a focus: `rho = A(1-k²)/(1-k cos psi)`.
+    Ellipse {
+        semi_major_mm: f64,
+        eccentricity: f64,
+    },
+    /// Periodic cubic interpolation of measured samples `(psi, rho)`.
+    Table {
+        radii_mm: Vec<f64>,
+        angles_deg: Vec<f64>,
+    },
+}
+
+/// The three-arm paper's pitch curve: 12 control points (three-arm paper §4.1).
+pub fn paper_control_points() -> (Vec<f64>, Vec<f64>) {
+    (
+        vec![
+            21.0, 28.0, 50.0, 49.0, 58.0, 47.0, 18.0, 12.0, 28.0, 60.0, 48.0, 24.0,
+        ],
+        vec![
+            20.0, 45.0, 76.0, 105.0, 132.0, 165.0, 195.0, 225.0, 255.0, 285.0, 316.0, 345.0,
+        ],
+    )
+}
+
+impl CurveSpec {
+    /// The paper's 12 control points fed to the periodic spline.
+    pub fn paper() -> Self {
+        let (radii_mm, angles_deg) = paper_control_points();
+        CurveSpec::Spline {
+            radii_mm,
+            angles_deg,
+        }
+    }
+
+    /// Validates the specification and builds the evaluable curve.
+    pub fn build(&self) -> Result<PitchCurve> {
+        match self {
+            CurveSpec::Spline {
+                radii_mm,
+                angles_deg,
+            }
+            | CurveSpec::Table {
+                radii_mm,
+                angles_deg,
+            } => {
+                let kind = if matches!(self, CurveSpec::Spline { .. }) {
+                    "spline"
+                } else {
+                    "table"
+                };
+                same_length(kind, radii_mm, angles_deg)?;
+                let psi: Vec<f64> = angles_deg.iter().map(|d| d.to_radians()).collect();
+                Ok(PitchCurve::Spline(PeriodicSpline::new(
+                    kind, &psi, radii_mm,
+                )?))
+            }
+            CurveSpec::Bspline {
+                radii_mm,
+                angles_deg,
+            }
+            | CurveSpec::Bezier {
+                radii_mm,
+                angles_deg,
+            } => {
+                let kind = if matches!(self, CurveSpec::Bspline { .. }) {
+                    CartesianKind::BSpline
+                } else {
+                    CartesianKind::Bezier
+                };
+                let name = if kind == CartesianKind::BSpline {
+                    "bspline"
+                } else {
+                    "bezier"
+                };
+                same_length(name, radii_mm, angles_deg)?;
+                let mut points = Vec::with_capacity(radii_mm.len());
+                for (i, (&r, &a)) in radii_mm.iter().zip(angles_deg).enumerate() {
+                    positive(&format!("{name} radius {i} (mm)"), r)?;
+                    finite(&format!("{name} angle {i} (deg)"), a)?;
+                    let t = a.to_radians();
+                    points.push([r * t.cos(), r * t.sin()]);
+                }
+                let psi: Vec<f64> = angles_deg.iter().map(|d| d.to_radians()).collect();
+                spline::check_angles(&psi)?;
+                Ok(PitchCurve::Cartesian(CartesianCurve::new(kind, points)?))
+            }
+            CurveSpec::Fourier {
+                c0_mm,
+                cos_mm,
+                sin_mm,
+            } => Ok(PitchCurve::Fourier(Fourier::new(*c0_mm, cos_mm, sin_mm)?)),
+            CurveSpec::Ellipse {
+                semi_major_mm,
+                eccentricity,
+            } => Ok(PitchCurve::Ellipse(Ellipse::new(
+                *semi_major_mm,
+                *eccentricity,
+            )?)),
+        }
+    }
+}
+
+fn same_length(kind: &'static str, radii: &[f64], angles: &[f64]) -> Result<()> {
+    if radii.len() != angles.len() {
+        return Err(Error::OutOfRange {
+            name: format!("{kind} angles_deg length"),
+            value: angles.len() as f64,
+            expected: format!("{} (one angle per radius)", radii.len()),
+        });
+    }
+    Ok(())
+}
+
+/// An evaluable pitch curve (validated: `rho > 0`, single-valued in `psi`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum PitchCurve {
+    Spline(PeriodicSpline),
+    Cartesian(CartesianCurve),
+    Fourier(Fourier),
+    Ellipse(Ellipse),
+}
+
+impl PitchCurve {
+    /// `rho` and its first two derivatives at `psi` (rad, any real value).
+    #[inline]
+    pub fn eval(&self, psi: f64) -> Polar {
+        match self {
+            PitchCurve::Spline(s) => s.eval(psi),
+            PitchCurve::Cartesian(c) => c.eval(psi),
+            PitchCurve::Fourier(f) => f.eval(psi),
+            PitchCurve::Ellipse(e) => e.eval(psi),
+        }
+    }
+
+    /// A guaranteed upper bound on `rho`, exact where the representation allows (mm).
+    pub fn max_radius_bound(&self, samples_max: f64) -> f64 {
+        match self {
+            PitchCurve::Spline(s) => s.extreme(true).1,
+            PitchCurve::Ellipse(e) => e.semi_major * (1.0 + e.k),
+            PitchCurve::Fourier(f) => f.refined_extreme(true),
+            PitchCurve::Cartesian(_) => samples_max,
+        }
+    }
+}
+
+/// Truncated Fourier series pitch curve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fourier {
+    c0: f64,
+    cos: Vec<f64>,
+    sin: Vec<f64>,
+}
+
+impl Fourier {
+    /// Validates finiteness and positivity (`rho > 0` everywhere).
+    pub fn new(c0: f64, cos: &[f64], sin: &[f64]) -> Result<Self> {
+        finite("fourier c0_mm", c0)?;
+        for (i, v) in cos.iter().enumerate() {
+            finite(&format!("fourier cos_mm[{i}]"), *v)?;
+        }
+        for (i, v) in sin.iter().enumerate() {
+            finite(&format!("fourier sin_mm[{i}]"), *v)?;
+        }
+        let k = cos.len().max(sin.len());
+        let pad = |v: &[f64]| {
+            let mut out = v.to_vec();
+            out.resize(k, 0.0);
+            out
+        };
+        let f = Self {
+            c0,
+            cos: pad(cos),
+            sin: pad(sin),
+        };
+        let (psi, rho) = f.refined_min();
+        if rho <= 0.0 {
+            return Err(Error::NonPositiveRadius {
+                psi_deg: psi.to_degrees(),
+                rho_mm: rho,
+            });
+        }
+        Ok(f)
+    }
+
+    pub fn eval(&self, psi: f64) -> Polar {
+        let mut out = Polar {
+            rho: self.c0,
+            d1: 0.0,
+            d2: 0.0,
+        };
+        for (i, (a, b)) in self.cos.iter().zip(&self.sin).enumerate() {
+            let k = (i + 1) as f64;
+            let (s, c) = (k * psi).sin_cos();
+            out.rho += a * c + b * s;
+            out.d1 += k * (b * c - a * s);
+            out.d2 -= k * k * (a * c + b * s);
+        }
+        out
+    }
+
+    /// The minimum: dense samples, then Newton on `rho' = 0` from the best one.
+    fn refined_min(&self) -> (f64, f64) {
+        self.refine(false)
+    }
+
+    fn refined_extreme(&self, max: bool) -> f64 {
+        self.refine(max).1
+    }
+
+    fn refine(&self, max: bool) -> (f64, f64) {
+        let sign = if max { -1.0 } else { 1.0 };
+        let m = 64 * (self.cos.len() + 1);
+        let mut best = (0.0, self.eval(0.0).rho);
+        for j in 0..m {
+            let psi = TAU * j as f64 / m as f64;
+            let r = self.eval(psi).rho;
+            if sign * r < sign * best.1 {
+                best = (psi, r);
+            }
+        }
+        let mut psi = best.0;
+        for _ in 0..20 {
+            let p = self.eval(psi);
+            if p.d2 * sign <= 0.0 {
+                break;
+            }
+            let step = p.d1 / p.d2;
+            psi -= step.clamp(-TAU / m as f64, TAU / m as f64);
+            if step.abs() < 1e-15 {
+                break;
+            }
+        }
+        let r = self.eval(psi).rho;
+        if sign * r < sign * best.1 {
+            (psi, r)
+        } else {
+            best
+        }
+    }
+}
+
+/// Ellipse turning about a focus (moving-box paper, eq. 6).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ellipse {
+    /// Major semi-axis `A` (mm).
+    pub semi_major: f64,
+    /// Eccentricity `k` in [0, 1).
+    pub k: f64,
+}
+
+impl Ellipse {
+    pub fn new(semi_major: f64, k: f64) -> Result<Self> {
+        positive("ellipse semi_major_mm", semi_major)?;
+        finite("ellipse eccentricity", k)?;
+        if !(0.0..1.0).contains(&k) {
+            return Err(Error::OutOfRange {
+                name: "ellipse eccentricity".into(),
+                value: k,
+                expected: "0 <= k < 1".into(),
+            });
+        }
+        Ok(Self { semi_major, k })
+    }
+
+    pub fn eval(&self, psi: f64) -> Polar {
+        let c = self.semi_major * (1.0 - self.k * self.k);
+        let (s, co) = psi.sin_cos();
+        let d = 1.0 - self.k * co;
+        let (d1, d2) = (self.k * s, self.k * co);
+        Polar {
+            rho: c / d,
+            d1: -c * d1 / (d * d),
+            d2: -c * (d2 / (d * d) - 2.0 * d1 * d1 / (d * d * d)),
+        }
+    }
+
+    /// Closed-form driven angle `phi2(phi1)`, unwrapped (moving-box paper eq. 8 integrated).
+    pub fn phi2_closed_form(&self, phi1: f64) -> f64 {
+        let turns = (phi1 / TAU).round();
+        let rest = phi1 - turns * TAU;
+        let ratio = (1.0 + self.k) / (1.0 - self.k);
+        turns * TAU + 2.0 * (ratio * (rest / 2.0).tan()).atan()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ellipse_derivatives_match_finite_differences() {
+        let e = Ellipse::new(30.0, 0.6).unwrap();
+        for k in 0..40 {
+            let psi = 0.17 * k as f64;
+            let h = 1e-5;
+            let p = e.eval(psi);
+            assert!(((e.eval(psi + h).rho - e.eval(psi - h).rho) / (2.0 * h) - p.d1).abs() < 1e-5);
+            assert!(((e.eval(psi + h).d1 - e.eval(psi - h).d1) / (2.0 * h) - p.d2).abs() < 1e-4);
+        }
+    }
+
+    #[test]
+    fn bad_inputs_are_typed_errors() {
+        assert!(matches!(
+            Ellipse::new(30.0, 1.0),
+            Err(Error::OutOfRange { .. })
+        ));
+        assert!(matches!(
+            Ellipse::new(f64::NAN, 0.1),
+            Err(Error::NonFinite { .. })
+        ));
+        let spec = CurveSpec::Spline {
+            radii_mm: vec![1.0, 2.0, 3.0],
+            angles_deg: vec![0.0, 90.0, 180.0],
+        };
+        assert!(matches!(
+            spec.build(),
+            Err(Error::TooFewPoints { got: 3, .. })
+        ));
+        let spec = CurveSpec::Spline {
+            radii_mm: vec![1.0, 2.0, -3.0, 2.0],
+            angles_deg: vec![0.0, 90.0, 180.0, 270.0],
+        };
+        assert!(matches!(spec.build(), Err(Error::NonPositiveRadius { .. })));
+        let spec = CurveSpec::Spline {
+            radii_mm: vec![1.0, 2.0, 3.0, 2.0],
+            angles_deg: vec![0.0, 90.0, 90.0, 270.0],
+        };
+        assert!(matches!(
+            spec.build(),
+            Err(Error::ControlAngles { index: 2, .. })
+        ));
+        let spec = CurveSpec::Fourier {
+            c0_mm: 10.0,
+            cos_mm: vec![11.0],
+            sin_mm: vec![],
+        };
+        assert!(matches!(spec.build(), Err(Error::NonPositiveRadius { .. })));
+    }
+
+    #[test]
+    fn paper_curve_builds_in_every_construction() {
+        let (r, a) = paper_control_points();
+        for spec in [
+            CurveSpec::Spline {
+                radii_mm: r.clone(),
+                angles_deg: a.clone(),
+            },
+            CurveSpec::Bspline {
+                radii_mm: r.clone(),
+                angles_deg: a.clone(),
+            },
+            CurveSpec::Bezier {
+                radii_mm: r.clone(),
+                angles_deg: a.clone(),
+            },
+        ] {
+            let c = spec.build().unwrap_or_else(|e| panic!("{spec:?}: {e}"));
+            assert!(c.eval(1.0).rho > 0.0);
+        }
+    }
+}

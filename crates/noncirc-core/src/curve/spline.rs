@@ -1,0 +1,250 @@
+//! Periodic cubic interpolating spline of `rho` in `psi` (period 2π).
+
+use crate::curve::{Polar, TAU};
+use crate::error::{finite, Error, Result};
+
+/// A C² periodic cubic spline through `(psi_i, rho_i)`, period 2π.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PeriodicSpline {
+    /// Knot angles (rad), strictly increasing, span < 2π.
+    knots: Vec<f64>,
+    /// Per-segment coefficients `[a, b, c, d]`: rho = a + b t + c t² + d t³, t = psi - knot.
+    coeffs: Vec<[f64; 4]>,
+}
+
+impl PeriodicSpline {
+    /// Builds the spline through `(psi_i [rad], rho_i [mm])`. `kind` names it in errors.
+    pub fn new(kind: &'static str, psi: &[f64], rho: &[f64]) -> Result<Self> {
+        let n = psi.len();
+        if n < 4 || rho.len() != n {
+            return Err(Error::TooFewPoints {
+                kind,
+                min: 4,
+                got: n.min(rho.len()),
+            });
+        }
+        for (i, (&p, &r)) in psi.iter().zip(rho).enumerate() {
+            finite(&format!("{kind} angle {i} (rad)"), p)?;
+            finite(&format!("{kind} radius {i} (mm)"), r)?;
+            if r <= 0.0 {
+                return Err(Error::NonPositiveRadius {
+                    psi_deg: p.to_degrees(),
+                    rho_mm: r,
+                });
+            }
+        }
+        check_angles(psi)?;
+        let h: Vec<f64> = (0..n)
+            .map(|i| {
+                if i + 1 < n {
+                    psi[i + 1] - psi[i]
+                } else {
+                    psi[0] + TAU - psi[n - 1]
+                }
+            })
+            .collect();
+        // Second derivatives M from the cyclic tridiagonal system.
+        let sub: Vec<f64> = (0..n).map(|i| h[(i + n - 1) % n]).collect();
+        let diag: Vec<f64> = (0..n).map(|i| 2.0 * (h[(i + n - 1) % n] + h[i])).collect();
+        let sup: Vec<f64> = h.clone();
+        let rhs: Vec<f64> = (0..n)
+            .map(|i| {
+                let next = rho[(i + 1) % n];
+                let prev = rho[(i + n - 1) % n];
+                6.0 * ((next - rho[i]) / h[i] - (rho[i] - prev) / h[(i + n - 1) % n])
+            })
+            .collect();
+        let m = solve_cyclic_tridiagonal(&sub, &diag, &sup, &rhs);
+        let coeffs = (0..n)
+            .map(|i| {
+                let (m0, m1, hi) = (m[i], m[(i + 1) % n], h[i]);
+                let y0 = rho[i];
+                let y1 = rho[(i + 1) % n];
+                [
+                    y0,
+                    (y1 - y0) / hi - hi * (2.0 * m0 + m1) / 6.0,
+                    m0 / 2.0,
+                    (m1 - m0) / (6.0 * hi),
+                ]
+            })
+            .collect();
+        let spline = Self {
+            knots: psi.to_vec(),
+            coeffs,
+        };
+        let (psi_min, rho_min) = spline.extreme(false);
+        if rho_min <= 0.0 {
+            return Err(Error::NonPositiveRadius {
+                psi_deg: psi_min.to_degrees(),
+                rho_mm: rho_min,
+            });
+        }
+        Ok(spline)
+    }
+
+    /// Segment index and local offset for `psi` (any real angle).
+    #[inline]
+    fn locate(&self, psi: f64) -> (usize, f64) {
+        let x = self.knots[0] + (psi - self.knots[0]).rem_euclid(TAU);
+        let i = self.knots.partition_point(|&k| k <= x).saturating_sub(1);
+        (i, x - self.knots[i])
+    }
+
+    /// rho and its first two derivatives at `psi` (rad).
+    #[inline]
+    pub fn eval(&self, psi: f64) -> Polar {
+        let (i, t) = self.locate(psi);
+        let [a, b, c, d] = self.coeffs[i];
+        Polar {
+            rho: a + t * (b + t * (c + t * d)),
+            d1: b + t * (2.0 * c + 3.0 * t * d),
+            d2: 2.0 * c + 6.0 * t * d,
+        }
+    }
+
+    /// Exact minimum (`max = false`) or maximum of the spline: `(psi, rho)`.
+    pub fn extreme(&self, max: bool) -> (f64, f64) {
+        let sign = if max { -1.0 } else { 1.0 };
+        let n = self.knots.len();
+        let mut best = (self.knots[0], self.coeffs[0][0]);
+        for i in 0..n {
+            let h = if i + 1 < n {
+                self.knots[i + 1] - self.knots[i]
+            } else {
+                self.knots[0] + TAU - self.knots[i]
+            };
+            let [a, b, c, d] = self.coeffs[i];
+            let value = |t: f64| a + t * (b + t * (c + t * d));
+            // Candidates: segment start and the roots of b + 2c t + 3d t² in (0, h).
+            let mut candidates = vec![0.0];
+            let (qa, qb, qc) = (3.0 * d, 2.0 * c, b);
+            if qa.abs() > 1e-300 {
+                let disc = qb * qb - 4.0 * qa * qc;
+                if disc >= 0.0 {
+                    let s = disc.sqrt();
+                    candidates.push((-qb + s) / (2.0 * qa));
+                    candidates.push((-qb - s) / (2.0 * qa));
+                }
+            } else if qb.abs() > 1e-300 {
+                candidates.push(-qc / qb);
+            }
+            for t in candidates.into_iter().filter(|t| (0.0..h).contains(t)) {
+                let v = value(t);
+                if sign * v < sign * best.1 {
+                    best = (self.knots[i] + t, v);
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Checks that angles are strictly increasing and span less than one turn.
+pub(crate) fn check_angles(psi: &[f64]) -> Result<()> {
+    for i in 1..psi.len() {
+        if psi[i] <= psi[i - 1] {
+            return Err(Error::ControlAngles {
+                index: i,
+                angle_deg: psi[i].to_degrees(),
+                previous_deg: psi[i - 1].to_degrees(),
+            });
+        }
+    }
+    let last = psi.len() - 1;
+    if psi[last] - psi[0] >= TAU {
+        return Err(Error::ControlAngles {
+            index: last,
+            angle_deg: psi[last].to_degrees(),
+            previous_deg: psi[0].to_degrees() + 360.0,
+        });
+    }
+    Ok(())
+}
+
+/// Solves a cyclic tridiagonal system (Sherman–Morrison on the Thomas algorithm).
+/// Row i: `sub[i] x[i-1] + diag[i] x[i] + sup[i] x[i+1] = rhs[i]`, indices mod n.
+fn solve_cyclic_tridiagonal(sub: &[f64], diag: &[f64], sup: &[f64], rhs: &[f64]) -> Vec<f64> {
+    let n = diag.len();
+    let gamma = -diag[0];
+    let mut b = diag.to_vec();
+    b[0] -= gamma;
+    b[n - 1] -= sup[n - 1] * sub[0] / gamma;
+    let x = solve_tridiagonal(sub, &b, sup, rhs);
+    let mut u = vec![0.0; n];
+    u[0] = gamma;
+    u[n - 1] = sup[n - 1];
+    let z = solve_tridiagonal(sub, &b, sup, &u);
+    let factor = (x[0] + sub[0] * x[n - 1] / gamma) / (1.0 + z[0] + sub[0] * z[n - 1] / gamma);
+    x.iter().zip(&z).map(|(xi, zi)| xi - factor * zi).collect()
+}
+
+/// Thomas algorithm for a (non-cyclic) tridiagonal system; `sub[0]`, `sup[n-1]` unused.
+fn solve_tridiagonal(sub: &[f64], diag: &[f64], sup: &[f64], rhs: &[f64]) -> Vec<f64> {
+    let n = diag.len();
+    let mut c = vec![0.0; n];
+    let mut d = vec![0.0; n];
+    c[0] = sup[0] / diag[0];
+    d[0] = rhs[0] / diag[0];
+    for i in 1..n {
+        let denom = diag[i] - sub[i] * c[i - 1];
+        c[i] = if i + 1 < n { sup[i] / denom } else { 0.0 };
+        d[i] = (rhs[i] - sub[i] * d[i - 1]) / denom;
+    }
+    let mut x = vec![0.0; n];
+    x[n - 1] = d[n - 1];
+    for i in (0..n - 1).rev() {
+        x[i] = d[i] - c[i] * x[i + 1];
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn interpolates_and_is_c2_periodic() {
+        let psi: Vec<f64> = [10.0f64, 80.0, 150.0, 200.0, 300.0]
+            .iter()
+            .map(|d| d.to_radians())
+            .collect();
+        let rho = [30.0, 45.0, 25.0, 40.0, 35.0];
+        let s = PeriodicSpline::new("spline", &psi, &rho).unwrap();
+        for (p, r) in psi.iter().zip(&rho) {
+            assert!((s.eval(*p).rho - r).abs() < 1e-12);
+            assert!((s.eval(*p + TAU).rho - r).abs() < 1e-11);
+        }
+        // Continuity of value, slope and curvature across each knot (incl. the wrap).
+        for &p in &psi {
+            let (l, r) = (s.eval(p - 1e-9), s.eval(p + 1e-9));
+            assert!((l.rho - r.rho).abs() < 1e-7);
+            assert!((l.d1 - r.d1).abs() < 1e-6);
+            assert!((l.d2 - r.d2).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn reproduces_a_pure_harmonic_closely() {
+        let n = 64;
+        let psi: Vec<f64> = (0..n).map(|i| TAU * i as f64 / n as f64).collect();
+        let rho: Vec<f64> = psi.iter().map(|p| 40.0 + 5.0 * p.cos()).collect();
+        let s = PeriodicSpline::new("table", &psi, &rho).unwrap();
+        for k in 0..200 {
+            let p = 0.0314 * k as f64;
+            assert!((s.eval(p).rho - (40.0 + 5.0 * p.cos())).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn overshoot_below_zero_is_an_error_naming_the_angle() {
+        let psi: Vec<f64> = [0.0f64, 10.0, 20.0, 30.0, 200.0]
+            .iter()
+            .map(|d| d.to_radians())
+            .collect();
+        let rho = [1.0, 50.0, 1.0, 50.0, 1.0];
+        match PeriodicSpline::new("spline", &psi, &rho) {
+            Err(Error::NonPositiveRadius { rho_mm, .. }) => assert!(rho_mm <= 0.0),
+            other => panic!("expected NonPositiveRadius, got {other:?}"),
+        }
+    }
+}

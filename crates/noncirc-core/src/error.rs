@@ -1,0 +1,87 @@
+//! Typed errors: every one names the offending value.
+
+/// Everything that can go wrong in the core. Each variant carries the bad value.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Error {
+    /// A number that must be finite is NaN or infinite.
+    #[error("{name} must be a finite number, got {value}")]
+    NonFinite { name: String, value: f64 },
+    /// A scalar parameter is outside its admissible range.
+    #[error("{name} = {value} is out of range: expected {expected}")]
+    OutOfRange {
+        name: String,
+        value: f64,
+        expected: String,
+    },
+    /// A pitch curve reaches zero or negative radius.
+    #[error(
+        "pitch radius must be positive everywhere, but rho = {rho_mm:.6} mm at psi = {psi_deg:.4}°"
+    )]
+    NonPositiveRadius { psi_deg: f64, rho_mm: f64 },
+    /// Control angles are not strictly increasing within one turn.
+    #[error("control angles must be strictly increasing within one turn: angle {index} is {angle_deg}° after {previous_deg}°")]
+    ControlAngles {
+        index: usize,
+        angle_deg: f64,
+        previous_deg: f64,
+    },
+    /// Too few control points for the representation.
+    #[error("{kind} needs at least {min} points, got {got}")]
+    TooFewPoints {
+        kind: &'static str,
+        min: usize,
+        got: usize,
+    },
+    /// A Cartesian curve is not star-shaped about the rotation centre.
+    #[error("{kind} pitch curve is not star-shaped about the centre: its polar angle turns back near ({x_mm:.3}, {y_mm:.3}) mm")]
+    NotStarShaped {
+        kind: &'static str,
+        x_mm: f64,
+        y_mm: f64,
+    },
+    /// The quadrature is too coarse for the curve: the closure integral is not resolved.
+    #[error("closure not resolved at {samples} samples per turn: centre distance uncertain by about {error_mm:.3e} mm (tolerance {tolerance_mm:.1e} mm); the curve's sharpest feature needs more samples per turn")]
+    UnderResolved {
+        samples: usize,
+        error_mm: f64,
+        tolerance_mm: f64,
+    },
+    /// The pitch curve's maximum lies between samples and reaches past the centre distance.
+    #[error("pitch curve reaches rho = {rho_max_mm:.6} mm between samples, beyond the centre distance {centre_distance_mm:.6} mm: raise samples per turn")]
+    SpikeBetweenSamples {
+        rho_max_mm: f64,
+        centre_distance_mm: f64,
+    },
+    /// A design that cannot be manufactured (e.g. a module of zero).
+    #[error("{0}")]
+    Infeasible(String),
+}
+
+/// Shorthand for core results.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Checks that `value` is finite, naming it in the error otherwise.
+pub fn finite(name: &str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::NonFinite {
+            name: name.to_string(),
+            value,
+        })
+    }
+}
+
+/// Checks that `value` is finite and strictly positive.
+pub fn positive(name: &str, value: f64) -> Result<f64> {
+    finite(name, value)?;
+    if value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::OutOfRange {
+            name: name.to_string(),
+            value,
+            expected: "> 0".into(),
+        })
+    }
+}

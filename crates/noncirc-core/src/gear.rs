@@ -1,0 +1,391 @@
+//! Non-circular gear pairs of average ratio 1: closure, conjugate curve, ratio, module.
+
+use crate::curve::{PitchCurve, Polar, TAU};
+use crate::error::{Error, Result};
+use crate::quadrature::SpectralIntegrator;
+use crate::resolution::Resolution;
+use serde::{Deserialize, Serialize};
+
+/// The solved closure condition.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Closure {
+    /// Centre distance `a` (mm).
+    pub centre_distance: f64,
+    /// Estimated absolute error of `a` from the half-grid quadrature (mm, conservative).
+    pub error_estimate: f64,
+    /// Iterations of the safeguarded Newton solve.
+    pub iterations: usize,
+}
+
+/// Solves `(1/2π) ∮ rho/(a - rho) dψ = 1` for `a > max rho` from uniform samples of `rho`
+/// (trapezoid rule: spectrally accurate for smooth periodic curves).
+///
+/// Safeguarded Newton on `H(a) = 1/M(a) - 1` (nearly linear near the singular end) inside the
+/// bracket `[max(ρmax, 2ρmin), 2ρmax]`, falling back to bisection: it cannot fail to converge.
+pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
+    let (mut rmin, mut rmax) = (f64::INFINITY, 0.0f64);
+    for &r in rho {
+        rmin = rmin.min(r);
+        rmax = rmax.max(r);
+    }
+    let (mut lo, mut hi) = (rmax.max(2.0 * rmin), 2.0 * rmax);
+    let mean_rho = rho.iter().sum::<f64>() / rho.len() as f64;
+    let mut a = (2.0 * mean_rho).clamp(lo, hi);
+    if a <= rmax {
+        a = 0.5 * (lo + hi);
+    }
+    let mut iterations = 0;
+    if hi - lo > res.newton_rel_tol * hi {
+        loop {
+            iterations += 1;
+            let (m, dm) = mean_ratio(rho, a);
+            let (h, dh) = if m.is_finite() {
+                (1.0 / m - 1.0, -dm / (m * m))
+            } else {
+                (-1.0, f64::NAN)
+            };
+            if h < 0.0 {
+                lo = a;
+            } else {
+                hi = a;
+            }
+            let mut next = a - h / dh;
+            if !(next > lo && next < hi) {
+                next = 0.5 * (lo + hi);
+            }
+            let step = (next - a).abs();
+            a = next;
+            if step <= res.newton_rel_tol * a
+                || hi - lo <= res.newton_rel_tol * a
+                || iterations >= 400
+            {
+                break;
+            }
+        }
+    } else {
+        a = hi;
+    }
+    // Error estimate: the same integral on the even half of the grid.
+    let (m_full, dm) = mean_ratio(rho, a);
+    let m_half =
+        rho.iter().step_by(2).map(|&r| r / (a - r)).sum::<f64>() / rho.len().div_ceil(2) as f64;
+    let error_estimate = if dm.abs() > 0.0 {
+        (m_full - m_half).abs() / dm.abs()
+    } else {
+        0.0
+    };
+    if error_estimate > res.closure_rel_tol * a {
+        return Err(Error::UnderResolved {
+            samples: rho.len(),
+            error_mm: error_estimate,
+            tolerance_mm: res.closure_rel_tol * a,
+        });
+    }
+    Ok(Closure {
+        centre_distance: a,
+        error_estimate,
+        iterations,
+    })
+}
+
+/// `M(a) = mean(rho/(a - rho))` and `dM/da`; `M = ∞` if `a ≤ max rho`.
+#[inline]
+fn mean_ratio(rho: &[f64], a: f64) -> (f64, f64) {
+    let (mut m, mut dm) = (0.0, 0.0);
+    for &r in rho {
+        let gap = a - r;
+        if gap <= 0.0 {
+            return (f64::INFINITY, f64::NEG_INFINITY);
+        }
+        let q = r / gap;
+        m += q;
+        dm -= q / gap;
+    }
+    let n = rho.len() as f64;
+    (m / n, dm / n)
+}
+
+/// Radius of curvature `R_c = (ρ² + ρ'²)^{3/2} / (ρ² + 2ρ'² - ρρ'')` (mm): positive on convex arcs.
+#[inline]
+pub fn curvature_radius(p: Polar) -> f64 {
+    let s = p.rho * p.rho + p.d1 * p.d1;
+    s * s.sqrt() / (p.rho * p.rho + 2.0 * p.d1 * p.d1 - p.rho * p.d2)
+}
+
+/// The driven curve's `(ρ2, dρ2/dφ2, d²ρ2/dφ2²)` at the contact where the driver shows `p`.
+#[inline]
+pub fn conjugate_polar(p: Polar, a: f64) -> Polar {
+    let gap = a - p.rho;
+    // dφ2/dψ = ρ/(a-ρ); dρ2/dψ = -ρ'.
+    let q = -p.d1 * gap / p.rho;
+    let dq = -p.d2 * gap / p.rho + p.d1 * p.d1 / p.rho + p.d1 * p.d1 * gap / (p.rho * p.rho);
+    Polar {
+        rho: gap,
+        d1: q,
+        d2: dq * gap / p.rho,
+    }
+}
+
+/// How teeth may be cut: the rules that bound the module (spec §1.4).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ModuleRule {
+    /// Fewest teeth of a rack that cut a convex arc without undercut (17 for a 20° rack).
+    pub z_min: f64,
+    /// Teeth of the shaper cutter for concave arcs; `None` forbids concave arcs.
+    pub cutter_teeth: Option<f64>,
+}
+
+impl Default for ModuleRule {
+    fn default() -> Self {
+        Self {
+            z_min: 17.0,
+            cutter_teeth: Some(12.0),
+        }
+    }
+}
+
+/// The largest admissible module and what limits it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ModuleReport {
+    /// Largest admissible module over integer tooth counts (mm); 0 if none is admissible.
+    pub module_max_mm: f64,
+    /// The tooth count that gives it.
+    pub teeth: u32,
+    /// Module bound from curvature before rounding to whole teeth (mm).
+    pub module_limit_mm: f64,
+    /// Least convex radius of curvature over all gears (mm).
+    pub min_convex_radius_mm: f64,
+    /// Least concave |radius of curvature| over all gears (mm); infinite if none is concave.
+    pub min_concave_radius_mm: f64,
+}
+
+/// Largest module for a ratio-1 train whose gears show the given curvature radii and share
+/// the pitch perimeter `perimeter` (mm).
+pub fn module_max(
+    perimeter: f64,
+    min_convex: f64,
+    min_concave: f64,
+    rule: &ModuleRule,
+) -> ModuleReport {
+    let convex_limit = 2.0 * min_convex / rule.z_min;
+    let concave_limit = match rule.cutter_teeth {
+        _ if min_concave.is_infinite() => f64::INFINITY,
+        Some(z) => 2.0 * min_concave / z,
+        None => 0.0,
+    };
+    let limit = convex_limit.min(concave_limit);
+    let (teeth, module) = if limit > 0.0 {
+        let z = (perimeter / (std::f64::consts::PI * limit) - 1e-9)
+            .ceil()
+            .max(1.0);
+        (z as u32, perimeter / (std::f64::consts::PI * z))
+    } else {
+        (0, 0.0)
+    };
+    ModuleReport {
+        module_max_mm: module,
+        teeth,
+        module_limit_mm: limit,
+        min_convex_radius_mm: min_convex,
+        min_concave_radius_mm: min_concave,
+    }
+}
+
+/// Least convex and least concave |R_c| of the driver and its conjugate at the given samples.
+pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
+    let (mut convex, mut concave) = (f64::INFINITY, f64::INFINITY);
+    for &p in samples {
+        for rc in [curvature_radius(p), curvature_radius(conjugate_polar(p, a))] {
+            if rc > 0.0 {
+                convex = convex.min(rc);
+            } else {
+                concave = concave.min(-rc);
+            }
+        }
+    }
+    (convex, concave)
+}
+
+/// A solved gear pair: the driver's pitch curve, its conjugate at the closing centre distance.
+#[derive(Debug, Clone)]
+pub struct GearPair {
+    curve: PitchCurve,
+    resolution: Resolution,
+    /// Driver samples at `psi_j = j·2π/N`.
+    samples: Vec<Polar>,
+    closure: Closure,
+    /// Driven angle at the sample nodes.
+    phi2_nodes: Vec<f64>,
+    /// Fourier coefficients of `rho/(a - rho)` (k ≥ 0), for `phi2` between nodes.
+    ratio_coeffs: Vec<rustfft::num_complex::Complex64>,
+}
+
+impl GearPair {
+    /// Samples the curve, solves the closure and integrates the driven angle.
+    pub fn solve(curve: PitchCurve, resolution: Resolution) -> Result<Self> {
+        resolution.validate()?;
+        let n = resolution.samples_per_turn;
+        let samples: Vec<Polar> = (0..n)
+            .map(|j| curve.eval(TAU * j as f64 / n as f64))
+            .collect();
+        let rho: Vec<f64> = samples.iter().map(|p| p.rho).collect();
+        if let Some((j, p)) = samples
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !(p.rho > 0.0 && p.d1.is_finite() && p.d2.is_finite()))
+        {
+            return Err(Error::NonPositiveRadius {
+                psi_deg: 360.0 * j as f64 / n as f64,
+                rho_mm: p.rho,
+            });
+        }
+        let closure = solve_closure(&rho, &resolution)?;
+        let a = closure.centre_distance;
+        let sampled_max = rho.iter().cloned().fold(0.0, f64::max);
+        let true_max = curve.max_radius_bound(sampled_max);
+        if true_max >= a {
+            return Err(Error::SpikeBetweenSamples {
+                rho_max_mm: true_max,
+                centre_distance_mm: a,
+            });
+        }
+        let g: Vec<f64> = rho.iter().map(|&r| r / (a - r)).collect();
+        let mut phi2_nodes = vec![0.0; n];
+        let mut integrator = SpectralIntegrator::new(n);
+        integrator.cumulative(&g, &mut phi2_nodes);
+        let ratio_coeffs = integrator.coefficients(&g);
+        Ok(Self {
+            curve,
+            resolution,
+            samples,
+            closure,
+            phi2_nodes,
+            ratio_coeffs,
+        })
+    }
+
+    /// The driver's pitch curve.
+    pub fn curve(&self) -> &PitchCurve {
+        &self.curve
+    }
+
+    /// The resolution that produced this pair.
+    pub fn resolution(&self) -> Resolution {
+        self.resolution
+    }
+
+    /// The closure solution (centre distance, error estimate, iterations).
+    pub fn closure(&self) -> Closure {
+        self.closure
+    }
+
+    /// Centre distance `a` (mm).
+    pub fn centre_distance(&self) -> f64 {
+        self.closure.centre_distance
+    }
+
+    /// Driver samples at `psi_j = j·2π/N`.
+    pub fn samples(&self) -> &[Polar] {
+        &self.samples
+    }
+
+    /// Driven angle at the sample nodes `psi_j = j·2π/N` (rad, `phi2(0) = 0`).
+    pub fn phi2_nodes(&self) -> &[f64] {
+        &self.phi2_nodes
+    }
+
+    /// Driven rotation `phi2(psi)` (rad) at any `psi`, by the trigonometric interpolant of
+    /// the sampled integrand integrated term by term (O(N) per call; spectrally accurate).
+    /// For even N the Nyquist term is dropped, as in the node values.
+    pub fn phi2(&self, psi: f64) -> f64 {
+        let mean = self.ratio_coeffs[0].re;
+        let mut periodic = 0.0;
+        for (k, c) in self.ratio_coeffs.iter().enumerate().skip(1) {
+            let kf = k as f64;
+            // 2 Re[(c_k/(ik)) (e^{ikψ} - 1)]
+            let (s, co) = (kf * psi).sin_cos();
+            periodic += 2.0 / kf * (c.im * (co - 1.0) + c.re * s);
+        }
+        mean * psi + periodic
+    }
+
+    /// Transmission ratio `i12 = ω1/ω2 = (a - ρ)/ρ` at `psi`.
+    pub fn ratio(&self, psi: f64) -> f64 {
+        let r = self.curve.eval(psi).rho;
+        (self.centre_distance() - r) / r
+    }
+
+    /// Driver pitch perimeter (mm); the driven gear's is equal.
+    pub fn perimeter(&self) -> f64 {
+        let n = self.samples.len() as f64;
+        self.samples.iter().map(|p| p.rho.hypot(p.d1)).sum::<f64>() * TAU / n
+    }
+
+    /// Largest admissible module over the pair's teeth.
+    pub fn module(&self, rule: &ModuleRule) -> ModuleReport {
+        let (convex, concave) = curvature_extremes(&self.samples, self.centre_distance());
+        module_max(self.perimeter(), convex, concave, rule)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::{CurveSpec, Ellipse};
+
+    fn ellipse_pair(k: f64, n: usize) -> GearPair {
+        let res = Resolution {
+            samples_per_turn: n,
+            closure_rel_tol: 1e-6,
+            ..Resolution::DEFAULT
+        };
+        GearPair::solve(PitchCurve::Ellipse(Ellipse::new(30.0, k).unwrap()), res).unwrap()
+    }
+
+    #[test]
+    fn circle_closes_at_twice_the_radius_with_unit_ratio() {
+        let pair = ellipse_pair(0.0, 60);
+        assert!((pair.centre_distance() - 60.0).abs() < 1e-12);
+        for k in 0..20 {
+            assert!((pair.ratio(0.3 * k as f64) - 1.0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn conjugate_polar_matches_finite_differences_of_the_driven_curve() {
+        let spec = CurveSpec::paper();
+        let pair = GearPair::solve(spec.build().unwrap(), Resolution::DEFAULT).unwrap();
+        let a = pair.centre_distance();
+        let curve = pair.curve();
+        for k in 1..30 {
+            let psi = 0.2 * k as f64;
+            let h = 1e-5;
+            let (p0, pm, pp) = (curve.eval(psi), curve.eval(psi - h), curve.eval(psi + h));
+            let c = conjugate_polar(p0, a);
+            // Driven curve as a function of phi2: use dphi2/dpsi = rho/(a - rho).
+            let dphi = |p: Polar| p.rho / (a - p.rho);
+            let d1_fd = ((a - pp.rho) - (a - pm.rho)) / (2.0 * h) / dphi(p0);
+            assert!((d1_fd - c.d1).abs() < 1e-6, "{d1_fd} vs {}", c.d1);
+            let (cm, cp) = (conjugate_polar(pm, a), conjugate_polar(pp, a));
+            let d2_fd = (cp.d1 - cm.d1) / (2.0 * h) / dphi(p0);
+            assert!(
+                (d2_fd - c.d2).abs() < 1e-4 * (1.0 + c.d2.abs()),
+                "{d2_fd} vs {}",
+                c.d2
+            );
+        }
+    }
+
+    #[test]
+    fn module_rounds_to_whole_teeth() {
+        let r = module_max(100.0, 30.0, f64::INFINITY, &ModuleRule::default());
+        assert!(r.module_max_mm <= r.module_limit_mm + 1e-12);
+        assert!((r.module_max_mm * std::f64::consts::PI * r.teeth as f64 - 100.0).abs() < 1e-9);
+        let forbid = ModuleRule {
+            cutter_teeth: None,
+            ..ModuleRule::default()
+        };
+        assert_eq!(module_max(100.0, 30.0, 5.0, &forbid).module_max_mm, 0.0);
+    }
+}

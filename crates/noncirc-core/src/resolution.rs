@@ -1,0 +1,75 @@
+//! Numerical resolution: every accuracy knob, explicit, with its documented default.
+
+use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
+
+/// The accuracy knobs of an evaluation. See `docs/accuracy.md` for each level's measured
+/// error and cost.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Resolution {
+    /// Uniform samples of the pitch curve per turn, which are also the carrier-angle samples
+    /// per cycle. A multiple of 6, at least 12. Default 360.
+    pub samples_per_turn: usize,
+    /// Largest accepted relative uncertainty of the centre distance, estimated from the
+    /// half grid; above it the closure is reported as under-resolved. Default 1e-5
+    /// (about 1 µm on the paper's 85 mm pair).
+    pub closure_rel_tol: f64,
+    /// Relative step below which the closure iteration stops. Default 1e-14.
+    pub newton_rel_tol: f64,
+}
+
+impl Default for Resolution {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+impl Resolution {
+    /// The default level: trajectory error below 0.01 mm, angles below 0.01° (docs/accuracy.md).
+    pub const DEFAULT: Resolution = Resolution {
+        samples_per_turn: 360,
+        closure_rel_tol: 1e-5,
+        newton_rel_tol: 1e-14,
+    };
+
+    /// The screening level used inside search (docs/accuracy.md).
+    pub const FAST: Resolution = Resolution {
+        samples_per_turn: 120,
+        closure_rel_tol: 1e-4,
+        newton_rel_tol: 1e-12,
+    };
+
+    /// This resolution with another sample count.
+    pub fn with_samples(self, samples_per_turn: usize) -> Self {
+        Self {
+            samples_per_turn,
+            ..self
+        }
+    }
+
+    /// Checks every knob, naming the bad one.
+    pub fn validate(&self) -> Result<()> {
+        let n = self.samples_per_turn;
+        if n < 12 || !n.is_multiple_of(6) {
+            return Err(Error::OutOfRange {
+                name: "resolution.samples_per_turn".into(),
+                value: n as f64,
+                expected: "a multiple of 6, at least 12".into(),
+            });
+        }
+        for (name, v) in [
+            ("resolution.closure_rel_tol", self.closure_rel_tol),
+            ("resolution.newton_rel_tol", self.newton_rel_tol),
+        ] {
+            if !(v.is_finite() && v > 0.0 && v < 1.0) {
+                return Err(Error::OutOfRange {
+                    name: name.into(),
+                    value: v,
+                    expected: "0 < tol < 1".into(),
+                });
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,8 @@
+//! noncirc: the facade over `noncirc-core` — scene files, reports, parallel evaluation.
+//!
+//! The core stays free of I/O and threads; files, terminals and threads live here.
+
+pub mod report;
+pub mod scene_file;
+
+pub use noncirc_core as core;

@@ -1,0 +1,170 @@
+//! Loading scenes from TOML or JSON files, built-in names, and `--set key=value` overrides.
+
+use noncirc_core::Scene;
+use std::path::Path;
+
+/// Why a scene could not be loaded: always names the file (or source) and, where known,
+/// the line, key and what was expected.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("{origin}: {message}")]
+    Parse { origin: String, message: String },
+    #[error("cannot read {path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("unknown built-in scene '{0}' (see `noncirc scenes`)")]
+    UnknownBuiltin(String),
+    #[error("--set {assignment}: {message}")]
+    Override { assignment: String, message: String },
+}
+
+/// Built-in scenes: `(name, file contents)`; the same files live under `scenes/`.
+pub const BUILTIN: &[(&str, &str)] = &[("paper", include_str!("../scenes/paper.toml"))];
+
+/// The default scene's name: the three-arm paper's design.
+pub const DEFAULT_SCENE: &str = "paper";
+
+/// Parses scene text. `origin` names it in errors; JSON if it starts with `{`, else TOML.
+pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
+    let parse_err = |message: String| SceneError::Parse {
+        origin: origin.to_string(),
+        message,
+    };
+    if text.trim_start().starts_with('{') {
+        let mut de = serde_json::Deserializer::from_str(text);
+        serde_path_to_error::deserialize(&mut de).map_err(|e| {
+            let inner = e.inner();
+            parse_err(format!(
+                "line {}, column {}: key '{}': {}",
+                inner.line(),
+                inner.column(),
+                e.path(),
+                inner
+            ))
+        })
+    } else {
+        let de = toml::Deserializer::new(text);
+        serde_path_to_error::deserialize(de).map_err(|e| {
+            let key = e.path().to_string();
+            let inner = e.into_inner();
+            let location = inner
+                .span()
+                .map(|s| {
+                    let line = text[..s.start.min(text.len())].matches('\n').count() + 1;
+                    format!("line {line}: ")
+                })
+                .unwrap_or_default();
+            parse_err(format!("{location}key '{key}': {}", inner.message()))
+        })
+    }
+}
+
+/// Loads a scene from a path, or a built-in by name when no such file exists.
+pub fn load_scene(spec: Option<&str>) -> Result<Scene, SceneError> {
+    let name = spec.unwrap_or(DEFAULT_SCENE);
+    if let Some((_, text)) = BUILTIN.iter().find(|(n, _)| *n == name) {
+        if !Path::new(name).exists() {
+            return parse_scene(text, &format!("built-in scene '{name}'"));
+        }
+    }
+    let path = Path::new(name);
+    if !path.exists() && path.extension().is_none() {
+        return Err(SceneError::UnknownBuiltin(name.to_string()));
+    }
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: name.to_string(),
+        source,
+    })?;
+    parse_scene(&text, name)
+}
+
+/// Applies `key.path=value` overrides (value read as TOML, else as a string).
+pub fn apply_overrides(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError> {
+    if assignments.is_empty() {
+        return Ok(scene);
+    }
+    let mut tree = serde_json::to_value(&scene).expect("a scene always serialises");
+    for assignment in assignments {
+        let err = |message: String| SceneError::Override {
+            assignment: assignment.clone(),
+            message,
+        };
+        let (key, raw) = assignment
+            .split_once('=')
+            .ok_or_else(|| err("expected key=value".into()))?;
+        let value: serde_json::Value = match toml::from_str::<toml::Table>(&format!("v = {raw}")) {
+            Ok(mut t) => serde_json::to_value(t.remove("v").expect("parsed key"))
+                .map_err(|e| err(e.to_string()))?,
+            Err(_) => serde_json::Value::String(raw.to_string()),
+        };
+        let mut node = &mut tree;
+        let parts: Vec<&str> = key.trim().split('.').collect();
+        for (i, part) in parts.iter().enumerate() {
+            let obj = node
+                .as_object_mut()
+                .ok_or_else(|| err(format!("'{}' is not a table", parts[..i].join("."))))?;
+            if i + 1 == parts.len() {
+                if !obj.contains_key(*part) {
+                    return Err(err(format!("unknown key '{key}'")));
+                }
+                obj.insert(part.to_string(), value.clone());
+                break;
+            }
+            node = obj
+                .get_mut(*part)
+                .ok_or_else(|| err(format!("unknown key '{}'", parts[..=i].join("."))))?;
+        }
+    }
+    serde_path_to_error::deserialize(tree).map_err(|e| SceneError::Override {
+        assignment: assignments.join(" "),
+        message: format!("key '{}': {}", e.path(), e.inner()),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_scenes_parse() {
+        for (name, text) in BUILTIN {
+            parse_scene(text, name).unwrap_or_else(|e| panic!("{e}"));
+        }
+    }
+
+    #[test]
+    fn errors_name_line_and_key() {
+        let text = "name = \"x\"\n[resolution]\nsamples_per_turn = \"many\"\n";
+        let e = parse_scene(text, "bad.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("bad.toml")
+                && e.contains("line 3")
+                && e.contains("resolution.samples_per_turn"),
+            "{e}"
+        );
+        let e = parse_scene("[gear]\ncolour = 3\n", "u.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("colour") && e.contains("line 2"), "{e}");
+        let e = parse_scene("{\"resolution\": {\"samples_per_turn\": -1}}", "j.json")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("j.json") && e.contains("samples_per_turn"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn overrides_change_values_and_reject_unknown_keys() {
+        let scene = load_scene(None).unwrap();
+        let s =
+            apply_overrides(scene.clone(), &["resolution.samples_per_turn=720".into()]).unwrap();
+        assert_eq!(s.resolution.samples_per_turn, 720);
+        assert!(apply_overrides(scene.clone(), &["resolution.nope=1".into()]).is_err());
+        assert!(apply_overrides(scene, &["resolution.samples_per_turn=abc".into()]).is_err());
+    }
+}

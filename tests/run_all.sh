@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Every check and test of noncirc: formatting, lints, Rust tests, then the Python package.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+echo "== cargo fmt --check"
+cargo fmt --all -- --check
+echo "== cargo clippy --all-targets -- -D warnings"
+cargo clippy --workspace --all-targets -- -D warnings
+echo "== cargo test"
+cargo test --workspace --release
+# Benches compile and run once as tests (no timing).
+cargo test --release --benches
+
+if [ -f python/pyproject.toml ]; then
+  echo "== Python package (maturin + pytest)"
+  VENV=.venv
+  [ -x "$VENV/bin/python" ] || python3 -m venv "$VENV"
+  "$VENV/bin/python" -m pip install --quiet --upgrade pip
+  "$VENV/bin/python" -m pip install --quiet -r python/requirements-dev.txt
+  (cd python && ../"$VENV"/bin/maturin develop --release --quiet)
+  "$VENV/bin/python" -m pytest python/tests -q
+fi
