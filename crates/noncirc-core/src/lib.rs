@@ -14,3 +14,5 @@ pub use gear::{GearPair, ModuleReport, ModuleRule};
 pub use resolution::Resolution;
 pub mod scene;
 pub use scene::{GearSpec, Scene};
+pub mod planetary;
+pub use planetary::{Kinematics, TrainSpec};

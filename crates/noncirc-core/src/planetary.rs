@@ -1,0 +1,429 @@
+//! The three-arm planetary transplanting mechanism: fixed sun, intermediate (conjugate)
+//! and planet (congruent to the sun) gears on a carrier, an arm on each planet (spec §2).
+
+use crate::curve::{PitchCurve, Polar, TAU};
+use crate::error::{finite, positive, Error, Result};
+use crate::gear::solve_closure;
+use crate::quadrature::{MonotoneDrift, SpectralIntegrator};
+use crate::resolution::Resolution;
+use serde::{Deserialize, Serialize};
+
+/// Sense in which the carrier turns, seen in the frame with `y` up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Rotation {
+    /// `phiH = phi0 - θ` (paper eq. 4).
+    Clockwise,
+    /// `phiH = phi0 + θ`.
+    Counterclockwise,
+}
+
+impl Rotation {
+    /// `σ`: −1 clockwise, +1 counter-clockwise.
+    pub fn sign(self) -> f64 {
+        match self {
+            Rotation::Clockwise => -1.0,
+            Rotation::Counterclockwise => 1.0,
+        }
+    }
+}
+
+/// Which of the two lines through the tip at distance `H1` from `O3` is the pusher axis,
+/// seen looking from `O3` along the arm towards the tip.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PusherSide {
+    /// The axis is turned counter-clockwise from the arm line `O3 → D`.
+    Left,
+    /// The axis is turned clockwise from the arm line `O3 → D`.
+    Right,
+}
+
+/// How the sun's pitch curve (its control angles) sits in the ground frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SunFrame {
+    /// The sun is installed turned by `Φ0` (paper eq. 5, `φ1 = φ0`): changing `Φ0` tilts the
+    /// whole mechanism and its trajectory, as the paper's §4.2 says it does.
+    Installed,
+    /// The control angles are measured in the ground frame (spec §2 read literally):
+    /// `Φ0` then only shifts which carrier angle is called zero.
+    Ground,
+}
+
+/// The train's and arm's geometric parameters (angles in degrees, lengths in mm).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TrainSpec {
+    /// Installation angle `Φ0` of the carrier (deg). Paper: 86.
+    pub phi0_deg: f64,
+    /// Arm installation angle `β0` relative to the planet (deg). Paper: −29.
+    pub beta0_deg: f64,
+    /// Distance `S` from the planet centre to the arm tip (mm). Paper: 145.
+    pub arm_length_mm: f64,
+    /// Distance `H1` from the planet centre to the pusher axis (mm). Paper: 65.
+    pub pusher_offset_mm: f64,
+    /// Carrier corner angle `γ0` between `O1O2` and `O2O3` (deg). Paper: −53.
+    pub gamma0_deg: f64,
+    /// Carrier rotation sense. Paper: clockwise.
+    pub rotation: Rotation,
+    /// Side of the pusher axis.
+    pub pusher_side: PusherSide,
+    /// How the sun's control angles sit in the ground frame.
+    pub sun_frame: SunFrame,
+    /// Carrier speed (r/min): 60 gives the paper's 180 picks per minute.
+    pub carrier_speed_rpm: f64,
+}
+
+impl Default for TrainSpec {
+    fn default() -> Self {
+        Self {
+            phi0_deg: 86.0,
+            beta0_deg: -29.0,
+            arm_length_mm: 145.0,
+            pusher_offset_mm: 65.0,
+            gamma0_deg: -53.0,
+            rotation: Rotation::Clockwise,
+            pusher_side: PusherSide::Right,
+            sun_frame: SunFrame::Installed,
+            carrier_speed_rpm: 60.0,
+        }
+    }
+}
+
+impl TrainSpec {
+    /// The sun's own-frame parameter at the contact when the carrier angle is 0 (rad):
+    /// the contact then sits at `psi(θ) = psi_start + σθ`.
+    pub fn psi_start(&self) -> f64 {
+        match self.sun_frame {
+            SunFrame::Installed => 0.0,
+            SunFrame::Ground => self.phi0_deg.to_radians(),
+        }
+    }
+
+    /// Angle by which the sun's pitch curve is turned in the ground frame (rad).
+    pub fn sun_angle(&self) -> f64 {
+        match self.sun_frame {
+            SunFrame::Installed => self.phi0_deg.to_radians(),
+            SunFrame::Ground => 0.0,
+        }
+    }
+
+    /// Checks every parameter, naming the bad one.
+    pub fn validate(&self) -> Result<()> {
+        finite("train.phi0_deg", self.phi0_deg)?;
+        finite("train.beta0_deg", self.beta0_deg)?;
+        finite("train.gamma0_deg", self.gamma0_deg)?;
+        positive("train.arm_length_mm", self.arm_length_mm)?;
+        positive("train.carrier_speed_rpm", self.carrier_speed_rpm)?;
+        finite("train.pusher_offset_mm", self.pusher_offset_mm)?;
+        if !(self.pusher_offset_mm >= 0.0 && self.pusher_offset_mm < self.arm_length_mm) {
+            return Err(Error::OutOfRange {
+                name: "train.pusher_offset_mm".into(),
+                value: self.pusher_offset_mm,
+                expected: format!("0 <= H1 < S = {} mm", self.arm_length_mm),
+            });
+        }
+        let gamma = self.gamma0_deg.rem_euclid(360.0);
+        if gamma == 180.0 || gamma == 0.0 {
+            return Err(Error::OutOfRange {
+                name: "train.gamma0_deg".into(),
+                value: self.gamma0_deg,
+                expected: "not a multiple of 180° (the planet would sit on the sun or on the intermediate)".into(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// `(cos x, sin x)`.
+#[inline]
+pub fn unit(x: f64) -> [f64; 2] {
+    let (s, c) = x.sin_cos();
+    [c, s]
+}
+
+/// The state of arm I at one carrier angle: positions (mm), angles (rad) and the tip's
+/// derivatives per radian of carrier angle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArmState {
+    /// Carrier angle θ (rad).
+    pub theta: f64,
+    /// Intermediate centre `O2`.
+    pub o2: [f64; 2],
+    /// Planet centre `O3`.
+    pub o3: [f64; 2],
+    /// Planet orientation `theta3` (rad).
+    pub theta3: f64,
+    /// Intermediate orientation (rad). Its own pitch curve carries the material point of sun
+    /// parameter ψ at own angle `χ(ψ) = −∫_{ψ_start}^{ψ} ρ/(a−ρ)`, radius `a − ρ(ψ)`.
+    pub theta2: f64,
+    /// Sun own-frame parameter of the intermediate's material point now at the planet mesh (rad).
+    pub psi_planet_mesh: f64,
+    /// Arm tip `D`.
+    pub tip: [f64; 2],
+    /// `dD/dθ` (mm/rad).
+    pub tip_d1: [f64; 2],
+    /// `d²D/dθ²` (mm/rad²).
+    pub tip_d2: [f64; 2],
+    /// Pusher-axis direction angle (rad), pointing from the arm towards the tip.
+    pub pusher_angle: f64,
+}
+
+/// The sampled motion of arm I over one carrier turn, plus what is needed to evaluate it at
+/// any carrier angle. Arms II and III follow at `θ − 120°` and `θ − 240°`.
+#[derive(Debug, Clone)]
+pub struct Kinematics {
+    curve: PitchCurve,
+    spec: TrainSpec,
+    resolution: Resolution,
+    sigma: f64,
+    centre_distance: f64,
+    closure_error: f64,
+    /// Sun samples at `psi_j = psi_start + σ θ_j` (own frame).
+    sun: Vec<Polar>,
+    /// `Φ(θ_j)`, `Φ'(θ_j) = g̃`, `Φ''(θ_j) = g̃'`.
+    big_phi: Vec<f64>,
+    g: Vec<f64>,
+    dg: Vec<f64>,
+    /// Mesh delay of the intermediate between its two meshes (rad).
+    delay: f64,
+    /// `Φ(2π) − Φ(0)` (rad; 2π up to the closure error).
+    phi_period: f64,
+    /// Per node: `θ_s`, planet orientation, planet centre, tip.
+    theta_s: Vec<f64>,
+    theta3: Vec<f64>,
+    o3: Vec<[f64; 2]>,
+    tip: Vec<[f64; 2]>,
+}
+
+impl Kinematics {
+    /// Samples the sun on the carrier grid, closes the pair and moves arm I through one turn.
+    pub fn solve(curve: &PitchCurve, spec: &TrainSpec, resolution: &Resolution) -> Result<Self> {
+        resolution.validate()?;
+        spec.validate()?;
+        let n = resolution.samples_per_turn;
+        let h = TAU / n as f64;
+        let sigma = spec.rotation.sign();
+        let psi0 = spec.psi_start();
+        let sun: Vec<Polar> = (0..n)
+            .map(|j| curve.eval(psi0 + sigma * h * j as f64))
+            .collect();
+        let rho: Vec<f64> = sun.iter().map(|p| p.rho).collect();
+        let closure = solve_closure(&rho, resolution)?;
+        let a = closure.centre_distance;
+        let rmax = curve.max_radius_bound(rho.iter().cloned().fold(0.0, f64::max));
+        if rmax >= a {
+            return Err(Error::SpikeBetweenSamples {
+                rho_max_mm: rmax,
+                centre_distance_mm: a,
+            });
+        }
+        let g: Vec<f64> = sun.iter().map(|p| p.rho / (a - p.rho)).collect();
+        let dg: Vec<f64> = sun
+            .iter()
+            .map(|p| sigma * a * p.d1 / ((a - p.rho) * (a - p.rho)))
+            .collect();
+        let mut big_phi = vec![0.0; n];
+        let phi_period = SpectralIntegrator::new(n).cumulative(&g, &mut big_phi) * TAU;
+        let gamma0 = spec.gamma0_deg.to_radians();
+        let delay = (sigma * (gamma0 - std::f64::consts::PI)).rem_euclid(TAU);
+        let mut kin = Self {
+            curve: curve.clone(),
+            spec: *spec,
+            resolution: *resolution,
+            sigma,
+            centre_distance: a,
+            closure_error: closure.error_estimate,
+            sun,
+            big_phi,
+            g,
+            dg,
+            delay,
+            phi_period,
+            theta_s: vec![0.0; n],
+            theta3: vec![0.0; n],
+            o3: vec![[0.0; 2]; n],
+            tip: vec![[0.0; 2]; n],
+        };
+        let mut hint = 0;
+        for j in 0..n {
+            let theta = h * j as f64;
+            let (ts, cell) = kin.phi_fn().invert(kin.big_phi[j] - delay, hint);
+            hint = cell;
+            kin.theta_s[j] = ts;
+            let (_, o3) = kin.centres(theta);
+            let theta3 = spec.sun_angle() + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
+            kin.theta3[j] = theta3;
+            kin.o3[j] = o3;
+            let u = unit(theta3 + spec.beta0_deg.to_radians());
+            kin.tip[j] = [
+                o3[0] + spec.arm_length_mm * u[0],
+                o3[1] + spec.arm_length_mm * u[1],
+            ];
+        }
+        Ok(kin)
+    }
+
+    /// `Φ(θ)`, the intermediate's turn relative to the carrier, as an invertible function.
+    fn phi_fn(&self) -> MonotoneDrift<'_> {
+        MonotoneDrift {
+            value: &self.big_phi,
+            d1: &self.g,
+            d2: &self.dg,
+            period_increment: self.phi_period,
+        }
+    }
+
+    /// `O2` and `O3` at carrier angle `theta` (rad).
+    #[inline]
+    fn centres(&self, theta: f64) -> ([f64; 2], [f64; 2]) {
+        let a = self.centre_distance;
+        let phi_h = self.spec.phi0_deg.to_radians() + self.sigma * theta;
+        let e1 = unit(phi_h);
+        let e2 = unit(phi_h + self.spec.gamma0_deg.to_radians());
+        (
+            [a * e1[0], a * e1[1]],
+            [a * (e1[0] + e2[0]), a * (e1[1] + e2[1])],
+        )
+    }
+
+    /// Centre distance `a` shared by both meshes (mm).
+    pub fn centre_distance(&self) -> f64 {
+        self.centre_distance
+    }
+
+    /// Estimated error of the centre distance (mm).
+    pub fn closure_error(&self) -> f64 {
+        self.closure_error
+    }
+
+    /// The sun's pitch curve.
+    pub fn curve(&self) -> &PitchCurve {
+        &self.curve
+    }
+
+    /// The train parameters.
+    pub fn spec(&self) -> &TrainSpec {
+        &self.spec
+    }
+
+    /// The resolution that produced this motion.
+    pub fn resolution(&self) -> &Resolution {
+        &self.resolution
+    }
+
+    /// Number of carrier-angle samples per turn.
+    pub fn len(&self) -> usize {
+        self.tip.len()
+    }
+
+    /// Whether there are no samples (never, for a solved motion).
+    pub fn is_empty(&self) -> bool {
+        self.tip.is_empty()
+    }
+
+    /// Carrier angle of node `j` (rad).
+    pub fn theta(&self, j: usize) -> f64 {
+        TAU * j as f64 / self.len() as f64
+    }
+
+    /// Sun samples at the nodes (`psi_j = psi_start + σ θ_j`, the sun's own frame).
+    pub fn sun_samples(&self) -> &[Polar] {
+        &self.sun
+    }
+
+    /// Tip of arm I at the nodes (mm).
+    pub fn tips(&self) -> &[[f64; 2]] {
+        &self.tip
+    }
+
+    /// Planet centres of arm I at the nodes (mm).
+    pub fn planet_centres(&self) -> &[[f64; 2]] {
+        &self.o3
+    }
+
+    /// Planet orientations of arm I at the nodes (rad).
+    pub fn planet_angles(&self) -> &[f64] {
+        &self.theta3
+    }
+
+    /// Node index of arm `k` (0, 1, 2) at node `j` of the carrier: arm k lags arm I by k·120°.
+    pub fn arm_node(&self, k: usize, j: usize) -> usize {
+        let n = self.len();
+        (j + n - (k * n / 3) % n) % n
+    }
+
+    /// `g̃(u) = g(psi_start + σu)` and `g̃'(u)` at any carrier angle, from the curve itself.
+    fn ratio_at(&self, u: f64) -> (f64, f64) {
+        let a = self.centre_distance;
+        let p = self.curve.eval(self.spec.psi_start() + self.sigma * u);
+        let gap = a - p.rho;
+        (p.rho / gap, self.sigma * a * p.d1 / (gap * gap))
+    }
+
+    /// The full state of arm I at any carrier angle `theta` (rad): positions, the tip's
+    /// first two derivatives, orientations and the pusher-axis angle.
+    pub fn state_at(&self, theta: f64) -> ArmState {
+        let spec = &self.spec;
+        let sigma = self.sigma;
+        let phi = self.phi_fn();
+        let (big_phi, _) = phi.eval(theta);
+        let (ts, _) = phi.invert(big_phi - self.delay, 0);
+        let gamma0 = spec.gamma0_deg.to_radians();
+        let beta0 = spec.beta0_deg.to_radians();
+        let s = spec.arm_length_mm;
+        let a = self.centre_distance;
+        let (o2, o3) = self.centres(theta);
+        let theta3 = spec.sun_angle() + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
+        let (g_t, dg_t) = self.ratio_at(theta);
+        let (g_s, dg_s) = self.ratio_at(ts);
+        let ts1 = g_t / g_s;
+        let ts2 = (dg_t * g_s - g_t * dg_s * ts1) / (g_s * g_s);
+        let th1 = sigma * (1.0 - ts1);
+        let th2 = -sigma * ts2;
+        let phi_h = spec.phi0_deg.to_radians() + sigma * theta;
+        let (e1, e2) = (unit(phi_h), unit(phi_h + gamma0));
+        let u = unit(theta3 + beta0);
+        let tip = [o3[0] + s * u[0], o3[1] + s * u[1]];
+        // O3' = σ a (e1⊥ + e2⊥), O3'' = −a (e1 + e2); u' = θ3' u⊥.
+        let o3_d1 = [-sigma * a * (e1[1] + e2[1]), sigma * a * (e1[0] + e2[0])];
+        let o3_d2 = [-a * (e1[0] + e2[0]), -a * (e1[1] + e2[1])];
+        let tip_d1 = [o3_d1[0] - s * th1 * u[1], o3_d1[1] + s * th1 * u[0]];
+        let tip_d2 = [
+            o3_d2[0] - s * th2 * u[1] - s * th1 * th1 * u[0],
+            o3_d2[1] + s * th2 * u[0] - s * th1 * th1 * u[1],
+        ];
+        // Intermediate: the material point of sun parameter ψ sits at its own angle
+        // χ(ψ) = −∫_{ψ_start}^{ψ} g = −σΦ(θ) and meets the sun at the absolute direction φH + π.
+        let theta2 = phi_h + std::f64::consts::PI + sigma * big_phi;
+        ArmState {
+            theta,
+            o2,
+            o3,
+            theta3,
+            theta2,
+            psi_planet_mesh: spec.psi_start() + sigma * ts,
+            tip,
+            tip_d1,
+            tip_d2,
+            pusher_angle: self.pusher_angle(theta3),
+        }
+    }
+
+    /// Pusher-axis direction (rad) for planet orientation `theta3`.
+    pub fn pusher_angle(&self, theta3: f64) -> f64 {
+        let spec = &self.spec;
+        let side = match spec.pusher_side {
+            PusherSide::Left => 1.0,
+            PusherSide::Right => -1.0,
+        };
+        let offset = (spec.pusher_offset_mm / spec.arm_length_mm).asin();
+        theta3 + spec.beta0_deg.to_radians() + side * offset
+    }
+
+    /// Carrier angular speed (rad/s).
+    pub fn carrier_speed(&self) -> f64 {
+        self.spec.carrier_speed_rpm * TAU / 60.0
+    }
+}

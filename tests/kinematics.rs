@@ -1,0 +1,185 @@
+//! Convention-free physics of the three-arm train (spec §2): at every sample and both
+//! meshes, each gear's own pitch curve, placed by its own orientation, reaches the same
+//! contact point on the line of centres; the curves are tangent there; the material points'
+//! velocities agree. Run for both rotation senses, both sun frames and several designs.
+
+use noncirc::core::curve::{CurveSpec, PitchCurve};
+use noncirc::core::planetary::{unit, Kinematics, Rotation, SunFrame, TrainSpec};
+use noncirc::core::{GearPair, Resolution};
+use std::f64::consts::{PI, TAU};
+
+/// The intermediate's own pitch curve: the material point of sun parameter ψ at own angle
+/// χ = −(phi2(ψ) − phi2(ψ_start)), radius a − ρ(ψ); built from the gear-pair code path.
+fn intermediate_curve(sun: &PitchCurve, a: f64, psi_start: f64) -> PitchCurve {
+    let pair = GearPair::solve(sun.clone(), Resolution::DEFAULT.with_samples(2880)).unwrap();
+    let n = pair.samples().len();
+    let offset = pair.phi2(psi_start);
+    let mut points: Vec<(f64, f64)> = (0..n)
+        .map(|j| (-(pair.phi2_nodes()[j] - offset), a - pair.samples()[j].rho))
+        .collect();
+    points.reverse();
+    let (angles, radii): (Vec<f64>, Vec<f64>) =
+        points.iter().map(|(c, r)| (c.to_degrees(), *r)).unzip();
+    CurveSpec::Table {
+        radii_mm: radii,
+        angles_deg: angles,
+    }
+    .build()
+    .unwrap()
+}
+
+fn wrap(x: f64) -> f64 {
+    (x + PI).rem_euclid(TAU) - PI
+}
+
+/// Absolute tangent direction (mod π) of a polar curve placed with orientation `orient`,
+/// at own angle `chi`.
+fn tangent(curve: &PitchCurve, orient: f64, chi: f64) -> f64 {
+    let p = curve.eval(chi);
+    orient + chi + p.rho.atan2(p.d1)
+}
+
+/// Largest mismatch over the cycle: (radius sum − a, tangent angle, velocity) at both meshes.
+fn mesh_errors(spec: &CurveSpec, train: &TrainSpec, samples: usize) -> (f64, f64, f64) {
+    let sun = spec.build().unwrap();
+    let kin = Kinematics::solve(&sun, train, &Resolution::DEFAULT.with_samples(samples)).unwrap();
+    let a = kin.centre_distance();
+    let inter = intermediate_curve(&sun, a, train.psi_start());
+    let sun_angle = train.sun_angle();
+    let (mut radius, mut tang, mut vel) = (0.0f64, 0.0f64, 0.0f64);
+    for j in 0..kin.len() {
+        let theta = kin.theta(j) + 0.37 * TAU / kin.len() as f64;
+        let s = kin.state_at(theta);
+        let dir = |p: [f64; 2], q: [f64; 2]| (q[1] - p[1]).atan2(q[0] - p[0]);
+        // Mesh 1: sun (fixed, turned by sun_angle) and intermediate, on the line O1 O2.
+        let phi_h = dir([0.0, 0.0], s.o2);
+        let chi1 = phi_h + PI - s.theta2;
+        let r_sun = sun.eval(phi_h - sun_angle).rho;
+        let r_int = inter.eval(chi1).rho;
+        radius = radius.max((r_sun + r_int - a).abs());
+        let t_sun = tangent(&sun, sun_angle, phi_h - sun_angle);
+        let t_int = tangent(&inter, s.theta2, chi1);
+        tang = tang.max(wrap(2.0 * (t_sun - t_int)).abs() / 2.0);
+        // Mesh 2: intermediate and planet (the sun's own curve), on the line O2 O3.
+        let toward_o3 = dir(s.o2, s.o3);
+        let chi2 = toward_o3 - s.theta2;
+        let chi3 = toward_o3 + PI - s.theta3;
+        let (ri, rp) = (inter.eval(chi2).rho, sun.eval(chi3).rho);
+        radius = radius.max((ri + rp - a).abs());
+        let t_i = tangent(&inter, s.theta2, chi2);
+        let t_p = tangent(&sun, s.theta3, chi3);
+        tang = tang.max(wrap(2.0 * (t_i - t_p)).abs() / 2.0);
+        // Velocities of the two material points at the mesh-2 contact (central differences).
+        let c = [
+            s.o2[0] + ri * unit(toward_o3)[0],
+            s.o2[1] + ri * unit(toward_o3)[1],
+        ];
+        let h = 1e-5;
+        // Where the material point now at `c` is when its body sits at (centre2, angle2).
+        let moved = |centre: [f64; 2], angle: f64, centre2: [f64; 2], angle2: f64| {
+            let rel = [c[0] - centre[0], c[1] - centre[1]];
+            let rot = unit(angle2 - angle);
+            [
+                centre2[0] + rot[0] * rel[0] - rot[1] * rel[1],
+                centre2[1] + rot[1] * rel[0] + rot[0] * rel[1],
+            ]
+        };
+        let (sp, sm) = (kin.state_at(theta + h), kin.state_at(theta - h));
+        let vi = {
+            let (p, m) = (
+                moved(s.o2, s.theta2, sp.o2, sp.theta2),
+                moved(s.o2, s.theta2, sm.o2, sm.theta2),
+            );
+            [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)]
+        };
+        let vp = {
+            let (p, m) = (
+                moved(s.o3, s.theta3, sp.o3, sp.theta3),
+                moved(s.o3, s.theta3, sm.o3, sm.theta3),
+            );
+            [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)]
+        };
+        vel = vel.max((vi[0] - vp[0]).hypot(vi[1] - vp[1]));
+        // Mesh 1 velocity: the intermediate's point at C1 must be at rest (the sun is fixed).
+        let c1 = [r_sun * unit(phi_h)[0], r_sun * unit(phi_h)[1]];
+        let moved1 = |st: &noncirc::core::planetary::ArmState| {
+            let rel = [c1[0] - s.o2[0], c1[1] - s.o2[1]];
+            let rot = unit(st.theta2 - s.theta2);
+            [
+                st.o2[0] + rot[0] * rel[0] - rot[1] * rel[1],
+                st.o2[1] + rot[1] * rel[0] + rot[0] * rel[1],
+            ]
+        };
+        let (p, m) = (moved1(&sp), moved1(&sm));
+        vel = vel.max(((p[0] - m[0]) / (2.0 * h)).hypot((p[1] - m[1]) / (2.0 * h)));
+    }
+    (radius, tang, vel)
+}
+
+fn designs() -> Vec<(&'static str, CurveSpec)> {
+    let (r, a) = noncirc::core::curve::paper_control_points();
+    vec![
+        (
+            "paper spline",
+            CurveSpec::Spline {
+                radii_mm: r.clone(),
+                angles_deg: a.clone(),
+            },
+        ),
+        (
+            "paper bspline",
+            CurveSpec::Bspline {
+                radii_mm: r,
+                angles_deg: a,
+            },
+        ),
+        (
+            "fourier",
+            CurveSpec::Fourier {
+                c0_mm: 40.0,
+                cos_mm: vec![8.0, 3.0],
+                sin_mm: vec![-4.0, 1.0, 0.5],
+            },
+        ),
+    ]
+}
+
+#[test]
+fn both_meshes_touch_on_the_line_of_centres_without_slip() {
+    for (name, spec) in designs() {
+        for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
+            for sun_frame in [SunFrame::Installed, SunFrame::Ground] {
+                for gamma0_deg in [-53.0, 70.0] {
+                    let train = TrainSpec {
+                        rotation,
+                        sun_frame,
+                        gamma0_deg,
+                        ..TrainSpec::default()
+                    };
+                    let (radius, tang, vel) = mesh_errors(&spec, &train, 720);
+                    let label = format!("{name} {rotation:?} {sun_frame:?} γ0={gamma0_deg}");
+                    assert!(radius < 1e-4, "{label}: radii miss by {radius:e} mm");
+                    assert!(tang < 1e-4, "{label}: tangents differ by {tang:e} rad");
+                    assert!(vel < 1e-3, "{label}: slip velocity {vel:e} mm/rad");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn mesh_error_shrinks_as_resolution_grows() {
+    let (r, a) = noncirc::core::curve::paper_control_points();
+    let spec = CurveSpec::Spline {
+        radii_mm: r,
+        angles_deg: a,
+    };
+    let train = TrainSpec::default();
+    let coarse = mesh_errors(&spec, &train, 120);
+    let fine = mesh_errors(&spec, &train, 480);
+    assert!(
+        fine.0 < coarse.0 / 4.0,
+        "radius error {coarse:?} -> {fine:?}"
+    );
+    assert!(fine.2 < coarse.2 / 4.0, "slip {coarse:?} -> {fine:?}");
+}
