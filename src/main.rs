@@ -1,7 +1,7 @@
 //! The `noncirc` command line.
 
 use clap::{Parser, Subcommand, ValueEnum};
-use noncirc::report::GearReport;
+use noncirc::report::{EvaluationReport, GearReport};
 use noncirc::scene_file::{apply_overrides, load_scene, BUILTIN};
 use std::process::ExitCode;
 
@@ -39,6 +39,8 @@ struct SceneArgs {
 enum Command {
     /// Solve a non-circular gear pair: centre distance, perimeter, ratio, largest module.
     Gear(SceneArgs),
+    /// Evaluate a three-arm design: trajectory, events and the eight agronomic objectives.
+    Evaluate(SceneArgs),
     /// List the built-in scenes.
     Scenes,
 }
@@ -59,6 +61,14 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
         Command::Gear(args) => {
             let scene = apply_overrides(load_scene(args.scene.as_deref())?, &args.set)?;
             let (report, _) = GearReport::from_scene(&scene)?;
+            match args.format {
+                Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
+                Format::Table => print!("{}", report.table()),
+            }
+        }
+        Command::Evaluate(args) => {
+            let scene = apply_overrides(load_scene(args.scene.as_deref())?, &args.set)?;
+            let (report, _) = EvaluationReport::from_scene(&scene)?;
             match args.format {
                 Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
                 Format::Table => print!("{}", report.table()),

@@ -1,6 +1,7 @@
 //! Reports: what the CLI prints, as serialisable structs and readable tables.
 
-use noncirc_core::{GearPair, Result, Scene};
+use noncirc_core::objectives::{evaluate_all, Events};
+use noncirc_core::{GearPair, Kinematics, ObjectiveValue, Result, Scene};
 use serde::Serialize;
 
 /// Everything `noncirc gear` reports about a gear pair.
@@ -115,4 +116,192 @@ pub fn table(rows: &[(&str, String)]) -> String {
     rows.iter()
         .map(|(k, v)| format!("{k:<width$}  {v}\n"))
         .collect()
+}
+
+/// One objective as reported: `{name, value, unit, lower, upper, violation}`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ObjectiveRow {
+    pub name: &'static str,
+    pub label: &'static str,
+    pub value: f64,
+    pub unit: &'static str,
+    pub lower: Option<f64>,
+    pub upper: Option<f64>,
+    pub violation: f64,
+    pub margin: f64,
+}
+
+impl From<&ObjectiveValue> for ObjectiveRow {
+    fn from(v: &ObjectiveValue) -> Self {
+        Self {
+            name: v.kind.name(),
+            label: v.kind.label(),
+            value: v.value,
+            unit: v.kind.unit(),
+            lower: v.lower,
+            upper: v.upper,
+            violation: v.violation,
+            margin: v.margin,
+        }
+    }
+}
+
+/// Located events of arm I (degrees).
+#[derive(Debug, Clone, Serialize)]
+pub struct EventsRow {
+    pub picking_carrier_deg: f64,
+    pub planting_carrier_deg: f64,
+    pub picking_tip_mm: [f64; 2],
+    pub planting_tip_mm: [f64; 2],
+    pub picking_attitude_deg: f64,
+    pub planting_attitude_deg: f64,
+    pub picking_window_deg: [f64; 2],
+    pub picking_tip_speed_m_s: f64,
+}
+
+impl From<&Events> for EventsRow {
+    fn from(e: &Events) -> Self {
+        Self {
+            picking_carrier_deg: e.picking.carrier_rad.to_degrees(),
+            planting_carrier_deg: e.planting.carrier_rad.to_degrees(),
+            picking_tip_mm: e.picking.tip_mm,
+            planting_tip_mm: e.planting.tip_mm,
+            picking_attitude_deg: e.picking.attitude_deg,
+            planting_attitude_deg: e.planting.attitude_deg,
+            picking_window_deg: [
+                e.picking_window_rad[0].to_degrees(),
+                e.picking_window_rad[1].to_degrees(),
+            ],
+            picking_tip_speed_m_s: e.picking_tip_speed_m_s,
+        }
+    }
+}
+
+/// Everything `noncirc evaluate` reports about a three-arm design.
+#[derive(Debug, Clone, Serialize)]
+pub struct EvaluationReport {
+    pub scene: String,
+    pub samples_per_turn: usize,
+    pub centre_distance_mm: f64,
+    pub trajectory_height_mm: f64,
+    pub feasible: bool,
+    pub total_violation: f64,
+    pub events: EventsRow,
+    pub objectives: Vec<ObjectiveRow>,
+}
+
+impl EvaluationReport {
+    /// Moves the scene's mechanism and scores every objective.
+    pub fn from_scene(scene: &Scene) -> Result<(Self, Kinematics)> {
+        scene.agronomy.validate()?;
+        let curve = scene.gear.curve.build()?;
+        let kin = Kinematics::solve(&curve, &scene.train, &scene.resolution)?;
+        let (values, events) =
+            evaluate_all(&kin, &scene.agronomy, &scene.bounds, &scene.gear.module);
+        let total: f64 = values.iter().map(|v| v.violation).sum();
+        let report = Self {
+            scene: scene.name.clone(),
+            samples_per_turn: scene.resolution.samples_per_turn,
+            centre_distance_mm: kin.centre_distance(),
+            trajectory_height_mm: events.y_max_mm - events.y_min_mm,
+            feasible: total == 0.0,
+            total_violation: total,
+            events: EventsRow::from(&events),
+            objectives: values.iter().map(ObjectiveRow::from).collect(),
+        };
+        Ok((report, kin))
+    }
+
+    /// The objectives as gauges, like the paper's progress bars, then the events.
+    pub fn table(&self) -> String {
+        let mut out = format!(
+            "scene {} — {} samples/turn, centre distance {:.4} mm\n\n",
+            self.scene, self.samples_per_turn, self.centre_distance_mm
+        );
+        for o in &self.objectives {
+            let bounds = match (o.lower, o.upper) {
+                (Some(l), Some(u)) => format!("[{l}, {u}]"),
+                (Some(l), None) => format!(">= {l}"),
+                (None, Some(u)) => format!("<= {u}"),
+                (None, None) => String::new(),
+            };
+            let status = if o.violation == 0.0 {
+                format!("met (margin {:.2} {})", o.margin, o.unit)
+            } else {
+                format!("MISSED by {:.2} {}", o.violation, o.unit)
+            };
+            out += &format!(
+                "{:<32} {:>9.2} {:<3} {:<14} {} {}\n",
+                o.label,
+                o.value,
+                o.unit,
+                bounds,
+                gauge(o.value, o.lower, o.upper),
+                status
+            );
+        }
+        let e = &self.events;
+        out += &format!(
+            "\npicking  at carrier {:7.2}°  tip ({:8.2}, {:8.2}) mm  attitude {:6.2}°  window {:.1}°..{:.1}°  tip speed {:.3} m/s\n",
+            e.picking_carrier_deg,
+            e.picking_tip_mm[0],
+            e.picking_tip_mm[1],
+            e.picking_attitude_deg,
+            e.picking_window_deg[0],
+            e.picking_window_deg[1],
+            e.picking_tip_speed_m_s
+        );
+        out += &format!(
+            "planting at carrier {:7.2}°  tip ({:8.2}, {:8.2}) mm  attitude {:6.2}°\n",
+            e.planting_carrier_deg,
+            e.planting_tip_mm[0],
+            e.planting_tip_mm[1],
+            e.planting_attitude_deg
+        );
+        out += &format!(
+            "\n{}: total violation {:.3}\n",
+            if self.feasible {
+                "FEASIBLE"
+            } else {
+                "not feasible"
+            },
+            self.total_violation
+        );
+        out
+    }
+}
+
+/// A 24-character gauge: `|` marks the bounds, `#` the value, `=` the admissible span.
+fn gauge(value: f64, lower: Option<f64>, upper: Option<f64>) -> String {
+    const W: usize = 24;
+    let (lo, hi) = match (lower, upper) {
+        (Some(l), Some(u)) => (l - 0.5 * (u - l), u + 0.5 * (u - l)),
+        (Some(l), None) => {
+            let s = l.abs().max((value - l).abs()).max(1.0);
+            (l - s, l + s)
+        }
+        (None, Some(u)) => {
+            let s = u.abs().max((value - u).abs()).max(1.0);
+            (u - s, u + s)
+        }
+        (None, None) => (value - 1.0, value + 1.0),
+    };
+    let pos = |x: f64| {
+        ((x - lo) / (hi - lo) * (W - 1) as f64)
+            .round()
+            .clamp(0.0, (W - 1) as f64) as usize
+    };
+    let mut cells = vec!['.'; W];
+    let (a, b) = (lower.map_or(0, pos), upper.map_or(W - 1, pos));
+    for c in cells.iter_mut().take(b + 1).skip(a) {
+        *c = '=';
+    }
+    if let Some(l) = lower {
+        cells[pos(l)] = '|';
+    }
+    if let Some(u) = upper {
+        cells[pos(u)] = '|';
+    }
+    cells[pos(value)] = '#';
+    format!("[{}]", cells.into_iter().collect::<String>())
 }

@@ -16,3 +16,5 @@ pub mod scene;
 pub use scene::{GearSpec, Scene};
 pub mod planetary;
 pub use planetary::{Kinematics, TrainSpec};
+pub mod objectives;
+pub use objectives::{Agronomy, Bounds, ObjectiveKind, ObjectiveValue};

@@ -85,7 +85,7 @@ impl Default for TrainSpec {
             gamma0_deg: -53.0,
             rotation: Rotation::Clockwise,
             pusher_side: PusherSide::Right,
-            sun_frame: SunFrame::Installed,
+            sun_frame: SunFrame::Ground,
             carrier_speed_rpm: 60.0,
         }
     }

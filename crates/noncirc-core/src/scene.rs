@@ -2,6 +2,8 @@
 
 use crate::curve::CurveSpec;
 use crate::gear::ModuleRule;
+use crate::objectives::{Agronomy, Bounds};
+use crate::planetary::TrainSpec;
 use crate::resolution::Resolution;
 use serde::{Deserialize, Serialize};
 
@@ -39,7 +41,16 @@ pub struct Scene {
     /// Numerical resolution.
     #[serde(default)]
     pub resolution: Resolution,
-    /// The gear pair.
+    /// The gear pair (the sun; the planets are congruent, the intermediates conjugate).
     #[serde(default)]
     pub gear: GearSpec,
+    /// The three-arm train and its arms.
+    #[serde(default)]
+    pub train: TrainSpec,
+    /// Agronomic inputs of the objectives.
+    #[serde(default)]
+    pub agronomy: Agronomy,
+    /// Bounds of the eight objectives.
+    #[serde(default)]
+    pub bounds: Bounds,
 }

@@ -1,0 +1,568 @@
+//! The eight agronomic objectives of the three-arm paper (spec §3), with value, bounds,
+//! unit and violation, plus the events (picking, planting) they are measured at.
+
+use crate::curve::TAU;
+use crate::error::{finite, Error, Result};
+use crate::gear::{curvature_extremes, module_max, ModuleReport, ModuleRule};
+use crate::planetary::{unit, Kinematics};
+use serde::{Deserialize, Serialize};
+
+/// Which way the machine travels over the field.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Travel {
+    /// Opposite to the tip's motion at the planting point (so the tip lags the ground).
+    Auto,
+    /// Towards +x.
+    PlusX,
+    /// Towards −x.
+    MinusX,
+}
+
+/// Agronomic inputs (angles in degrees, lengths in mm). Defaults: see `docs/replication.md`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Agronomy {
+    /// Direction of the tray's inward normal (deg from +x, counter-clockwise): the picking
+    /// point is the trajectory's extreme point along it. 180: a vertical tray behind.
+    pub tray_normal_deg: f64,
+    /// How far the tip reaches past the tray surface (mm): places the tray, sets the window.
+    pub tray_depth_mm: f64,
+    /// Plant spacing along the row (mm); the machine advances three spacings per turn.
+    pub plant_spacing_mm: f64,
+    /// Height of the planted seedling above the planting point (mm).
+    pub seedling_height_mm: f64,
+    /// Planting depth: the ground lies this far above the trajectory's lowest point (mm).
+    pub planting_depth_mm: f64,
+    /// Half-width of an arm's capsule around `O3 → D` (mm).
+    pub arm_half_width_mm: f64,
+    /// Wall margin of the gearbox housing around the gears' envelope (mm).
+    pub housing_margin_mm: f64,
+    /// Travel direction of the machine.
+    pub travel: Travel,
+}
+
+impl Default for Agronomy {
+    fn default() -> Self {
+        Self {
+            tray_normal_deg: 180.0,
+            tray_depth_mm: 15.0,
+            plant_spacing_mm: 140.0,
+            seedling_height_mm: 120.0,
+            planting_depth_mm: 25.0,
+            arm_half_width_mm: 12.0,
+            housing_margin_mm: 10.0,
+            travel: Travel::Auto,
+        }
+    }
+}
+
+impl Agronomy {
+    /// Checks every input, naming the bad one.
+    pub fn validate(&self) -> Result<()> {
+        finite("agronomy.tray_normal_deg", self.tray_normal_deg)?;
+        for (name, v) in [
+            ("agronomy.tray_depth_mm", self.tray_depth_mm),
+            ("agronomy.plant_spacing_mm", self.plant_spacing_mm),
+            ("agronomy.seedling_height_mm", self.seedling_height_mm),
+            ("agronomy.planting_depth_mm", self.planting_depth_mm),
+            ("agronomy.arm_half_width_mm", self.arm_half_width_mm),
+            ("agronomy.housing_margin_mm", self.housing_margin_mm),
+        ] {
+            finite(name, v)?;
+            if v < 0.0 {
+                return Err(Error::OutOfRange {
+                    name: name.into(),
+                    value: v,
+                    expected: ">= 0".into(),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The admissible range of each objective (paper §4.1 defaults).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Bounds {
+    /// Least clearance between arms and other planets (mm).
+    pub clearance_min_mm: f64,
+    /// Picking angle range (deg).
+    pub picking_angle_deg: [f64; 2],
+    /// Pushing (planting) angle range (deg).
+    pub pushing_angle_deg: [f64; 2],
+    /// Pushing − picking angle range (deg).
+    pub angle_difference_deg: [f64; 2],
+    /// Largest forward excursion past the planted seedling (mm).
+    pub seedling_push_max_mm: f64,
+    /// Least gearbox ground clearance (mm).
+    pub ground_clearance_min_mm: f64,
+    /// Least trajectory height (mm).
+    pub trajectory_height_min_mm: f64,
+    /// Least admissible module (mm).
+    pub module_min_mm: f64,
+}
+
+impl Default for Bounds {
+    fn default() -> Self {
+        Self {
+            clearance_min_mm: 0.0,
+            picking_angle_deg: [-5.0, 15.0],
+            pushing_angle_deg: [45.0, 65.0],
+            angle_difference_deg: [50.0, 60.0],
+            seedling_push_max_mm: 0.0,
+            ground_clearance_min_mm: 20.0,
+            trajectory_height_min_mm: 260.0,
+            module_min_mm: 2.5,
+        }
+    }
+}
+
+/// The eight objectives, in the paper's order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, PartialOrd, Ord)]
+#[serde(rename_all = "snake_case")]
+pub enum ObjectiveKind {
+    Interference,
+    PickingAngle,
+    PushingAngle,
+    AngleDifference,
+    SeedlingPush,
+    GroundClearance,
+    TrajectoryHeight,
+    Module,
+}
+
+impl ObjectiveKind {
+    /// All eight, in order.
+    pub const ALL: [ObjectiveKind; 8] = [
+        ObjectiveKind::Interference,
+        ObjectiveKind::PickingAngle,
+        ObjectiveKind::PushingAngle,
+        ObjectiveKind::AngleDifference,
+        ObjectiveKind::SeedlingPush,
+        ObjectiveKind::GroundClearance,
+        ObjectiveKind::TrajectoryHeight,
+        ObjectiveKind::Module,
+    ];
+
+    /// Stable snake-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ObjectiveKind::Interference => "interference",
+            ObjectiveKind::PickingAngle => "picking_angle",
+            ObjectiveKind::PushingAngle => "pushing_angle",
+            ObjectiveKind::AngleDifference => "angle_difference",
+            ObjectiveKind::SeedlingPush => "seedling_push",
+            ObjectiveKind::GroundClearance => "ground_clearance",
+            ObjectiveKind::TrajectoryHeight => "trajectory_height",
+            ObjectiveKind::Module => "module",
+        }
+    }
+
+    /// What a person reads.
+    pub fn label(self) -> &'static str {
+        match self {
+            ObjectiveKind::Interference => "no interference between arms",
+            ObjectiveKind::PickingAngle => "picking angle",
+            ObjectiveKind::PushingAngle => "pushing (planting) angle",
+            ObjectiveKind::AngleDifference => "angle difference",
+            ObjectiveKind::SeedlingPush => "arm does not push the seedling",
+            ObjectiveKind::GroundClearance => "gearbox ground clearance",
+            ObjectiveKind::TrajectoryHeight => "trajectory height",
+            ObjectiveKind::Module => "gear module",
+        }
+    }
+
+    /// Unit of the value.
+    pub fn unit(self) -> &'static str {
+        match self {
+            ObjectiveKind::PickingAngle
+            | ObjectiveKind::PushingAngle
+            | ObjectiveKind::AngleDifference => "deg",
+            _ => "mm",
+        }
+    }
+
+    /// `(lower, upper)` from the bounds; `None` is unbounded.
+    pub fn bounds(self, b: &Bounds) -> (Option<f64>, Option<f64>) {
+        match self {
+            ObjectiveKind::Interference => (Some(b.clearance_min_mm), None),
+            ObjectiveKind::PickingAngle => {
+                (Some(b.picking_angle_deg[0]), Some(b.picking_angle_deg[1]))
+            }
+            ObjectiveKind::PushingAngle => {
+                (Some(b.pushing_angle_deg[0]), Some(b.pushing_angle_deg[1]))
+            }
+            ObjectiveKind::AngleDifference => (
+                Some(b.angle_difference_deg[0]),
+                Some(b.angle_difference_deg[1]),
+            ),
+            ObjectiveKind::SeedlingPush => (None, Some(b.seedling_push_max_mm)),
+            ObjectiveKind::GroundClearance => (Some(b.ground_clearance_min_mm), None),
+            ObjectiveKind::TrajectoryHeight => (Some(b.trajectory_height_min_mm), None),
+            ObjectiveKind::Module => (Some(b.module_min_mm), None),
+        }
+    }
+}
+
+/// One objective's outcome.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ObjectiveValue {
+    pub kind: ObjectiveKind,
+    pub value: f64,
+    pub lower: Option<f64>,
+    pub upper: Option<f64>,
+    /// 0 when met, else the distance to the violated bound (in the value's unit).
+    pub violation: f64,
+    /// Distance inside the nearest bound (negative when violated).
+    pub margin: f64,
+}
+
+impl ObjectiveValue {
+    /// Scores `value` against the kind's bounds.
+    pub fn new(kind: ObjectiveKind, value: f64, bounds: &Bounds) -> Self {
+        let (lower, upper) = kind.bounds(bounds);
+        let below = lower.map_or(f64::INFINITY, |l| value - l);
+        let above = upper.map_or(f64::INFINITY, |u| u - value);
+        let margin = below.min(above);
+        let violation = if value.is_nan() {
+            f64::INFINITY
+        } else {
+            (-margin).max(0.0)
+        };
+        Self {
+            kind,
+            value,
+            lower,
+            upper,
+            violation,
+            margin,
+        }
+    }
+}
+
+/// A located event: carrier angle (rad) and the tip there.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Event {
+    pub carrier_rad: f64,
+    pub tip_mm: [f64; 2],
+    /// Arm attitude: the pusher direction's dip below the horizontal (deg).
+    pub attitude_deg: f64,
+}
+
+/// Picking and planting events, the picking window and the tip speed at picking.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Events {
+    pub picking: Event,
+    pub planting: Event,
+    /// Carrier-angle span (rad, start < end, possibly past 2π) with the tip inside the tray.
+    pub picking_window_rad: [f64; 2],
+    /// Tip speed relative to the (machine-fixed) seedling at picking (m/s).
+    pub picking_tip_speed_m_s: f64,
+    /// Lowest and highest tip heights (mm).
+    pub y_min_mm: f64,
+    pub y_max_mm: f64,
+}
+
+/// Arm attitude (deg): the pusher direction's dip below the horizontal, in [−90°, 90°].
+pub fn attitude_deg(pusher_angle: f64) -> f64 {
+    (-pusher_angle.sin()).clamp(-1.0, 1.0).asin().to_degrees()
+}
+
+/// Refines the extreme of `t ↦ D(t)·dir` near node `j` by Newton on the derivative,
+/// using the exact tip derivatives; `max` chooses maximum or minimum. Returns `(θ, value)`.
+fn refine_extreme(kin: &Kinematics, dir: [f64; 2], j: usize, max: bool) -> (f64, f64) {
+    let h = TAU / kin.len() as f64;
+    let dot = |v: [f64; 2]| v[0] * dir[0] + v[1] * dir[1];
+    let start = kin.theta(j);
+    let mut t = start;
+    for _ in 0..20 {
+        let s = kin.state_at(t);
+        let (d1, d2) = (dot(s.tip_d1), dot(s.tip_d2));
+        if (max && d2 >= 0.0) || (!max && d2 <= 0.0) {
+            break;
+        }
+        let step = (d1 / d2).clamp(-h, h);
+        t -= step;
+        if step.abs() < 1e-13 {
+            break;
+        }
+    }
+    let node_value = dot(kin.tips()[j]);
+    let refined = dot(kin.state_at(t).tip);
+    let better = if max {
+        refined >= node_value
+    } else {
+        refined <= node_value
+    };
+    if better && (t - start).abs() <= 1.5 * h {
+        (t, refined)
+    } else {
+        (start, node_value)
+    }
+}
+
+/// Index of the node extreme along `dir`.
+fn extreme_node(tips: &[[f64; 2]], dir: [f64; 2], max: bool) -> usize {
+    let sign = if max { 1.0 } else { -1.0 };
+    let mut best = 0;
+    let mut best_v = f64::NEG_INFINITY;
+    for (j, p) in tips.iter().enumerate() {
+        let v = sign * (p[0] * dir[0] + p[1] * dir[1]);
+        if v > best_v {
+            best_v = v;
+            best = j;
+        }
+    }
+    best
+}
+
+/// Vertex of the parabola through three equally spaced samples, as (offset in steps, value).
+fn parabola_min(ym: f64, y0: f64, yp: f64) -> (f64, f64) {
+    let curvature = ym - 2.0 * y0 + yp;
+    if curvature <= 0.0 {
+        return (0.0, y0);
+    }
+    let offset = (0.5 * (ym - yp) / curvature).clamp(-1.0, 1.0);
+    (offset, y0 - 0.25 * (ym - yp) * offset)
+}
+
+/// Locates picking, planting, the window and the extremes of height.
+pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
+    let tips = kin.tips();
+    let normal = unit(agro.tray_normal_deg.to_radians());
+    let jp = extreme_node(tips, normal, true);
+    let (tp, depth) = refine_extreme(kin, normal, jp, true);
+    let down = [0.0, -1.0];
+    let jl = extreme_node(tips, down, true);
+    let (tl, neg_low) = refine_extreme(kin, down, jl, true);
+    let jh = extreme_node(tips, [0.0, 1.0], true);
+    let (_, y_max) = refine_extreme(kin, [0.0, 1.0], jh, true);
+    let event = |t: f64| {
+        let s = kin.state_at(t);
+        Event {
+            carrier_rad: t.rem_euclid(TAU),
+            tip_mm: s.tip,
+            attitude_deg: attitude_deg(s.pusher_angle),
+        }
+    };
+    let picking = event(tp);
+    let speed = {
+        let s = kin.state_at(tp);
+        s.tip_d1[0].hypot(s.tip_d1[1]) * kin.carrier_speed() / 1000.0
+    };
+    // Window: walk both ways from the picking node while the tip is beyond the tray surface,
+    // then interpolate the crossing linearly between nodes.
+    let n = kin.len();
+    let surface = depth - agro.tray_depth_mm;
+    let inside = |j: usize| tips[j % n][0] * normal[0] + tips[j % n][1] * normal[1] - surface;
+    let h = TAU / n as f64;
+    let mut end = jp + n;
+    while end < jp + 2 * n - 1 && inside(end + 1) > 0.0 {
+        end += 1;
+    }
+    let mut start = jp + n;
+    while start > jp + 1 && inside(start - 1) > 0.0 {
+        start -= 1;
+    }
+    let cross = |a: usize, b: usize| {
+        let (fa, fb) = (inside(a), inside(b));
+        let frac = if fa != fb { fa / (fa - fb) } else { 0.0 };
+        (a as f64 + frac * (b as f64 - a as f64)) * h
+    };
+    let w0 = cross(start, start - 1) - TAU;
+    let w1 = cross(end, end + 1) - TAU;
+    let shift = (w0 / TAU).floor() * TAU;
+    Events {
+        picking,
+        planting: event(tl),
+        picking_window_rad: [w0 - shift, w1 - shift],
+        picking_tip_speed_m_s: speed,
+        y_min_mm: -neg_low,
+        y_max_mm: y_max,
+    }
+}
+
+/// Distance between segments `p0→p1` and `q0→q1` (mm).
+pub fn segment_distance(p0: [f64; 2], p1: [f64; 2], q0: [f64; 2], q1: [f64; 2]) -> f64 {
+    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+    let sub = |a: [f64; 2], b: [f64; 2]| [a[0] - b[0], a[1] - b[1]];
+    let (r, s) = (sub(p1, p0), sub(q1, q0));
+    let d = sub(q0, p0);
+    let denom = cross(r, s);
+    if denom != 0.0 {
+        let t = cross(d, s) / denom;
+        let u = cross(d, r) / denom;
+        if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
+            return 0.0;
+        }
+    }
+    point_segment_distance(p0, q0, q1)
+        .min(point_segment_distance(p1, q0, q1))
+        .min(point_segment_distance(q0, p0, p1))
+        .min(point_segment_distance(q1, p0, p1))
+}
+
+/// Distance from `p` to segment `a→b` (mm).
+pub fn point_segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let ab = [b[0] - a[0], b[1] - a[1]];
+    let ap = [p[0] - a[0], p[1] - a[1]];
+    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let t = if len2 > 0.0 {
+        ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (ap[0] - t * ab[0]).hypot(ap[1] - t * ab[1])
+}
+
+/// Objective 1: least clearance between arm capsules and against the other planets' gear
+/// envelopes (circles of the sun's largest radius) over the cycle (mm). By the train's
+/// three-fold symmetry, arm I against arm II and planets II, III covers every pair.
+pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
+    let n = kin.len();
+    let (tips, centres) = (kin.tips(), kin.planet_centres());
+    let rmax = kin.sun_samples().iter().map(|p| p.rho).fold(0.0, f64::max);
+    let w = agro.arm_half_width_mm;
+    let clearance = |j: usize| {
+        let (k2, k3) = (kin.arm_node(1, j), kin.arm_node(2, j));
+        let arms = segment_distance(centres[j], tips[j], centres[k2], tips[k2]) - 2.0 * w;
+        let planets = point_segment_distance(centres[k2], centres[j], tips[j])
+            .min(point_segment_distance(centres[k3], centres[j], tips[j]))
+            - rmax
+            - w;
+        arms.min(planets)
+    };
+    let values: Vec<f64> = (0..n).map(clearance).collect();
+    let j = (0..n)
+        .min_by(|&a, &b| values[a].total_cmp(&values[b]))
+        .unwrap_or(0);
+    parabola_min(values[(j + n - 1) % n], values[j], values[(j + 1) % n]).1
+}
+
+/// Objective 5: worst forward excursion of the tip past the planted seedling in the ground
+/// frame, from planting until the tip rises above the seedling (mm; ≤ 0 is met).
+pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
+    let n = kin.len();
+    let h = TAU / n as f64;
+    let advance = 3.0 * agro.plant_spacing_mm / TAU;
+    let tp = ev.planting.carrier_rad;
+    let forward = match agro.travel {
+        Travel::PlusX => 1.0,
+        Travel::MinusX => -1.0,
+        Travel::Auto => {
+            let vx = kin.state_at(tp).tip_d1[0];
+            if vx > 0.0 {
+                -1.0
+            } else {
+                1.0
+            }
+        }
+    };
+    let x0 = ev.planting.tip_mm[0] + forward * advance * tp;
+    let top = ev.planting.tip_mm[1] + agro.seedling_height_mm;
+    let first = (tp / h).floor() as usize + 1;
+    let mut worst = f64::NEG_INFINITY;
+    for k in first..first + n {
+        let p = kin.tips()[k % n];
+        let t = k as f64 * h;
+        let ahead = forward * (p[0] + forward * advance * t - x0);
+        worst = worst.max(ahead);
+        if p[1] > top {
+            break;
+        }
+    }
+    worst
+}
+
+/// Objective 6: clearance between the gearbox housing (the gears' envelope around the
+/// carrier axis plus the wall margin) and the ground (mm).
+pub fn ground_clearance(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
+    let a = kin.centre_distance();
+    let (mut rmin, mut rmax) = (f64::INFINITY, 0.0f64);
+    for p in kin.sun_samples() {
+        rmin = rmin.min(p.rho);
+        rmax = rmax.max(p.rho);
+    }
+    let planet_radius = 2.0 * a * (kin.spec().gamma0_deg.to_radians() / 2.0).cos().abs();
+    let housing = rmax.max(a + (a - rmin)).max(planet_radius + rmax) + agro.housing_margin_mm;
+    let ground = ev.y_min_mm + agro.planting_depth_mm;
+    -housing - ground
+}
+
+/// Objective 8: the largest admissible module of the train's gears (sun = planet, and the
+/// intermediate), from the carrier-grid samples.
+pub fn module(kin: &Kinematics, rule: &ModuleRule) -> ModuleReport {
+    let samples = kin.sun_samples();
+    let n = samples.len() as f64;
+    let perimeter = samples.iter().map(|p| p.rho.hypot(p.d1)).sum::<f64>() * TAU / n;
+    let (convex, concave) = curvature_extremes(samples, kin.centre_distance());
+    module_max(perimeter, convex, concave, rule)
+}
+
+/// Every objective with its value, in the paper's order, and the events.
+pub fn evaluate_all(
+    kin: &Kinematics,
+    agro: &Agronomy,
+    bounds: &Bounds,
+    rule: &ModuleRule,
+) -> (Vec<ObjectiveValue>, Events) {
+    let ev = events(kin, agro);
+    let values = ObjectiveKind::ALL
+        .iter()
+        .map(|&kind| {
+            let value = match kind {
+                ObjectiveKind::Interference => interference_clearance(kin, agro),
+                ObjectiveKind::PickingAngle => ev.picking.attitude_deg,
+                ObjectiveKind::PushingAngle => ev.planting.attitude_deg,
+                ObjectiveKind::AngleDifference => {
+                    ev.planting.attitude_deg - ev.picking.attitude_deg
+                }
+                ObjectiveKind::SeedlingPush => seedling_push(kin, agro, &ev),
+                ObjectiveKind::GroundClearance => ground_clearance(kin, agro, &ev),
+                ObjectiveKind::TrajectoryHeight => ev.y_max_mm - ev.y_min_mm,
+                ObjectiveKind::Module => module(kin, rule).module_max_mm,
+            };
+            ObjectiveValue::new(kind, value, bounds)
+        })
+        .collect();
+    (values, ev)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn violation_is_distance_to_the_violated_bound() {
+        let b = Bounds::default();
+        let v = ObjectiveValue::new(ObjectiveKind::PickingAngle, 20.0, &b);
+        assert_eq!(v.violation, 5.0);
+        let v = ObjectiveValue::new(ObjectiveKind::PickingAngle, -7.0, &b);
+        assert_eq!(v.violation, 2.0);
+        let v = ObjectiveValue::new(ObjectiveKind::PickingAngle, 0.0, &b);
+        assert_eq!((v.violation, v.margin), (0.0, 5.0));
+        let v = ObjectiveValue::new(ObjectiveKind::TrajectoryHeight, 250.0, &b);
+        assert_eq!(v.violation, 10.0);
+    }
+
+    #[test]
+    fn segment_distances() {
+        assert_eq!(
+            segment_distance([0.0, 0.0], [2.0, 0.0], [1.0, -1.0], [1.0, 1.0]),
+            0.0
+        );
+        assert!(
+            (segment_distance([0.0, 0.0], [1.0, 0.0], [0.0, 2.0], [1.0, 2.0]) - 2.0).abs() < 1e-15
+        );
+        assert!((point_segment_distance([3.0, 4.0], [0.0, 0.0], [0.0, 0.0]) - 5.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn attitude_is_the_dip_below_horizontal() {
+        assert!((attitude_deg(-std::f64::consts::FRAC_PI_2) - 90.0).abs() < 1e-12);
+        assert!(attitude_deg(std::f64::consts::PI).abs() < 1e-12);
+        assert!((attitude_deg(std::f64::consts::PI + 0.5) - 0.5f64.to_degrees()).abs() < 1e-9);
+    }
+}
