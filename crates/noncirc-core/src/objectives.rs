@@ -24,7 +24,7 @@ pub enum Travel {
 #[serde(default, deny_unknown_fields)]
 pub struct Agronomy {
     /// Direction of the tray's inward normal (deg from +x, counter-clockwise): the picking
-    /// point is the trajectory's extreme point along it. 180: a vertical tray behind.
+    /// point is the trajectory's extreme point along it. 135: a tray inclined at 45°.
     pub tray_normal_deg: f64,
     /// How far the tip reaches past the tray surface (mm): places the tray, sets the window.
     pub tray_depth_mm: f64,
@@ -45,7 +45,7 @@ pub struct Agronomy {
 impl Default for Agronomy {
     fn default() -> Self {
         Self {
-            tray_normal_deg: 180.0,
+            tray_normal_deg: 135.0,
             tray_depth_mm: 15.0,
             plant_spacing_mm: 140.0,
             seedling_height_mm: 120.0,
@@ -442,7 +442,8 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
 }
 
 /// Objective 5: worst forward excursion of the tip past the planted seedling in the ground
-/// frame, from planting until the tip rises above the seedling (mm; ≤ 0 is met).
+/// frame, from the planting instant (excursion 0) until the tip rises above the seedling
+/// (mm; 0 when the tip never comes forward past it, which meets the bound `≤ 0`).
 pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     let n = kin.len();
     let h = TAU / n as f64;
@@ -452,28 +453,35 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
         Travel::PlusX => 1.0,
         Travel::MinusX => -1.0,
         Travel::Auto => {
-            let vx = kin.state_at(tp).tip_d1[0];
-            if vx > 0.0 {
+            if kin.state_at(tp).tip_d1[0] > 0.0 {
                 -1.0
             } else {
                 1.0
             }
         }
     };
-    let x0 = ev.planting.tip_mm[0] + forward * advance * tp;
     let top = ev.planting.tip_mm[1] + agro.seedling_height_mm;
+    let ahead = |x: f64, t: f64| forward * (x - ev.planting.tip_mm[0]) + advance * (t - tp);
     let first = (tp / h).floor() as usize + 1;
-    let mut worst = f64::NEG_INFINITY;
+    let mut excursion = Vec::with_capacity(n);
     for k in first..first + n {
         let p = kin.tips()[k % n];
-        let t = k as f64 * h;
-        let ahead = forward * (p[0] + forward * advance * t - x0);
-        worst = worst.max(ahead);
         if p[1] > top {
             break;
         }
+        excursion.push(ahead(p[0], k as f64 * h));
     }
-    worst
+    let (j, worst) =
+        excursion.iter().enumerate().fold(
+            (0, 0.0f64),
+            |best, (j, &v)| if v > best.1 { (j, v) } else { best },
+        );
+    if worst > 0.0 && j > 0 && j + 1 < excursion.len() {
+        let (ym, y0, yp) = (-excursion[j - 1], -worst, -excursion[j + 1]);
+        -parabola_min(ym, y0, yp).1
+    } else {
+        worst
+    }
 }
 
 /// Objective 6: clearance between the gearbox housing (the gears' envelope around the

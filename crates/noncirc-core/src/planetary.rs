@@ -84,8 +84,8 @@ impl Default for TrainSpec {
             pusher_offset_mm: 65.0,
             gamma0_deg: -53.0,
             rotation: Rotation::Clockwise,
-            pusher_side: PusherSide::Right,
-            sun_frame: SunFrame::Ground,
+            pusher_side: PusherSide::Left,
+            sun_frame: SunFrame::Installed,
             carrier_speed_rpm: 60.0,
         }
     }
