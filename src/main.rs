@@ -1,6 +1,7 @@
 //! The `noncirc` command line.
 
 use clap::{Parser, Subcommand, ValueEnum};
+use noncirc::core::SceneKind;
 use noncirc::report::{EvaluationReport, GearReport};
 use noncirc::scene_file::{apply_overrides, load_scene, BUILTIN};
 use std::process::ExitCode;
@@ -41,6 +42,9 @@ enum Command {
     Gear(SceneArgs),
     /// Evaluate a three-arm design: trajectory, events and the eight agronomic objectives.
     Evaluate(SceneArgs),
+    /// The variable-speed moving box: box travel while picking, speeds, forces.
+    /// With no scene: the moving-box paper's setting.
+    Box(SceneArgs),
     /// List the built-in scenes.
     Scenes,
 }
@@ -72,6 +76,22 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             match args.format {
                 Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
                 Format::Table => print!("{}", report.table()),
+            }
+        }
+        Command::Box(args) => {
+            let scene = apply_overrides(
+                load_scene(Some(args.scene.as_deref().unwrap_or("moving-box")))?,
+                &args.set,
+            )?;
+            let mut box_scene = scene.clone();
+            if box_scene.kind != SceneKind::Transplanter {
+                box_scene.kind = SceneKind::MovingBox;
+            }
+            let (report, _) = EvaluationReport::from_scene(&box_scene)?;
+            let b = report.moving_box.ok_or("this scene has no moving box")?;
+            match args.format {
+                Format::Json => println!("{}", serde_json::to_string_pretty(&b)?),
+                Format::Table => print!("{}", noncirc::report::box_table(&b)),
             }
         }
         Command::Scenes => {

@@ -1,7 +1,9 @@
 //! Reports: what the CLI prints, as serialisable structs and readable tables.
 
-use noncirc_core::objectives::{evaluate_all, Events};
-use noncirc_core::{GearPair, Kinematics, ObjectiveValue, Result, Scene};
+use noncirc_core::evaluation::GearSummary;
+use noncirc_core::moving_box::BoxReport;
+use noncirc_core::objectives::Events;
+use noncirc_core::{Evaluation, Evaluator, GearPair, ObjectiveValue, Result, Scene, SceneKind};
 use serde::Serialize;
 
 /// Everything `noncirc gear` reports about a gear pair.
@@ -177,98 +179,177 @@ impl From<&Events> for EventsRow {
     }
 }
 
-/// Everything `noncirc evaluate` reports about a three-arm design.
+/// Everything `noncirc evaluate` reports, for any scene kind.
 #[derive(Debug, Clone, Serialize)]
 pub struct EvaluationReport {
     pub scene: String,
+    pub kind: SceneKind,
     pub samples_per_turn: usize,
-    pub centre_distance_mm: f64,
-    pub trajectory_height_mm: f64,
+    pub centre_distance_mm: Option<f64>,
+    pub trajectory_height_mm: Option<f64>,
     pub feasible: bool,
     pub total_violation: f64,
-    pub events: EventsRow,
+    pub events: Option<EventsRow>,
     pub objectives: Vec<ObjectiveRow>,
+    pub gear: Option<GearSummary>,
+    pub moving_box: Option<BoxReport>,
 }
 
 impl EvaluationReport {
-    /// Moves the scene's mechanism and scores every objective.
-    pub fn from_scene(scene: &Scene) -> Result<(Self, Kinematics)> {
-        scene.agronomy.validate()?;
-        let curve = scene.gear.curve.build()?;
-        let kin = Kinematics::solve(&curve, &scene.train, &scene.resolution)?;
-        let (values, events) =
-            evaluate_all(&kin, &scene.agronomy, &scene.bounds, &scene.gear.module);
-        let total: f64 = values.iter().map(|v| v.violation).sum();
-        let report = Self {
+    /// Evaluates the scene (only the stages it needs) and gathers the report.
+    pub fn from_scene(scene: &Scene) -> Result<(Self, Evaluation)> {
+        let eval = Evaluator::new().evaluate(scene)?;
+        Ok((Self::new(scene, &eval), eval))
+    }
+
+    /// The report of an evaluation already made.
+    pub fn new(scene: &Scene, eval: &Evaluation) -> Self {
+        Self {
             scene: scene.name.clone(),
-            samples_per_turn: scene.resolution.samples_per_turn,
-            centre_distance_mm: kin.centre_distance(),
-            trajectory_height_mm: events.y_max_mm - events.y_min_mm,
-            feasible: total == 0.0,
-            total_violation: total,
-            events: EventsRow::from(&events),
-            objectives: values.iter().map(ObjectiveRow::from).collect(),
-        };
-        Ok((report, kin))
+            kind: scene.kind,
+            samples_per_turn: eval.resolution.samples_per_turn,
+            centre_distance_mm: eval.centre_distance_mm,
+            trajectory_height_mm: eval.events.as_ref().map(|e| e.y_max_mm - e.y_min_mm),
+            feasible: eval.total_violation() == 0.0,
+            total_violation: eval.total_violation(),
+            events: eval.events.as_ref().map(EventsRow::from),
+            objectives: eval.objectives.iter().map(ObjectiveRow::from).collect(),
+            gear: eval.gear,
+            moving_box: eval.moving_box,
+        }
     }
 
     /// The objectives as gauges, like the paper's progress bars, then the events.
     pub fn table(&self) -> String {
         let mut out = format!(
-            "scene {} — {} samples/turn, centre distance {:.4} mm\n\n",
-            self.scene, self.samples_per_turn, self.centre_distance_mm
+            "scene {} ({:?}) — {} samples/turn",
+            self.scene, self.kind, self.samples_per_turn
         );
-        for o in &self.objectives {
-            let bounds = match (o.lower, o.upper) {
-                (Some(l), Some(u)) => format!("[{l}, {u}]"),
-                (Some(l), None) => format!(">= {l}"),
-                (None, Some(u)) => format!("<= {u}"),
-                (None, None) => String::new(),
-            };
-            let status = if o.violation == 0.0 {
-                format!("met (margin {:.2} {})", o.margin, o.unit)
-            } else {
-                format!("MISSED by {:.2} {}", o.violation, o.unit)
-            };
+        if let Some(a) = self.centre_distance_mm {
+            out += &format!(", centre distance {a:.4} mm");
+        }
+        out += "\n\n";
+        out += &objective_table(&self.objectives);
+        if let Some(e) = &self.events {
             out += &format!(
-                "{:<32} {:>9.2} {:<3} {:<14} {} {}\n",
-                o.label,
-                o.value,
-                o.unit,
-                bounds,
-                gauge(o.value, o.lower, o.upper),
-                status
+                "\npicking  at carrier {:7.2}°  tip ({:8.2}, {:8.2}) mm  attitude {:6.2}°  window {:.1}°..{:.1}°  tip speed {:.3} m/s\n",
+                e.picking_carrier_deg,
+                e.picking_tip_mm[0],
+                e.picking_tip_mm[1],
+                e.picking_attitude_deg,
+                e.picking_window_deg[0],
+                e.picking_window_deg[1],
+                e.picking_tip_speed_m_s
+            );
+            out += &format!(
+                "planting at carrier {:7.2}°  tip ({:8.2}, {:8.2}) mm  attitude {:6.2}°\n",
+                e.planting_carrier_deg,
+                e.planting_tip_mm[0],
+                e.planting_tip_mm[1],
+                e.planting_attitude_deg
             );
         }
-        let e = &self.events;
-        out += &format!(
-            "\npicking  at carrier {:7.2}°  tip ({:8.2}, {:8.2}) mm  attitude {:6.2}°  window {:.1}°..{:.1}°  tip speed {:.3} m/s\n",
-            e.picking_carrier_deg,
-            e.picking_tip_mm[0],
-            e.picking_tip_mm[1],
-            e.picking_attitude_deg,
-            e.picking_window_deg[0],
-            e.picking_window_deg[1],
-            e.picking_tip_speed_m_s
-        );
-        out += &format!(
-            "planting at carrier {:7.2}°  tip ({:8.2}, {:8.2}) mm  attitude {:6.2}°\n",
-            e.planting_carrier_deg,
-            e.planting_tip_mm[0],
-            e.planting_tip_mm[1],
-            e.planting_attitude_deg
-        );
-        out += &format!(
-            "\n{}: total violation {:.3}\n",
-            if self.feasible {
-                "FEASIBLE"
-            } else {
-                "not feasible"
-            },
-            self.total_violation
-        );
+        if let Some(b) = &self.moving_box {
+            out += "\n";
+            out += &box_table(b);
+        }
+        if !self.objectives.is_empty() {
+            out += &format!(
+                "\n{}: total violation {:.3}\n",
+                if self.feasible {
+                    "FEASIBLE"
+                } else {
+                    "not feasible"
+                },
+                self.total_violation
+            );
+        }
         out
     }
+}
+
+/// Objectives as gauge rows.
+pub fn objective_table(objectives: &[ObjectiveRow]) -> String {
+    let mut out = String::new();
+    for o in objectives {
+        let bounds = match (o.lower, o.upper) {
+            (Some(l), Some(u)) => format!("[{l}, {u}]"),
+            (Some(l), None) => format!(">= {l}"),
+            (None, Some(u)) => format!("<= {u}"),
+            (None, None) => String::new(),
+        };
+        let status = if o.violation == 0.0 {
+            format!("met (margin {:.2} {})", o.margin, o.unit)
+        } else {
+            format!("MISSED by {:.2} {}", o.violation, o.unit)
+        };
+        out += &format!(
+            "{:<32} {:>9.2} {:<3} {:<14} {} {}\n",
+            o.label,
+            o.value,
+            o.unit,
+            bounds,
+            gauge(o.value, o.lower, o.upper),
+            status
+        );
+    }
+    out
+}
+
+/// The moving box's report as a table.
+pub fn box_table(b: &BoxReport) -> String {
+    table(&[
+        (
+            "eccentricity k",
+            format!("{:.6} (speed ratio {:.4})", b.eccentricity, b.speed_ratio),
+        ),
+        (
+            "ellipse semi-major axis",
+            format!(
+                "{:.3} mm (centre distance {:.3} mm)",
+                b.semi_major_mm, b.centre_distance_mm
+            ),
+        ),
+        (
+            "picking window (driver)",
+            format!("{:.2}° .. {:.2}°", b.window_deg[0], b.window_deg[1]),
+        ),
+        (
+            "box travel, elliptical",
+            format!(
+                "{:.4} mm (numerical {:.4} mm)",
+                b.elliptic_delta_h_mm, b.elliptic_delta_h_numeric_mm
+            ),
+        ),
+        (
+            "box travel, constant speed",
+            format!("{:.4} mm", b.uniform_delta_h_mm),
+        ),
+        (
+            "box travel, sinusoidal shaft",
+            format!("{:.4} mm", b.sinusoidal_delta_h_mm),
+        ),
+        (
+            "limit (1/6 pot width)",
+            format!(
+                "{:.3} mm: {}",
+                b.limit_mm,
+                if b.within_limit { "kept" } else { "EXCEEDED" }
+            ),
+        ),
+        (
+            "best window centre",
+            format!("{:.4}°", b.best_window_centre_deg),
+        ),
+        (
+            "box speed",
+            format!("{:.2} .. {:.2} mm/s", b.speed_min_mm_s, b.speed_max_mm_s),
+        ),
+        (
+            "largest slider normal force",
+            format!("{:.3} N", b.slider_force_max_n),
+        ),
+    ])
 }
 
 /// A 24-character gauge: `|` marks the bounds, `#` the value, `=` the admissible span.

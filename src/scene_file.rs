@@ -22,7 +22,13 @@ pub enum SceneError {
 }
 
 /// Built-in scenes: `(name, file contents)`; the same files live under `scenes/`.
-pub const BUILTIN: &[(&str, &str)] = &[("paper", include_str!("../scenes/paper.toml"))];
+pub const BUILTIN: &[(&str, &str)] = &[
+    ("paper", include_str!("../scenes/paper.toml")),
+    ("paper-search", include_str!("../scenes/paper-search.toml")),
+    ("moving-box", include_str!("../scenes/moving-box.toml")),
+    ("transplanter", include_str!("../scenes/transplanter.toml")),
+    ("ellipse-gear", include_str!("../scenes/ellipse-gear.toml")),
+];
 
 /// The default scene's name: the three-arm paper's design.
 pub const DEFAULT_SCENE: &str = "paper";

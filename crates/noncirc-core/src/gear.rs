@@ -192,6 +192,11 @@ pub fn module_max(
     }
 }
 
+/// Pitch perimeter from uniform samples over one turn: trapezoid rule of `√(ρ² + ρ'²)` (mm).
+pub fn perimeter(samples: &[Polar]) -> f64 {
+    samples.iter().map(|p| p.rho.hypot(p.d1)).sum::<f64>() * TAU / samples.len() as f64
+}
+
 /// Least convex and least concave |R_c| of the driver and its conjugate at the given samples.
 pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     let (mut convex, mut concave) = (f64::INFINITY, f64::INFINITY);
@@ -318,8 +323,7 @@ impl GearPair {
 
     /// Driver pitch perimeter (mm); the driven gear's is equal.
     pub fn perimeter(&self) -> f64 {
-        let n = self.samples.len() as f64;
-        self.samples.iter().map(|p| p.rho.hypot(p.d1)).sum::<f64>() * TAU / n
+        perimeter(&self.samples)
     }
 
     /// Largest admissible module over the pair's teeth.

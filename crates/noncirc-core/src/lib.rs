@@ -4,17 +4,22 @@
 
 pub mod curve;
 pub mod error;
+pub mod evaluation;
 pub mod gear;
+pub mod moving_box;
+pub mod objectives;
+pub mod params;
+pub mod planetary;
 pub mod quadrature;
 pub mod resolution;
+pub mod scene;
 
 pub use curve::{CurveSpec, PitchCurve, Polar};
 pub use error::{Error, Result};
+pub use evaluation::{Evaluation, Evaluator, StageCounts};
 pub use gear::{GearPair, ModuleReport, ModuleRule};
-pub use resolution::Resolution;
-pub mod scene;
-pub use scene::{GearSpec, Scene};
-pub mod planetary;
-pub use planetary::{Kinematics, TrainSpec};
-pub mod objectives;
 pub use objectives::{Agronomy, Bounds, ObjectiveKind, ObjectiveValue};
+pub use params::Param;
+pub use planetary::{Kinematics, TrainSpec};
+pub use resolution::Resolution;
+pub use scene::{FreeParam, GearSpec, Scene, SceneKind, SearchSpec};

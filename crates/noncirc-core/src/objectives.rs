@@ -3,7 +3,7 @@
 
 use crate::curve::TAU;
 use crate::error::{finite, Error, Result};
-use crate::gear::{curvature_extremes, module_max, ModuleReport, ModuleRule};
+use crate::gear::{curvature_extremes, module_max, perimeter, ModuleReport, ModuleRule};
 use crate::planetary::{unit, Kinematics};
 use serde::{Deserialize, Serialize};
 
@@ -503,10 +503,41 @@ pub fn ground_clearance(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
 /// intermediate), from the carrier-grid samples.
 pub fn module(kin: &Kinematics, rule: &ModuleRule) -> ModuleReport {
     let samples = kin.sun_samples();
-    let n = samples.len() as f64;
-    let perimeter = samples.iter().map(|p| p.rho.hypot(p.d1)).sum::<f64>() * TAU / n;
     let (convex, concave) = curvature_extremes(samples, kin.centre_distance());
-    module_max(perimeter, convex, concave, rule)
+    module_max(perimeter(samples), convex, concave, rule)
+}
+
+impl ObjectiveKind {
+    /// Whether this objective needs the picking/planting events.
+    pub fn needs_events(self) -> bool {
+        !matches!(self, ObjectiveKind::Interference | ObjectiveKind::Module)
+    }
+
+    /// Whether this objective needs the arms' motion (all but the module).
+    pub fn needs_kinematics(self) -> bool {
+        self != ObjectiveKind::Module
+    }
+}
+
+/// One objective's value for a moved mechanism (`ev` must be given when `needs_events`).
+pub fn objective_value(
+    kind: ObjectiveKind,
+    kin: &Kinematics,
+    ev: Option<&Events>,
+    agro: &Agronomy,
+    rule: &ModuleRule,
+) -> f64 {
+    let ev = || ev.expect("events are located before the objectives that need them");
+    match kind {
+        ObjectiveKind::Interference => interference_clearance(kin, agro),
+        ObjectiveKind::PickingAngle => ev().picking.attitude_deg,
+        ObjectiveKind::PushingAngle => ev().planting.attitude_deg,
+        ObjectiveKind::AngleDifference => ev().planting.attitude_deg - ev().picking.attitude_deg,
+        ObjectiveKind::SeedlingPush => seedling_push(kin, agro, ev()),
+        ObjectiveKind::GroundClearance => ground_clearance(kin, agro, ev()),
+        ObjectiveKind::TrajectoryHeight => ev().y_max_mm - ev().y_min_mm,
+        ObjectiveKind::Module => module(kin, rule).module_max_mm,
+    }
 }
 
 /// Every objective with its value, in the paper's order, and the events.
@@ -520,19 +551,11 @@ pub fn evaluate_all(
     let values = ObjectiveKind::ALL
         .iter()
         .map(|&kind| {
-            let value = match kind {
-                ObjectiveKind::Interference => interference_clearance(kin, agro),
-                ObjectiveKind::PickingAngle => ev.picking.attitude_deg,
-                ObjectiveKind::PushingAngle => ev.planting.attitude_deg,
-                ObjectiveKind::AngleDifference => {
-                    ev.planting.attitude_deg - ev.picking.attitude_deg
-                }
-                ObjectiveKind::SeedlingPush => seedling_push(kin, agro, &ev),
-                ObjectiveKind::GroundClearance => ground_clearance(kin, agro, &ev),
-                ObjectiveKind::TrajectoryHeight => ev.y_max_mm - ev.y_min_mm,
-                ObjectiveKind::Module => module(kin, rule).module_max_mm,
-            };
-            ObjectiveValue::new(kind, value, bounds)
+            ObjectiveValue::new(
+                kind,
+                objective_value(kind, kin, Some(&ev), agro, rule),
+                bounds,
+            )
         })
         .collect();
     (values, ev)

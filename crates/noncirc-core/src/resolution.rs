@@ -40,6 +40,9 @@ impl Resolution {
         newton_rel_tol: 1e-12,
     };
 
+    /// Largest accepted samples per turn (memory stays below ~200 MB).
+    pub const MAX_SAMPLES: usize = 6 << 20;
+
     /// This resolution with another sample count.
     pub fn with_samples(self, samples_per_turn: usize) -> Self {
         Self {
@@ -51,11 +54,11 @@ impl Resolution {
     /// Checks every knob, naming the bad one.
     pub fn validate(&self) -> Result<()> {
         let n = self.samples_per_turn;
-        if n < 12 || !n.is_multiple_of(6) {
+        if !(12..=Self::MAX_SAMPLES).contains(&n) || !n.is_multiple_of(6) {
             return Err(Error::OutOfRange {
                 name: "resolution.samples_per_turn".into(),
                 value: n as f64,
-                expected: "a multiple of 6, at least 12".into(),
+                expected: format!("a multiple of 6 from 12 to {}", Self::MAX_SAMPLES),
             });
         }
         for (name, v) in [

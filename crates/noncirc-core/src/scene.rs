@@ -1,8 +1,10 @@
 //! Scenes: what is being designed and asked, as plain serialisable data (no I/O here).
 
 use crate::curve::CurveSpec;
+use crate::error::{Error, Result};
 use crate::gear::ModuleRule;
-use crate::objectives::{Agronomy, Bounds};
+use crate::moving_box::BoxSpec;
+use crate::objectives::{Agronomy, Bounds, ObjectiveKind};
 use crate::planetary::TrainSpec;
 use crate::resolution::Resolution;
 use serde::{Deserialize, Serialize};
@@ -28,8 +30,72 @@ impl Default for GearSpec {
     }
 }
 
+/// What a scene designs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum SceneKind {
+    /// A non-circular gear pair alone: closure, ratio, module.
+    Gear,
+    /// The three-arm planetary transplanting mechanism and its objectives.
+    #[default]
+    ThreeArm,
+    /// The variable-speed moving box alone.
+    MovingBox,
+    /// Three-arm mechanism plus moving box, coupled through the picking window.
+    Transplanter,
+}
+
+/// A free parameter of a search: a scene path and its bounds.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FreeParam {
+    /// Scene path, e.g. `train.phi0_deg` or `gear.curve.radii_mm[3]`.
+    pub name: String,
+    pub lower: f64,
+    pub upper: f64,
+}
+
+/// How to search the scene's design space (used by `noncirc optimise`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SearchSpec {
+    /// The free parameters; empty means the default space around the scene's design.
+    pub free: Vec<FreeParam>,
+    /// Algorithm name (see `noncirc optimise --help`).
+    pub algorithm: String,
+    /// Evaluation budget.
+    pub budget: u64,
+    /// Population size of population-based algorithms.
+    pub population: usize,
+    /// Random seed.
+    pub seed: u64,
+    /// Resolution used for screening; every reported design is re-evaluated at the scene's.
+    pub screening: Resolution,
+    /// Goals to maximise beyond feasibility: objective margins by name, plus
+    /// `picking_tip_speed` (minimised) and `box_travel` (minimised).
+    pub goals: Vec<String>,
+}
+
+impl Default for SearchSpec {
+    fn default() -> Self {
+        Self {
+            free: Vec::new(),
+            algorithm: "de".into(),
+            budget: 60_000,
+            population: 48,
+            seed: 1,
+            screening: Resolution::FAST,
+            goals: Vec::new(),
+        }
+    }
+}
+
+fn all_objectives() -> Vec<ObjectiveKind> {
+    ObjectiveKind::ALL.to_vec()
+}
+
 /// A scene: the design, what is asked of it and at which resolution.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
     /// Short name.
@@ -38,6 +104,12 @@ pub struct Scene {
     /// One-line description.
     #[serde(default)]
     pub description: String,
+    /// What is designed.
+    #[serde(default)]
+    pub kind: SceneKind,
+    /// Which objectives are evaluated (default: all eight; a gear scene may ask the module).
+    #[serde(default = "all_objectives")]
+    pub objectives: Vec<ObjectiveKind>,
     /// Numerical resolution.
     #[serde(default)]
     pub resolution: Resolution,
@@ -53,4 +125,48 @@ pub struct Scene {
     /// Bounds of the eight objectives.
     #[serde(default)]
     pub bounds: Bounds,
+    /// The moving box.
+    #[serde(default)]
+    pub moving_box: BoxSpec,
+    /// Search settings.
+    #[serde(default)]
+    pub search: SearchSpec,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Self {
+            name: String::new(),
+            description: String::new(),
+            kind: SceneKind::default(),
+            objectives: all_objectives(),
+            resolution: Resolution::default(),
+            gear: GearSpec::default(),
+            train: TrainSpec::default(),
+            agronomy: Agronomy::default(),
+            bounds: Bounds::default(),
+            moving_box: BoxSpec::default(),
+            search: SearchSpec::default(),
+        }
+    }
+}
+
+impl Scene {
+    /// The objectives this scene evaluates, checked against its kind.
+    pub fn validate(&self) -> Result<()> {
+        self.resolution.validate()?;
+        let mechanism = matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
+        for o in &self.objectives {
+            let allowed =
+                mechanism || (self.kind == SceneKind::Gear && *o == ObjectiveKind::Module);
+            if !allowed {
+                return Err(Error::OutOfRange {
+                    name: format!("objectives: '{}'", o.name()),
+                    value: f64::NAN,
+                    expected: format!("an objective a {:?} scene can evaluate", self.kind),
+                });
+            }
+        }
+        Ok(())
+    }
 }

@@ -1,0 +1,177 @@
+//! Staged evaluation: pitch curve → closure → kinematics → each objective (and the moving
+//! box apart). A scene runs only the stages its outputs need; counters prove it.
+
+use crate::error::Result;
+use crate::gear::{perimeter, GearPair, ModuleReport};
+use crate::moving_box::{evaluate_box, BoxReport};
+use crate::objectives::{events, module, objective_value, Events, ObjectiveKind, ObjectiveValue};
+use crate::planetary::Kinematics;
+use crate::resolution::Resolution;
+use crate::scene::{Scene, SceneKind};
+use serde::Serialize;
+
+/// How many times each stage ran.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct StageCounts {
+    pub pitch_curve: u64,
+    pub closure: u64,
+    pub kinematics: u64,
+    pub events: u64,
+    /// Per objective, in `ObjectiveKind::ALL` order.
+    pub objectives: [u64; 8],
+    pub moving_box: u64,
+}
+
+/// A gear pair's summary.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GearSummary {
+    pub centre_distance_mm: f64,
+    pub closure_error_mm: f64,
+    pub perimeter_mm: f64,
+    pub module: ModuleReport,
+}
+
+/// The outcome of one evaluation, with the resolution that produced it.
+#[derive(Debug, Clone)]
+pub struct Evaluation {
+    pub resolution: Resolution,
+    pub kind: SceneKind,
+    pub centre_distance_mm: Option<f64>,
+    pub gear: Option<GearSummary>,
+    pub objectives: Vec<ObjectiveValue>,
+    pub events: Option<Events>,
+    pub moving_box: Option<BoxReport>,
+    pub kinematics: Option<Kinematics>,
+}
+
+impl Evaluation {
+    /// Sum of the objectives' violations (0: every requested objective is met).
+    pub fn total_violation(&self) -> f64 {
+        self.objectives.iter().map(|o| o.violation).sum()
+    }
+
+    /// The value of one objective, if it was evaluated.
+    pub fn objective(&self, kind: ObjectiveKind) -> Option<&ObjectiveValue> {
+        self.objectives.iter().find(|o| o.kind == kind)
+    }
+}
+
+/// Runs scenes through the stages they need, counting each stage.
+#[derive(Debug, Clone, Default)]
+pub struct Evaluator {
+    counts: StageCounts,
+}
+
+impl Evaluator {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Stage executions so far.
+    pub fn counts(&self) -> StageCounts {
+        self.counts
+    }
+
+    /// Evaluates `scene` at its own resolution.
+    pub fn evaluate(&mut self, scene: &Scene) -> Result<Evaluation> {
+        self.evaluate_at(scene, &scene.resolution)
+    }
+
+    /// Evaluates `scene` at `resolution`, running only the stages its outputs need.
+    pub fn evaluate_at(&mut self, scene: &Scene, resolution: &Resolution) -> Result<Evaluation> {
+        scene.validate()?;
+        resolution.validate()?;
+        let mut out = Evaluation {
+            resolution: *resolution,
+            kind: scene.kind,
+            centre_distance_mm: None,
+            gear: None,
+            objectives: Vec::with_capacity(scene.objectives.len()),
+            events: None,
+            moving_box: None,
+            kinematics: None,
+        };
+        match scene.kind {
+            SceneKind::Gear => {
+                self.counts.pitch_curve += 1;
+                let curve = scene.gear.curve.build()?;
+                self.counts.closure += 1;
+                let pair = GearPair::solve(curve, *resolution)?;
+                let module = pair.module(&scene.gear.module);
+                out.centre_distance_mm = Some(pair.centre_distance());
+                out.gear = Some(GearSummary {
+                    centre_distance_mm: pair.centre_distance(),
+                    closure_error_mm: pair.closure().error_estimate,
+                    perimeter_mm: pair.perimeter(),
+                    module,
+                });
+                for &kind in &scene.objectives {
+                    self.counts.objectives[kind as usize] += 1;
+                    out.objectives.push(ObjectiveValue::new(
+                        kind,
+                        module.module_max_mm,
+                        &scene.bounds,
+                    ));
+                }
+            }
+            SceneKind::ThreeArm | SceneKind::Transplanter => {
+                scene.agronomy.validate()?;
+                self.counts.pitch_curve += 1;
+                let curve = scene.gear.curve.build()?;
+                self.counts.closure += 1;
+                self.counts.kinematics += 1;
+                let kin = Kinematics::solve(&curve, &scene.train, resolution)?;
+                out.centre_distance_mm = Some(kin.centre_distance());
+                let coupled = scene.kind == SceneKind::Transplanter;
+                let ev = if coupled || scene.objectives.iter().any(|o| o.needs_events()) {
+                    self.counts.events += 1;
+                    Some(events(&kin, &scene.agronomy))
+                } else {
+                    None
+                };
+                for &kind in &scene.objectives {
+                    self.counts.objectives[kind as usize] += 1;
+                    let value = objective_value(
+                        kind,
+                        &kin,
+                        ev.as_ref(),
+                        &scene.agronomy,
+                        &scene.gear.module,
+                    );
+                    out.objectives
+                        .push(ObjectiveValue::new(kind, value, &scene.bounds));
+                }
+                if coupled {
+                    let window = ev
+                        .as_ref()
+                        .map(|e| e.picking_window_rad)
+                        .unwrap_or_default();
+                    let span =
+                        (window[1] - window[0]) * scene.moving_box.input_turns_per_carrier_turn;
+                    let centre = scene.moving_box.window_centre_deg.to_radians();
+                    self.counts.moving_box += 1;
+                    out.moving_box = Some(evaluate_box(
+                        &scene.moving_box,
+                        Some([centre - span / 2.0, centre + span / 2.0]),
+                        resolution,
+                    )?);
+                }
+                if scene.objectives.contains(&ObjectiveKind::Module) {
+                    out.gear = Some(GearSummary {
+                        centre_distance_mm: kin.centre_distance(),
+                        closure_error_mm: kin.closure_error(),
+                        perimeter_mm: perimeter(kin.sun_samples()),
+                        module: module(&kin, &scene.gear.module),
+                    });
+                }
+                out.events = ev;
+                out.kinematics = Some(kin);
+            }
+            SceneKind::MovingBox => {
+                self.counts.moving_box += 1;
+                out.moving_box = Some(evaluate_box(&scene.moving_box, None, resolution)?);
+            }
+        }
+        Ok(out)
+    }
+}
