@@ -2,6 +2,7 @@
 //!
 //! The core stays free of I/O and threads; files, terminals and threads live here.
 
+pub mod accuracy;
 pub mod report;
 pub mod scene_file;
 

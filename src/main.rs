@@ -45,6 +45,8 @@ enum Command {
     /// The variable-speed moving box: box travel while picking, speeds, forces.
     /// With no scene: the moving-box paper's setting.
     Box(SceneArgs),
+    /// Measure each output's error and the time per evaluation over a resolution ladder.
+    Accuracy(SceneArgs),
     /// List the built-in scenes.
     Scenes,
 }
@@ -92,6 +94,14 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             match args.format {
                 Format::Json => println!("{}", serde_json::to_string_pretty(&b)?),
                 Format::Table => print!("{}", noncirc::report::box_table(&b)),
+            }
+        }
+        Command::Accuracy(args) => {
+            let scene = apply_overrides(load_scene(args.scene.as_deref())?, &args.set)?;
+            let report = noncirc::accuracy::measure(&scene, 720)?;
+            match args.format {
+                Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
+                Format::Table => print!("{}", report.table()),
             }
         }
         Command::Scenes => {

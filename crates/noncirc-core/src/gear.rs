@@ -1,6 +1,6 @@
 //! Non-circular gear pairs of average ratio 1: closure, conjugate curve, ratio, module.
 
-use crate::curve::{PitchCurve, Polar, TAU};
+use crate::curve::{refined_sample_min, PitchCurve, Polar, TAU};
 use crate::error::{Error, Result};
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
@@ -197,16 +197,23 @@ pub fn perimeter(samples: &[Polar]) -> f64 {
     samples.iter().map(|p| p.rho.hypot(p.d1)).sum::<f64>() * TAU / samples.len() as f64
 }
 
-/// Least convex and least concave |R_c| of the driver and its conjugate at the given samples.
+/// Least convex and least concave |R_c| of the driver and its conjugate at the given samples,
+/// each refined by the parabola through the least sample and its neighbours.
 pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
-    let (mut convex, mut concave) = (f64::INFINITY, f64::INFINITY);
-    for &p in samples {
-        for rc in [curvature_radius(p), curvature_radius(conjugate_polar(p, a))] {
-            if rc > 0.0 {
-                convex = convex.min(rc);
-            } else {
-                concave = concave.min(-rc);
-            }
+    let mut convex = f64::INFINITY;
+    let mut concave = f64::INFINITY;
+    for driven in [false, true] {
+        let rc: Vec<f64> = samples
+            .iter()
+            .map(|&p| curvature_radius(if driven { conjugate_polar(p, a) } else { p }))
+            .collect();
+        // Curvature κ = 1/R_c is smooth through inflections: refine its extremes.
+        let kappa: Vec<f64> = rc.iter().map(|r| 1.0 / r).collect();
+        if kappa.iter().any(|&k| k > 0.0) {
+            convex = convex.min(1.0 / -refined_sample_min(&kappa, |k| -k));
+        }
+        if kappa.iter().any(|&k| k < 0.0) {
+            concave = concave.min(-1.0 / refined_sample_min(&kappa, |k| k));
         }
     }
     (convex, concave)
@@ -247,8 +254,7 @@ impl GearPair {
         }
         let closure = solve_closure(&rho, &resolution)?;
         let a = closure.centre_distance;
-        let sampled_max = rho.iter().cloned().fold(0.0, f64::max);
-        let true_max = curve.max_radius_bound(sampled_max);
+        let true_max = curve.radius_range(&samples).1;
         if true_max >= a {
             return Err(Error::SpikeBetweenSamples {
                 rho_max_mm: true_max,

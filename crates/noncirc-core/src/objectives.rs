@@ -423,7 +423,7 @@ pub fn point_segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
 pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     let n = kin.len();
     let (tips, centres) = (kin.tips(), kin.planet_centres());
-    let rmax = kin.sun_samples().iter().map(|p| p.rho).fold(0.0, f64::max);
+    let rmax = kin.radius_range().1;
     let w = agro.arm_half_width_mm;
     let clearance = |j: usize| {
         let (k2, k3) = (kin.arm_node(1, j), kin.arm_node(2, j));
@@ -488,11 +488,7 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
 /// carrier axis plus the wall margin) and the ground (mm).
 pub fn ground_clearance(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     let a = kin.centre_distance();
-    let (mut rmin, mut rmax) = (f64::INFINITY, 0.0f64);
-    for p in kin.sun_samples() {
-        rmin = rmin.min(p.rho);
-        rmax = rmax.max(p.rho);
-    }
+    let (rmin, rmax) = kin.radius_range();
     let planet_radius = 2.0 * a * (kin.spec().gamma0_deg.to_radians() / 2.0).cos().abs();
     let housing = rmax.max(a + (a - rmin)).max(planet_radius + rmax) + agro.housing_margin_mm;
     let ground = ev.y_min_mm + agro.planting_depth_mm;

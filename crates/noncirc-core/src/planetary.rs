@@ -186,6 +186,8 @@ pub struct Kinematics {
     big_phi: Vec<f64>,
     g: Vec<f64>,
     dg: Vec<f64>,
+    /// Exact (or refined) least and largest sun radius (mm).
+    radius_range: (f64, f64),
     /// Mesh delay of the intermediate between its two meshes (rad).
     delay: f64,
     /// `Φ(2π) − Φ(0)` (rad; 2π up to the closure error).
@@ -212,7 +214,7 @@ impl Kinematics {
         let rho: Vec<f64> = sun.iter().map(|p| p.rho).collect();
         let closure = solve_closure(&rho, resolution)?;
         let a = closure.centre_distance;
-        let rmax = curve.max_radius_bound(rho.iter().cloned().fold(0.0, f64::max));
+        let (rmin, rmax) = curve.radius_range(&sun);
         if rmax >= a {
             return Err(Error::SpikeBetweenSamples {
                 rho_max_mm: rmax,
@@ -239,6 +241,7 @@ impl Kinematics {
             big_phi,
             g,
             dg,
+            radius_range: (rmin, rmax),
             delay,
             phi_period,
             theta_s: vec![0.0; n],
@@ -291,6 +294,11 @@ impl Kinematics {
     /// Centre distance `a` shared by both meshes (mm).
     pub fn centre_distance(&self) -> f64 {
         self.centre_distance
+    }
+
+    /// Least and largest radius of the sun's pitch curve (mm).
+    pub fn radius_range(&self) -> (f64, f64) {
+        self.radius_range
     }
 
     /// Estimated error of the centre distance (mm).

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 #[serde(default, deny_unknown_fields)]
 pub struct Resolution {
     /// Uniform samples of the pitch curve per turn, which are also the carrier-angle samples
-    /// per cycle. A multiple of 6, at least 12. Default 360.
+    /// per cycle. A multiple of 6, at least 12. Default 120 (docs/accuracy.md).
     pub samples_per_turn: usize,
     /// Largest accepted relative uncertainty of the centre distance, estimated from the
     /// half grid; above it the closure is reported as under-resolved. Default 1e-5
@@ -28,14 +28,14 @@ impl Default for Resolution {
 impl Resolution {
     /// The default level: trajectory error below 0.01 mm, angles below 0.01° (docs/accuracy.md).
     pub const DEFAULT: Resolution = Resolution {
-        samples_per_turn: 360,
+        samples_per_turn: 120,
         closure_rel_tol: 1e-5,
         newton_rel_tol: 1e-14,
     };
 
     /// The screening level used inside search (docs/accuracy.md).
     pub const FAST: Resolution = Resolution {
-        samples_per_turn: 120,
+        samples_per_turn: 60,
         closure_rel_tol: 1e-4,
         newton_rel_tol: 1e-12,
     };

@@ -178,15 +178,41 @@ impl PitchCurve {
         }
     }
 
-    /// A guaranteed upper bound on `rho`, exact where the representation allows (mm).
-    pub fn max_radius_bound(&self, samples_max: f64) -> f64 {
+    /// `(min, max)` of `rho` (mm): exact for the spline and the ellipse, Newton-refined for
+    /// the Fourier series, and refined from the given uniform samples otherwise.
+    pub fn radius_range(&self, samples: &[Polar]) -> (f64, f64) {
         match self {
-            PitchCurve::Spline(s) => s.extreme(true).1,
-            PitchCurve::Ellipse(e) => e.semi_major * (1.0 + e.k),
-            PitchCurve::Fourier(f) => f.refined_extreme(true),
-            PitchCurve::Cartesian(_) => samples_max,
+            PitchCurve::Spline(s) => (s.extreme(false).1, s.extreme(true).1),
+            PitchCurve::Ellipse(e) => (e.semi_major * (1.0 - e.k), e.semi_major * (1.0 + e.k)),
+            PitchCurve::Fourier(f) => (f.refine(false).1, f.refine(true).1),
+            PitchCurve::Cartesian(_) => {
+                let rho: Vec<f64> = samples.iter().map(|p| p.rho).collect();
+                let min = refined_sample_min(&rho, |r| r);
+                let max = -refined_sample_min(&rho, |r| -r);
+                (min, max)
+            }
         }
     }
+}
+
+/// Minimum of `f(values[j])` over a periodic uniform sample, refined by the parabola through
+/// the least sample and its neighbours.
+pub fn refined_sample_min(values: &[f64], f: impl Fn(f64) -> f64) -> f64 {
+    let n = values.len();
+    let j = (0..n)
+        .min_by(|&a, &b| f(values[a]).total_cmp(&f(values[b])))
+        .unwrap_or(0);
+    let (ym, y0, yp) = (
+        f(values[(j + n - 1) % n]),
+        f(values[j]),
+        f(values[(j + 1) % n]),
+    );
+    let curvature = ym - 2.0 * y0 + yp;
+    if curvature <= 0.0 {
+        return y0;
+    }
+    let offset = (0.5 * (ym - yp) / curvature).clamp(-1.0, 1.0);
+    y0 - 0.25 * (ym - yp) * offset
 }
 
 /// Truncated Fourier series pitch curve.
@@ -218,7 +244,7 @@ impl Fourier {
             cos: pad(cos),
             sin: pad(sin),
         };
-        let (psi, rho) = f.refined_min();
+        let (psi, rho) = f.refine(false);
         if rho <= 0.0 {
             return Err(Error::NonPositiveRadius {
                 psi_deg: psi.to_degrees(),
@@ -244,15 +270,8 @@ impl Fourier {
         out
     }
 
-    /// The minimum: dense samples, then Newton on `rho' = 0` from the best one.
-    fn refined_min(&self) -> (f64, f64) {
-        self.refine(false)
-    }
-
-    fn refined_extreme(&self, max: bool) -> f64 {
-        self.refine(max).1
-    }
-
+    /// The minimum (`max = false`) or maximum `(psi, rho)`: dense samples, then Newton on
+    /// `rho' = 0` from the best one.
     fn refine(&self, max: bool) -> (f64, f64) {
         let sign = if max { -1.0 } else { 1.0 };
         let m = 64 * (self.cos.len() + 1);
