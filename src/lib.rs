@@ -5,5 +5,6 @@
 pub mod accuracy;
 pub mod report;
 pub mod scene_file;
+pub mod search;
 
 pub use noncirc_core as core;

@@ -1,10 +1,15 @@
 //! The `noncirc` command line.
 
 use clap::{Parser, Subcommand, ValueEnum};
+use noncirc::core::search::Algorithm;
 use noncirc::core::SceneKind;
 use noncirc::report::{EvaluationReport, GearReport};
 use noncirc::scene_file::{apply_overrides, load_scene, BUILTIN};
+use noncirc::search::RunOptions;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
 
 #[derive(Parser)]
 #[command(
@@ -36,6 +41,57 @@ struct SceneArgs {
     format: Format,
 }
 
+#[derive(clap::Args)]
+struct OptimiseArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Algorithm: guided, de, cmaes or nsga2 (default: the scene's, `de`).
+    #[arg(long)]
+    algorithm: Option<String>,
+    /// Evaluation budget (default: the scene's).
+    #[arg(long)]
+    budget: Option<u64>,
+    /// Population size (default: the scene's).
+    #[arg(long)]
+    population: Option<usize>,
+    /// Random seed (default: the scene's).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Write a checkpoint to this file at intervals and at the end.
+    #[arg(long, value_name = "FILE")]
+    checkpoint: Option<std::path::PathBuf>,
+    /// Seconds between checkpoints.
+    #[arg(long, default_value_t = 10.0)]
+    checkpoint_every: f64,
+    /// Resume from a checkpoint file (its scene and settings are used).
+    #[arg(long, value_name = "FILE")]
+    resume: Option<std::path::PathBuf>,
+    /// Write best.toml, pareto.csv/json, history.csv and summary.json here.
+    #[arg(long, value_name = "DIR")]
+    out: Option<std::path::PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+#[derive(clap::Args)]
+struct SweepArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Parameter path, e.g. `gear.curve.radii_mm[0]` or `train.phi0_deg`.
+    #[arg(long)]
+    param: String,
+    #[arg(long)]
+    from: f64,
+    #[arg(long)]
+    to: f64,
+    #[arg(long, default_value_t = 11)]
+    steps: usize,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Solve a non-circular gear pair: centre distance, perimeter, ratio, largest module.
@@ -47,6 +103,11 @@ enum Command {
     Box(SceneArgs),
     /// Measure each output's error and the time per evaluation over a resolution ladder.
     Accuracy(SceneArgs),
+    /// Search the scene's design space for designs that meet every objective.
+    /// With no scene: the built-in `paper-search` scene.
+    Optimise(OptimiseArgs),
+    /// The response of every objective to one parameter (three-arm paper §4.2).
+    Sweep(SweepArgs),
     /// List the built-in scenes.
     Scenes,
 }
@@ -60,6 +121,58 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+fn optimise(args: OptimiseArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let name = args.scene.scene.as_deref().unwrap_or("paper-search");
+    let mut scene = apply_overrides(load_scene(Some(name))?, &args.scene.set)?;
+    if let Some(a) = &args.algorithm {
+        scene.search.algorithm = a.clone();
+    }
+    if let Some(b) = args.budget {
+        scene.search.budget = b;
+    }
+    if let Some(p) = args.population {
+        scene.search.population = p;
+    }
+    if let Some(s) = args.seed {
+        scene.search.seed = s;
+    }
+    let algorithm = Algorithm::parse(&scene.search.algorithm).ok_or_else(|| {
+        format!(
+            "unknown algorithm '{}': use guided, de, cmaes or nsga2",
+            scene.search.algorithm
+        )
+    })?;
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))?;
+    let threads = args
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let opts = RunOptions {
+        algorithm,
+        budget: scene.search.budget,
+        population: scene.search.population,
+        seed: scene.search.seed,
+        threads,
+        checkpoint: args.checkpoint,
+        checkpoint_every: Duration::from_secs_f64(args.checkpoint_every.max(0.0)),
+        resume: args.resume,
+        progress: !args.quiet && args.scene.format == Format::Table,
+        stop,
+        max_generations: None,
+    };
+    let outcome = noncirc::search::run(&scene, &opts).map_err(|e| e.to_string())?;
+    if let Some(dir) = &args.out {
+        outcome.write(dir).map_err(|e| e.to_string())?;
+    }
+    let summary = outcome.summary();
+    match args.scene.format {
+        Format::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
+        Format::Table => print!("{}", noncirc::report::summary_table(&summary)),
+    }
+    Ok(())
 }
 
 fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
@@ -102,6 +215,16 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             match args.format {
                 Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
                 Format::Table => print!("{}", report.table()),
+            }
+        }
+        Command::Optimise(args) => optimise(args)?,
+        Command::Sweep(args) => {
+            let scene = apply_overrides(load_scene(args.scene.scene.as_deref())?, &args.scene.set)?;
+            let rows = noncirc::search::sweep(&scene, &args.param, args.from, args.to, args.steps)
+                .map_err(|e| e.to_string())?;
+            match args.scene.format {
+                Format::Json => println!("{}", serde_json::to_string_pretty(&rows)?),
+                Format::Table => print!("{}", noncirc::report::sweep_table(&args.param, &rows)),
             }
         }
         Command::Scenes => {

@@ -386,3 +386,91 @@ fn gauge(value: f64, lower: Option<f64>, upper: Option<f64>) -> String {
     cells[pos(value)] = '#';
     format!("[{}]", cells.into_iter().collect::<String>())
 }
+
+/// A search summary as a table.
+pub fn summary_table(s: &crate::search::Summary) -> String {
+    let mut out = table(&[
+        ("scene", s.scene.clone()),
+        (
+            "algorithm",
+            format!("{} (seed {}, {} threads)", s.algorithm, s.seed, s.threads),
+        ),
+        (
+            "evaluations",
+            format!(
+                "{} at {} samples/turn + {} confirmations at {}",
+                s.evaluations,
+                s.screening_samples_per_turn,
+                s.confirmations,
+                s.confirming_samples_per_turn
+            ),
+        ),
+        (
+            "time",
+            format!(
+                "{:.2} s{}",
+                s.seconds,
+                if s.stopped_early {
+                    " (stopped early)"
+                } else {
+                    ""
+                }
+            ),
+        ),
+        (
+            "first feasible",
+            match (s.first_feasible_evaluations, s.seconds_to_first_feasible) {
+                (Some(n), Some(t)) => format!("after {n} evaluations, {t:.2} s"),
+                _ => "none found".into(),
+            },
+        ),
+        (
+            "result",
+            if s.feasible {
+                "FEASIBLE: meets every objective".into()
+            } else {
+                "not feasible".to_string()
+            },
+        ),
+    ]);
+    out += "\nbest design:\n";
+    for (k, v) in &s.best {
+        out += &format!("  {k:<28} {v:>10.4}\n");
+    }
+    out += "\nobjectives at the default resolution (value, violation):\n";
+    for (k, v) in &s.objectives {
+        out += &format!(
+            "  {k:<28} {v:>10.4}  {:>8.4}\n",
+            s.violations.get(k).copied().unwrap_or(0.0)
+        );
+    }
+    out
+}
+
+/// A sweep as a table: one row per value, one column per objective.
+pub fn sweep_table(param: &str, rows: &[crate::search::SweepRow]) -> String {
+    let names: Vec<String> = rows
+        .iter()
+        .find(|r| !r.objectives.is_empty())
+        .map(|r| r.objectives.keys().cloned().collect())
+        .unwrap_or_default();
+    let mut out = format!("{param:>24}");
+    for n in &names {
+        out += &format!(" {:>17}", n);
+    }
+    out += "   violation\n";
+    for r in rows {
+        out += &format!("{:>24.4}", r.value);
+        match &r.error {
+            Some(e) => out += &format!("  error: {e}"),
+            None => {
+                for n in &names {
+                    out += &format!(" {:>17.4}", r.objectives[n]);
+                }
+                out += &format!("   {:.4}", r.violation.unwrap_or(f64::NAN));
+            }
+        }
+        out += "\n";
+    }
+    out
+}

@@ -14,6 +14,7 @@ pub mod planetary;
 pub mod quadrature;
 pub mod resolution;
 pub mod scene;
+pub mod search;
 
 pub use curve::{CurveSpec, PitchCurve, Polar};
 pub use error::{Error, Result};

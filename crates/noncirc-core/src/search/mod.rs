@@ -1,0 +1,287 @@
+//! Search: problems, feasibility-first fitness, solvers, and the resumable search state.
+//!
+//! Solvers work in the unit cube `[0, 1]^d`; a problem maps it onto its parameter bounds.
+//! Evaluation is behind [`BatchEvaluator`], so that threads live at the edge (the CLI's
+//! rayon evaluator) while the solvers stay pure and deterministic.
+
+mod cmaes;
+mod de;
+mod guided;
+mod nsga2;
+pub mod problem;
+mod rng;
+
+pub use cmaes::Cmaes;
+pub use de::DifferentialEvolution;
+pub use guided::ParameterGuided;
+pub use nsga2::Nsga2;
+pub use rng::Rng;
+
+use serde::{Deserialize, Serialize};
+
+/// Feasibility-first fitness: the summed normalised constraint violation (pymoo's `CV`)
+/// and the goals to minimise.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Fitness {
+    /// Σ violation_i / scale_i (0: feasible).
+    pub cv: f64,
+    /// Goals to minimise (one for single-objective solvers).
+    pub f: Vec<f64>,
+}
+
+impl Fitness {
+    /// Whether every constraint is met.
+    pub fn feasible(&self) -> bool {
+        self.cv == 0.0
+    }
+
+    /// Deb's rule on the first goal: feasible beats infeasible, lower violation beats
+    /// higher, and between feasible designs the lower goal wins.
+    pub fn better_than(&self, other: &Fitness) -> bool {
+        match (self.feasible(), other.feasible()) {
+            (true, false) => true,
+            (false, true) => false,
+            (false, false) => self.cv < other.cv,
+            (true, true) => self.f[0] < other.f[0],
+        }
+    }
+
+    /// A scalar that orders like `better_than` (lower is better).
+    pub fn merit(&self) -> f64 {
+        if self.feasible() {
+            self.f[0]
+        } else {
+            INFEASIBLE_OFFSET + self.cv
+        }
+    }
+
+    /// Constraint domination (Deb) for several goals.
+    pub fn dominates(&self, other: &Fitness) -> bool {
+        match (self.feasible(), other.feasible()) {
+            (true, false) => true,
+            (false, true) => false,
+            (false, false) => self.cv < other.cv,
+            (true, true) => {
+                self.f.iter().zip(&other.f).all(|(a, b)| a <= b)
+                    && self.f.iter().zip(&other.f).any(|(a, b)| a < b)
+            }
+        }
+    }
+}
+
+/// Offset that puts every infeasible merit above every feasible goal value.
+const INFEASIBLE_OFFSET: f64 = 1e6;
+
+/// A point in the unit cube with its fitness.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Candidate {
+    pub u: Vec<f64>,
+    pub fitness: Fitness,
+}
+
+/// Evaluates batches of unit-cube points, in order.
+pub trait BatchEvaluator {
+    /// Dimension of the unit cube.
+    fn dim(&self) -> usize;
+    /// Number of goals in each fitness.
+    fn goals(&self) -> usize;
+    /// Fitness of each point, in the same order (at the screening resolution).
+    fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness>;
+    /// Fitness at the confirming (default) resolution; the same as `evaluate` unless the
+    /// problem screens at a coarser one.
+    fn confirm(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+        self.evaluate(points)
+    }
+}
+
+/// The algorithms.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Algorithm {
+    /// The papers' parameter-guided heuristic.
+    Guided,
+    /// Differential evolution (rand/1/bin, dithered F).
+    De,
+    /// CMA-ES with restarts.
+    Cmaes,
+    /// NSGA-II with constraint domination.
+    Nsga2,
+}
+
+impl Algorithm {
+    /// Parses a name: `guided`, `de`, `cmaes`, `nsga2`.
+    pub fn parse(name: &str) -> Option<Self> {
+        match name {
+            "guided" | "parameter-guided" => Some(Algorithm::Guided),
+            "de" => Some(Algorithm::De),
+            "cmaes" | "cma-es" => Some(Algorithm::Cmaes),
+            "nsga2" | "nsga-ii" => Some(Algorithm::Nsga2),
+            _ => None,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Algorithm::Guided => "guided",
+            Algorithm::De => "de",
+            Algorithm::Cmaes => "cmaes",
+            Algorithm::Nsga2 => "nsga2",
+        }
+    }
+}
+
+/// A solver's resumable state.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub enum Solver {
+    Guided(ParameterGuided),
+    De(DifferentialEvolution),
+    Cmaes(Cmaes),
+    Nsga2(Nsga2),
+}
+
+impl Solver {
+    /// A fresh solver for `dim` parameters.
+    pub fn new(algorithm: Algorithm, dim: usize, population: usize, seed: u64) -> Self {
+        let rng = Rng::new(seed);
+        match algorithm {
+            Algorithm::Guided => Solver::Guided(ParameterGuided::new(dim, rng)),
+            Algorithm::De => Solver::De(DifferentialEvolution::new(dim, population, rng)),
+            Algorithm::Cmaes => Solver::Cmaes(Cmaes::new(dim, population, rng)),
+            Algorithm::Nsga2 => Solver::Nsga2(Nsga2::new(dim, population, rng)),
+        }
+    }
+
+    /// One generation (or probe round); returns the candidates it evaluated.
+    pub fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
+        match self {
+            Solver::Guided(s) => s.step(eval),
+            Solver::De(s) => s.step(eval),
+            Solver::Cmaes(s) => s.step(eval),
+            Solver::Nsga2(s) => s.step(eval),
+        }
+    }
+
+    /// The current non-dominated feasible set (multi-objective solvers), if any.
+    pub fn front(&self) -> Vec<Candidate> {
+        match self {
+            Solver::Nsga2(s) => s.front(),
+            _ => Vec::new(),
+        }
+    }
+}
+
+/// One row of the search history.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HistoryRow {
+    pub generation: u64,
+    pub evaluations: u64,
+    pub best_cv: f64,
+    pub best_goal: f64,
+    pub feasible_in_generation: usize,
+}
+
+/// Everything a search needs to resume exactly where it stopped.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct SearchState {
+    pub algorithm: Algorithm,
+    pub solver: Solver,
+    pub generation: u64,
+    /// Screening evaluations so far.
+    pub evaluations: u64,
+    /// Confirming evaluations so far (at the default resolution).
+    pub confirmations: u64,
+    /// Best candidate at the screening resolution.
+    pub best: Option<Candidate>,
+    /// Best candidate confirmed feasible at the default resolution (fitness as confirmed).
+    pub best_confirmed: Option<Candidate>,
+    /// Screening evaluations when the first confirmed-feasible design appeared.
+    pub first_feasible_at: Option<u64>,
+    pub history: Vec<HistoryRow>,
+}
+
+impl SearchState {
+    pub fn new(algorithm: Algorithm, dim: usize, population: usize, seed: u64) -> Self {
+        Self {
+            algorithm,
+            solver: Solver::new(algorithm, dim, population, seed),
+            generation: 0,
+            evaluations: 0,
+            confirmations: 0,
+            best: None,
+            best_confirmed: None,
+            first_feasible_at: None,
+            history: Vec::new(),
+        }
+    }
+
+    /// Runs one generation, tracks the best, and confirms new feasible bests.
+    pub fn step(&mut self, eval: &mut dyn BatchEvaluator) {
+        let batch = self.solver.step(eval);
+        self.generation += 1;
+        self.evaluations += batch.len() as u64;
+        let mut improved = false;
+        for c in &batch {
+            if self
+                .best
+                .as_ref()
+                .is_none_or(|b| c.fitness.better_than(&b.fitness))
+            {
+                self.best = Some(c.clone());
+                improved = true;
+            }
+        }
+        // Confirm the generation's feasible candidates that could beat the confirmed best.
+        let mut pending: Vec<&Candidate> = batch
+            .iter()
+            .filter(|c| c.fitness.feasible())
+            .filter(|c| {
+                self.best_confirmed
+                    .as_ref()
+                    .is_none_or(|b| c.fitness.f[0] < b.fitness.f[0])
+            })
+            .collect();
+        pending.sort_by(|a, b| a.fitness.f[0].total_cmp(&b.fitness.f[0]));
+        pending.truncate(if improved { 4 } else { 2 });
+        if !pending.is_empty() {
+            let points: Vec<Vec<f64>> = pending.iter().map(|c| c.u.clone()).collect();
+            let confirmed = eval.confirm(&points);
+            self.confirmations += points.len() as u64;
+            for (u, fitness) in points.into_iter().zip(confirmed) {
+                if fitness.feasible()
+                    && self
+                        .best_confirmed
+                        .as_ref()
+                        .is_none_or(|b| fitness.better_than(&b.fitness))
+                {
+                    self.first_feasible_at.get_or_insert(self.evaluations);
+                    self.best_confirmed = Some(Candidate { u, fitness });
+                }
+            }
+        }
+        let best = self.best.as_ref().map(|b| &b.fitness);
+        self.history.push(HistoryRow {
+            generation: self.generation,
+            evaluations: self.evaluations,
+            best_cv: best.map_or(f64::INFINITY, |f| f.cv),
+            best_goal: best.map_or(f64::INFINITY, |f| f.f[0]),
+            feasible_in_generation: batch.iter().filter(|c| c.fitness.feasible()).count(),
+        });
+    }
+}
+
+/// Evaluates points and pairs them with their fitness.
+pub(crate) fn evaluate_all(eval: &mut dyn BatchEvaluator, points: Vec<Vec<f64>>) -> Vec<Candidate> {
+    let fitness = eval.evaluate(&points);
+    points
+        .into_iter()
+        .zip(fitness)
+        .map(|(u, fitness)| Candidate { u, fitness })
+        .collect()
+}
+
+/// Clamps into the unit cube.
+pub(crate) fn clamp_unit(u: &mut [f64]) {
+    for x in u {
+        *x = x.clamp(0.0, 1.0);
+    }
+}

@@ -1,0 +1,276 @@
+//! A search problem made from a scene: free parameters with bounds, the objectives'
+//! violations as constraints, and goals to minimise.
+
+use super::Fitness;
+use crate::error::{Error, Result};
+use crate::evaluation::{Evaluation, Evaluator};
+use crate::objectives::{Bounds, ObjectiveKind, ObjectiveValue};
+use crate::params::Param;
+use crate::resolution::Resolution;
+use crate::scene::{FreeParam, Scene};
+
+/// Violation for a design the model refuses (invalid curve, under-resolved, …).
+pub const INVALID_CV: f64 = 1e5;
+
+/// The normalising scale of an objective's violation and margin: half the admissible
+/// range for two-sided bounds, else a tenth of the bound (at least one unit).
+pub fn scale(kind: ObjectiveKind, bounds: &Bounds) -> f64 {
+    match kind.bounds(bounds) {
+        (Some(l), Some(u)) => ((u - l) / 2.0).max(1e-9),
+        (Some(b), None) | (None, Some(b)) => (b.abs() * 0.1).max(1.0),
+        (None, None) => 1.0,
+    }
+}
+
+/// A goal to minimise once the constraints are met.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Goal {
+    /// Maximise the least normalised margin over the objectives (the default).
+    LeastMargin,
+    /// Maximise one objective's normalised margin.
+    Margin(ObjectiveKind),
+    /// Minimise the tip speed relative to the seedling at picking (m/s).
+    PickingTipSpeed,
+    /// Minimise the box travel while picking (transplanter scenes; mm).
+    BoxTravel,
+}
+
+impl Goal {
+    pub fn parse(name: &str) -> Result<Self> {
+        match name {
+            "least_margin" => Ok(Goal::LeastMargin),
+            "picking_tip_speed" => Ok(Goal::PickingTipSpeed),
+            "box_travel" => Ok(Goal::BoxTravel),
+            other => ObjectiveKind::ALL
+                .iter()
+                .find(|k| k.name() == other)
+                .map(|&k| Goal::Margin(k))
+                .ok_or_else(|| Error::OutOfRange {
+                    name: format!("search goal '{other}'"),
+                    value: f64::NAN,
+                    expected: "least_margin, picking_tip_speed, box_travel or an objective name"
+                        .into(),
+                }),
+        }
+    }
+
+    fn value(self, eval: &Evaluation, bounds: &Bounds) -> f64 {
+        let norm = |o: &ObjectiveValue| o.margin / scale(o.kind, bounds);
+        let v = match self {
+            // The seedling-push margin is 0 whenever it is met: it cannot rank designs.
+            Goal::LeastMargin => -eval
+                .objectives
+                .iter()
+                .filter(|o| o.kind != ObjectiveKind::SeedlingPush)
+                .map(norm)
+                .fold(f64::INFINITY, f64::min),
+            Goal::Margin(k) => -eval.objective(k).map_or(f64::NEG_INFINITY, norm),
+            Goal::PickingTipSpeed => eval
+                .events
+                .as_ref()
+                .map_or(f64::INFINITY, |e| e.picking_tip_speed_m_s),
+            Goal::BoxTravel => eval
+                .moving_box
+                .as_ref()
+                .map_or(f64::INFINITY, |b| b.elliptic_delta_h_mm),
+        };
+        if v.is_finite() {
+            v
+        } else {
+            INVALID_CV
+        }
+    }
+}
+
+/// The default free parameters around a three-arm design: the control radii (±60 %, at
+/// least 5 mm), `Φ0` ± 60°, `β0` ± 60°, `S` ± 40 %, `H1` ± 40 % (below `S`), `γ0` ± 50°.
+pub fn default_space(scene: &Scene) -> Vec<FreeParam> {
+    let mut free = Vec::new();
+    if let Some(radii) = match &scene.gear.curve {
+        crate::curve::CurveSpec::Spline { radii_mm, .. }
+        | crate::curve::CurveSpec::Bspline { radii_mm, .. }
+        | crate::curve::CurveSpec::Bezier { radii_mm, .. } => Some(radii_mm),
+        _ => None,
+    } {
+        for (i, r) in radii.iter().enumerate() {
+            free.push(FreeParam {
+                name: format!("gear.curve.radii_mm[{i}]"),
+                lower: (0.4 * r).max(5.0),
+                upper: 1.6 * r,
+            });
+        }
+    }
+    let t = &scene.train;
+    free.push(FreeParam {
+        name: "train.phi0_deg".into(),
+        lower: t.phi0_deg - 60.0,
+        upper: t.phi0_deg + 60.0,
+    });
+    free.push(FreeParam {
+        name: "train.beta0_deg".into(),
+        lower: t.beta0_deg - 60.0,
+        upper: t.beta0_deg + 60.0,
+    });
+    free.push(FreeParam {
+        name: "train.arm_length_mm".into(),
+        lower: 0.6 * t.arm_length_mm,
+        upper: 1.4 * t.arm_length_mm,
+    });
+    free.push(FreeParam {
+        name: "train.pusher_offset_mm".into(),
+        lower: 0.6 * t.pusher_offset_mm,
+        upper: (1.4 * t.pusher_offset_mm).min(0.59 * t.arm_length_mm),
+    });
+    free.push(FreeParam {
+        name: "train.gamma0_deg".into(),
+        lower: t.gamma0_deg - 50.0,
+        upper: t.gamma0_deg + 50.0,
+    });
+    free
+}
+
+/// The search problem.
+#[derive(Debug, Clone)]
+pub struct SceneProblem {
+    base: Scene,
+    params: Vec<Param>,
+    lower: Vec<f64>,
+    upper: Vec<f64>,
+    goals: Vec<Goal>,
+    screening: Resolution,
+}
+
+impl SceneProblem {
+    /// Builds the problem from the scene's `[search]` settings (default space if empty).
+    pub fn new(scene: &Scene) -> Result<Self> {
+        scene.validate()?;
+        let free = if scene.search.free.is_empty() {
+            default_space(scene)
+        } else {
+            scene.search.free.clone()
+        };
+        let mut params = Vec::with_capacity(free.len());
+        let (mut lower, mut upper) = (Vec::new(), Vec::new());
+        for f in &free {
+            params.push(Param::parse(&f.name, scene)?);
+            if !(f.lower.is_finite() && f.upper.is_finite() && f.lower < f.upper) {
+                return Err(Error::OutOfRange {
+                    name: format!("bounds of '{}'", f.name),
+                    value: f.lower,
+                    expected: format!("finite lower < upper (upper = {})", f.upper),
+                });
+            }
+            lower.push(f.lower);
+            upper.push(f.upper);
+        }
+        let goals = if scene.search.goals.is_empty() {
+            vec![Goal::LeastMargin]
+        } else {
+            scene
+                .search
+                .goals
+                .iter()
+                .map(|g| Goal::parse(g))
+                .collect::<Result<_>>()?
+        };
+        scene.search.screening.validate()?;
+        Ok(Self {
+            base: scene.clone(),
+            params,
+            lower,
+            upper,
+            goals,
+            screening: scene.search.screening,
+        })
+    }
+
+    /// Number of free parameters.
+    pub fn dim(&self) -> usize {
+        self.params.len()
+    }
+
+    /// Number of goals.
+    pub fn goals(&self) -> usize {
+        self.goals.len()
+    }
+
+    /// The free parameters' names.
+    pub fn names(&self) -> Vec<&str> {
+        self.params.iter().map(|p| p.name()).collect()
+    }
+
+    /// The scene the search started from.
+    pub fn base(&self) -> &Scene {
+        &self.base
+    }
+
+    /// The screening resolution.
+    pub fn screening(&self) -> Resolution {
+        self.screening
+    }
+
+    /// Unit-cube point to parameter values.
+    pub fn decode(&self, u: &[f64]) -> Vec<f64> {
+        u.iter()
+            .zip(self.lower.iter().zip(&self.upper))
+            .map(|(u, (lo, hi))| lo + u.clamp(0.0, 1.0) * (hi - lo))
+            .collect()
+    }
+
+    /// Parameter values to unit-cube point.
+    pub fn encode(&self, x: &[f64]) -> Vec<f64> {
+        x.iter()
+            .zip(self.lower.iter().zip(&self.upper))
+            .map(|(x, (lo, hi))| ((x - lo) / (hi - lo)).clamp(0.0, 1.0))
+            .collect()
+    }
+
+    /// Writes the design `u` into `scene` (a scratch copy of the base scene).
+    pub fn apply(&self, u: &[f64], scene: &mut Scene) {
+        for (p, x) in self.params.iter().zip(self.decode(u)) {
+            p.set(scene, x);
+        }
+    }
+
+    /// The full scene of design `u`.
+    pub fn scene_at(&self, u: &[f64]) -> Scene {
+        let mut s = self.base.clone();
+        self.apply(u, &mut s);
+        s
+    }
+
+    /// Evaluates design `u` at `resolution`: the fitness, and the evaluation if it succeeded.
+    pub fn fitness(
+        &self,
+        u: &[f64],
+        evaluator: &mut Evaluator,
+        scratch: &mut Scene,
+        resolution: &Resolution,
+    ) -> (Fitness, Option<Evaluation>) {
+        self.apply(u, scratch);
+        match evaluator.evaluate_at(scratch, resolution) {
+            Ok(eval) => {
+                let bounds = &scratch.bounds;
+                let cv = eval
+                    .objectives
+                    .iter()
+                    .map(|o| o.violation / scale(o.kind, bounds))
+                    .sum::<f64>();
+                let cv = if cv.is_finite() {
+                    cv.min(INVALID_CV)
+                } else {
+                    INVALID_CV
+                };
+                let f = self.goals.iter().map(|g| g.value(&eval, bounds)).collect();
+                (Fitness { cv, f }, Some(eval))
+            }
+            Err(_) => (
+                Fitness {
+                    cv: INVALID_CV,
+                    f: vec![INVALID_CV; self.goals.len()],
+                },
+                None,
+            ),
+        }
+    }
+}

@@ -1,0 +1,425 @@
+//! Running searches: parallel batch evaluation, progress, checkpoints, Ctrl-C, outputs.
+
+use noncirc_core::search::problem::SceneProblem;
+use noncirc_core::search::{Algorithm, BatchEvaluator, Candidate, Fitness, SearchState};
+use noncirc_core::{Evaluator, Resolution, Scene};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+type BoxError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Evaluates batches in parallel on a private rayon pool; results keep the input order,
+/// so a run is bit-identical whatever the thread count.
+pub struct ParallelEvaluator<'a> {
+    problem: &'a SceneProblem,
+    pool: rayon::ThreadPool,
+    confirm_at: Resolution,
+}
+
+impl<'a> ParallelEvaluator<'a> {
+    pub fn new(problem: &'a SceneProblem, threads: usize) -> Result<Self, BoxError> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()?;
+        Ok(Self {
+            problem,
+            pool,
+            confirm_at: problem.base().resolution,
+        })
+    }
+
+    fn run(&self, points: &[Vec<f64>], resolution: Resolution) -> Vec<Fitness> {
+        let problem = self.problem;
+        self.pool.install(|| {
+            points
+                .par_iter()
+                .map_init(
+                    || (Evaluator::new(), problem.base().clone()),
+                    |(evaluator, scratch), u| problem.fitness(u, evaluator, scratch, &resolution).0,
+                )
+                .collect()
+        })
+    }
+}
+
+impl BatchEvaluator for ParallelEvaluator<'_> {
+    fn dim(&self) -> usize {
+        self.problem.dim()
+    }
+    fn goals(&self) -> usize {
+        self.problem.goals()
+    }
+    fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+        self.run(points, self.problem.screening())
+    }
+    fn confirm(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+        self.run(points, self.confirm_at)
+    }
+}
+
+/// What a checkpoint file holds: enough to resume exactly.
+#[derive(Serialize, Deserialize)]
+pub struct Checkpoint {
+    pub scene: Scene,
+    pub budget: u64,
+    pub state: SearchState,
+}
+
+/// Writes `contents` to `path` atomically (temporary file, sync, rename).
+pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
+    let tmp = path.with_extension("tmp");
+    {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(contents)?;
+        f.sync_all()?;
+    }
+    std::fs::rename(tmp, path)
+}
+
+/// How to run a search.
+pub struct RunOptions {
+    pub algorithm: Algorithm,
+    pub budget: u64,
+    pub population: usize,
+    pub seed: u64,
+    pub threads: usize,
+    pub checkpoint: Option<PathBuf>,
+    pub checkpoint_every: Duration,
+    pub resume: Option<PathBuf>,
+    pub progress: bool,
+    /// Set by Ctrl-C: the run stops cleanly after the current generation.
+    pub stop: Arc<AtomicBool>,
+    /// Stop after this many generations (for tests of interrupted runs).
+    pub max_generations: Option<u64>,
+}
+
+/// A finished (or stopped) search.
+pub struct Outcome {
+    pub problem: SceneProblem,
+    pub state: SearchState,
+    pub budget: u64,
+    pub seconds: f64,
+    pub seconds_to_first_feasible: Option<f64>,
+    pub threads: usize,
+    pub stopped_early: bool,
+}
+
+/// Runs (or resumes) a search on `scene`.
+pub fn run(scene: &Scene, opts: &RunOptions) -> Result<Outcome, BoxError> {
+    let (scene, budget, mut state) = match &opts.resume {
+        Some(path) => {
+            let cp: Checkpoint = serde_json::from_slice(
+                &std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?,
+            )
+            .map_err(|e| format!("{}: not a noncirc checkpoint: {e}", path.display()))?;
+            (cp.scene, cp.budget, cp.state)
+        }
+        None => {
+            let problem = SceneProblem::new(scene)?;
+            let state = SearchState::new(opts.algorithm, problem.dim(), opts.population, opts.seed);
+            (scene.clone(), opts.budget, state)
+        }
+    };
+    let problem = SceneProblem::new(&scene)?;
+    let mut evaluator = ParallelEvaluator::new(&problem, opts.threads)?;
+    let bar = opts.progress.then(|| {
+        let bar = indicatif::ProgressBar::new(budget);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{bar:30} {pos}/{len} evals  {per_sec}  eta {eta}  {msg}",
+            )
+            .expect("valid template"),
+        );
+        bar.set_position(state.evaluations);
+        bar
+    });
+    let start = Instant::now();
+    let mut last_checkpoint = Instant::now();
+    let mut seconds_to_first = None;
+    let mut generations = 0u64;
+    let mut stopped_early = false;
+    while state.evaluations < budget {
+        if opts.stop.load(Ordering::SeqCst)
+            || opts.max_generations.is_some_and(|m| generations >= m)
+        {
+            stopped_early = true;
+            break;
+        }
+        state.step(&mut evaluator);
+        generations += 1;
+        if seconds_to_first.is_none() && state.first_feasible_at.is_some() {
+            seconds_to_first = Some(start.elapsed().as_secs_f64());
+        }
+        if let Some(bar) = &bar {
+            bar.set_position(state.evaluations.min(budget));
+            let best = state
+                .best
+                .as_ref()
+                .map(|b| b.fitness.cv)
+                .unwrap_or(f64::INFINITY);
+            bar.set_message(format!(
+                "best violation {best:.4}  feasible {}",
+                if state.best_confirmed.is_some() {
+                    "yes"
+                } else {
+                    "not yet"
+                }
+            ));
+        }
+        if let Some(path) = &opts.checkpoint {
+            if last_checkpoint.elapsed() >= opts.checkpoint_every {
+                save_checkpoint(path, &scene, budget, &state)?;
+                last_checkpoint = Instant::now();
+            }
+        }
+    }
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    if let Some(path) = &opts.checkpoint {
+        save_checkpoint(path, &scene, budget, &state)?;
+    }
+    Ok(Outcome {
+        problem,
+        state,
+        budget,
+        seconds: start.elapsed().as_secs_f64(),
+        seconds_to_first_feasible: seconds_to_first,
+        threads: opts.threads,
+        stopped_early,
+    })
+}
+
+fn save_checkpoint(
+    path: &Path,
+    scene: &Scene,
+    budget: u64,
+    state: &SearchState,
+) -> Result<(), BoxError> {
+    let cp = Checkpoint {
+        scene: scene.clone(),
+        budget,
+        state: state.clone(),
+    };
+    write_atomic(path, &serde_json::to_vec(&cp)?)
+        .map_err(|e| format!("cannot write checkpoint {}: {e}", path.display()).into())
+}
+
+/// The summary `--format json` prints.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    pub scene: String,
+    pub algorithm: &'static str,
+    pub seed: u64,
+    pub threads: usize,
+    /// Whether the reported design meets every objective at the scene's (default) resolution.
+    pub feasible: bool,
+    pub best: BTreeMap<String, f64>,
+    pub violations: BTreeMap<String, f64>,
+    pub objectives: BTreeMap<String, f64>,
+    pub evaluations: u64,
+    pub confirmations: u64,
+    pub first_feasible_evaluations: Option<u64>,
+    pub seconds: f64,
+    pub seconds_to_first_feasible: Option<f64>,
+    pub screening_samples_per_turn: usize,
+    pub confirming_samples_per_turn: usize,
+    pub stopped_early: bool,
+}
+
+impl Outcome {
+    /// The design to report: the best confirmed-feasible one, else the best screened.
+    pub fn reported(&self) -> Option<&Candidate> {
+        self.state
+            .best_confirmed
+            .as_ref()
+            .or(self.state.best.as_ref())
+    }
+
+    /// Summary with the reported design re-evaluated at the scene's resolution.
+    pub fn summary(&self) -> Summary {
+        let base = self.problem.base();
+        let mut best = BTreeMap::new();
+        let mut violations = BTreeMap::new();
+        let mut objectives = BTreeMap::new();
+        let mut feasible = false;
+        if let Some(c) = self.reported() {
+            for (name, x) in self.problem.names().iter().zip(self.problem.decode(&c.u)) {
+                best.insert(name.to_string(), x);
+            }
+            let scene = self.problem.scene_at(&c.u);
+            if let Ok(eval) = Evaluator::new().evaluate(&scene) {
+                feasible = eval.total_violation() == 0.0;
+                for o in &eval.objectives {
+                    violations.insert(o.kind.name().to_string(), o.violation);
+                    objectives.insert(o.kind.name().to_string(), o.value);
+                }
+            }
+        }
+        Summary {
+            scene: base.name.clone(),
+            algorithm: self.state.algorithm.name(),
+            seed: base.search.seed,
+            threads: self.threads,
+            feasible,
+            best,
+            violations,
+            objectives,
+            evaluations: self.state.evaluations,
+            confirmations: self.state.confirmations,
+            first_feasible_evaluations: self.state.first_feasible_at,
+            seconds: self.seconds,
+            seconds_to_first_feasible: self.seconds_to_first_feasible,
+            screening_samples_per_turn: self.problem.screening().samples_per_turn,
+            confirming_samples_per_turn: base.resolution.samples_per_turn,
+            stopped_early: self.stopped_early,
+        }
+    }
+
+    /// The reported set: the confirmed first front (multi-objective), else the best design;
+    /// each re-evaluated at the scene's resolution, keeping only those still feasible
+    /// (or the best design if none is).
+    pub fn pareto(&self) -> Vec<(Vec<f64>, Fitness)> {
+        let base = self.problem.base();
+        let mut ev = Evaluator::new();
+        let mut scratch = base.clone();
+        let mut members: Vec<Candidate> = self.state.solver.front();
+        if members.is_empty() {
+            members.extend(self.reported().cloned());
+        }
+        let confirmed: Vec<(Vec<f64>, Fitness)> = members
+            .iter()
+            .map(|c| {
+                (
+                    self.problem.decode(&c.u),
+                    self.problem
+                        .fitness(&c.u, &mut ev, &mut scratch, &base.resolution)
+                        .0,
+                )
+            })
+            .collect();
+        let feasible: Vec<_> = confirmed
+            .iter()
+            .filter(|(_, f)| f.feasible())
+            .cloned()
+            .collect();
+        if feasible.is_empty() {
+            confirmed.into_iter().take(1).collect()
+        } else {
+            feasible
+        }
+    }
+
+    /// Writes best.toml, pareto.csv/json, history.csv and summary.json into `dir`.
+    pub fn write(&self, dir: &Path) -> Result<(), BoxError> {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        if let Some(c) = self.reported() {
+            let mut scene = self.problem.scene_at(&c.u);
+            scene.name = format!("{}-best", self.problem.base().name);
+            scene.search.free.clear();
+            write_atomic(&dir.join("best.toml"), toml::to_string(&scene)?.as_bytes())?;
+        }
+        let names = self.problem.names();
+        let pareto = self.pareto();
+        let mut csv = names.join(",");
+        for g in 0..self.problem.goals() {
+            csv += &format!(",goal{g}");
+        }
+        csv += ",cv\n";
+        for (x, f) in &pareto {
+            let row: Vec<String> = x
+                .iter()
+                .chain(&f.f)
+                .chain(std::iter::once(&f.cv))
+                .map(|v| v.to_string())
+                .collect();
+            csv += &(row.join(",") + "\n");
+        }
+        write_atomic(&dir.join("pareto.csv"), csv.as_bytes())?;
+        let json: Vec<_> = pareto
+            .iter()
+            .map(|(x, f)| {
+                serde_json::json!({
+                    "parameters": names.iter().zip(x).map(|(n, v)| (n.to_string(), *v)).collect::<BTreeMap<_, _>>(),
+                    "goals": f.f, "cv": f.cv,
+                })
+            })
+            .collect();
+        write_atomic(
+            &dir.join("pareto.json"),
+            serde_json::to_string_pretty(&json)?.as_bytes(),
+        )?;
+        let mut hist =
+            String::from("generation,evaluations,best_cv,best_goal,feasible_in_generation\n");
+        for h in &self.state.history {
+            hist += &format!(
+                "{},{},{},{},{}\n",
+                h.generation, h.evaluations, h.best_cv, h.best_goal, h.feasible_in_generation
+            );
+        }
+        write_atomic(&dir.join("history.csv"), hist.as_bytes())?;
+        write_atomic(
+            &dir.join("summary.json"),
+            serde_json::to_string_pretty(&self.summary())?.as_bytes(),
+        )?;
+        Ok(())
+    }
+}
+
+/// One row of a parameter sweep: the value and every objective's value.
+#[derive(Debug, Clone, Serialize)]
+pub struct SweepRow {
+    pub value: f64,
+    pub objectives: BTreeMap<String, f64>,
+    pub violation: Option<f64>,
+    pub error: Option<String>,
+}
+
+/// The response of every objective to one parameter (three-arm paper §4.2), in parallel.
+pub fn sweep(
+    scene: &Scene,
+    param: &str,
+    from: f64,
+    to: f64,
+    steps: usize,
+) -> Result<Vec<SweepRow>, BoxError> {
+    let p = noncirc_core::Param::parse(param, scene)?;
+    if steps < 2 || !from.is_finite() || !to.is_finite() {
+        return Err("sweep needs finite --from/--to and --steps >= 2".into());
+    }
+    let values: Vec<f64> = (0..steps)
+        .map(|i| from + (to - from) * i as f64 / (steps - 1) as f64)
+        .collect();
+    Ok(values
+        .par_iter()
+        .map(|&v| {
+            let mut s = scene.clone();
+            p.set(&mut s, v);
+            match Evaluator::new().evaluate(&s) {
+                Ok(e) => SweepRow {
+                    value: v,
+                    objectives: e
+                        .objectives
+                        .iter()
+                        .map(|o| (o.kind.name().to_string(), o.value))
+                        .collect(),
+                    violation: Some(e.total_violation()),
+                    error: None,
+                },
+                Err(err) => SweepRow {
+                    value: v,
+                    objectives: BTreeMap::new(),
+                    violation: None,
+                    error: Some(err.to_string()),
+                },
+            }
+        })
+        .collect())
+}

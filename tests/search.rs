@@ -1,0 +1,218 @@
+//! Search: known optima, determinism across thread counts, checkpoint and resume.
+
+use noncirc::core::search::{Algorithm, BatchEvaluator, Fitness, SearchState};
+use noncirc::scene_file::load_scene;
+use noncirc::search::{run, RunOptions};
+use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
+use std::time::Duration;
+
+/// A sequential evaluator of a closure.
+struct Closure<F: Fn(&[f64]) -> Fitness> {
+    dim: usize,
+    goals: usize,
+    f: F,
+}
+
+impl<F: Fn(&[f64]) -> Fitness> BatchEvaluator for Closure<F> {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+    fn goals(&self) -> usize {
+        self.goals
+    }
+    fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+        points.iter().map(|p| (self.f)(p)).collect()
+    }
+}
+
+/// min Σ (u_i − 0.3)² subject to u_0 ≥ 0.6: optimum u = (0.6, 0.3, …), f* = 0.09.
+fn constrained_sphere(u: &[f64]) -> Fitness {
+    let f = u.iter().map(|x| (x - 0.3).powi(2)).sum::<f64>();
+    Fitness {
+        cv: (0.6 - u[0]).max(0.0),
+        f: vec![f],
+    }
+}
+
+#[test]
+fn single_objective_solvers_find_the_constrained_optimum() {
+    for algorithm in [Algorithm::De, Algorithm::Cmaes, Algorithm::Guided] {
+        let mut eval = Closure {
+            dim: 6,
+            goals: 1,
+            f: constrained_sphere,
+        };
+        let mut state = SearchState::new(algorithm, 6, 24, 7);
+        while state.evaluations < 30_000 {
+            state.step(&mut eval);
+        }
+        let best = state.best_confirmed.expect("a feasible design");
+        assert!(
+            (best.fitness.f[0] - 0.09).abs() < 1e-3,
+            "{algorithm:?}: f = {}",
+            best.fitness.f[0]
+        );
+        assert!(
+            (best.u[0] - 0.6).abs() < 1e-2 && (best.u[3] - 0.3).abs() < 1e-2,
+            "{algorithm:?}: {:?}",
+            best.u
+        );
+    }
+}
+
+#[test]
+fn nsga2_converges_to_the_zdt1_front() {
+    // ZDT1 (d = 8): Pareto front f2 = 1 − √f1 for f1 in [0, 1], reached with u_1.. = 0.
+    let zdt1 = |u: &[f64]| {
+        let g = 1.0 + 9.0 * u[1..].iter().sum::<f64>() / (u.len() - 1) as f64;
+        Fitness {
+            cv: 0.0,
+            f: vec![u[0], g * (1.0 - (u[0] / g).sqrt())],
+        }
+    };
+    let mut eval = Closure {
+        dim: 8,
+        goals: 2,
+        f: zdt1,
+    };
+    let mut state = SearchState::new(Algorithm::Nsga2, 8, 60, 3);
+    while state.evaluations < 24_000 {
+        state.step(&mut eval);
+    }
+    let front = state.solver.front();
+    assert!(front.len() >= 30, "front of {}", front.len());
+    let worst_gap = front
+        .iter()
+        .map(|c| c.fitness.f[1] - (1.0 - c.fitness.f[0].sqrt()))
+        .fold(0.0, f64::max);
+    assert!(worst_gap < 0.05, "distance to the true front {worst_gap}");
+    let (lo, hi) = front.iter().fold((1.0f64, 0.0f64), |(l, h), c| {
+        (l.min(c.fitness.f[0]), h.max(c.fitness.f[0]))
+    });
+    assert!(lo < 0.05 && hi > 0.9, "spread {lo}..{hi}");
+}
+
+fn options(
+    threads: usize,
+    checkpoint: Option<std::path::PathBuf>,
+    resume: Option<std::path::PathBuf>,
+    max_generations: Option<u64>,
+) -> RunOptions {
+    RunOptions {
+        algorithm: Algorithm::De,
+        budget: 2400,
+        population: 24,
+        seed: 11,
+        threads,
+        checkpoint,
+        checkpoint_every: Duration::from_secs(3600),
+        resume,
+        progress: false,
+        stop: Arc::new(AtomicBool::new(false)),
+        max_generations,
+    }
+}
+
+fn fingerprint(state: &SearchState) -> String {
+    serde_json::to_string(&(
+        &state.best,
+        &state.best_confirmed,
+        &state.history,
+        &state.evaluations,
+    ))
+    .unwrap()
+}
+
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let scene = load_scene(Some("paper-search")).unwrap();
+    for algorithm in [
+        Algorithm::De,
+        Algorithm::Cmaes,
+        Algorithm::Guided,
+        Algorithm::Nsga2,
+    ] {
+        let one = run(
+            &scene,
+            &RunOptions {
+                algorithm,
+                ..options(1, None, None, None)
+            },
+        )
+        .unwrap();
+        let two = run(
+            &scene,
+            &RunOptions {
+                algorithm,
+                ..options(2, None, None, None)
+            },
+        )
+        .unwrap();
+        assert!(
+            fingerprint(&one.state) == fingerprint(&two.state),
+            "{algorithm:?}: 1 and 2 threads differ"
+        );
+    }
+}
+
+#[test]
+fn a_killed_and_resumed_run_ends_where_an_uninterrupted_one_does() {
+    let scene = load_scene(Some("paper-search")).unwrap();
+    let dir = std::env::temp_dir().join(format!("noncirc-resume-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cp = dir.join("run.ckpt");
+    let whole = run(&scene, &options(2, None, None, None)).unwrap();
+    // Stop after 17 generations (as if killed right after a checkpoint), then resume.
+    let part = run(&scene, &options(2, Some(cp.clone()), None, Some(17))).unwrap();
+    assert!(part.stopped_early && part.state.evaluations < whole.state.evaluations);
+    let resumed = run(
+        &scene,
+        &options(1, Some(cp.clone()), Some(cp.clone()), None),
+    )
+    .unwrap();
+    assert!(
+        fingerprint(&resumed.state) == fingerprint(&whole.state),
+        "resumed run differs from the uninterrupted one"
+    );
+    // The checkpoint was replaced atomically: no temporary file is left behind.
+    assert!(!cp.with_extension("tmp").exists());
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn reported_designs_meet_the_objectives_at_the_default_resolution() {
+    let scene = load_scene(Some("paper-search")).unwrap();
+    let out = run(
+        &scene,
+        &RunOptions {
+            budget: 30_000,
+            population: 48,
+            seed: 1,
+            ..options(2, None, None, None)
+        },
+    )
+    .unwrap();
+    let summary = out.summary();
+    if out.state.best_confirmed.is_some() {
+        assert!(
+            summary.feasible,
+            "confirmed design must stay feasible: {:?}",
+            summary.violations
+        );
+        assert!(summary.violations.values().all(|&v| v == 0.0));
+        // best.toml round-trips through `evaluate`.
+        let dir = std::env::temp_dir().join(format!("noncirc-out-{}", std::process::id()));
+        out.write(&dir).unwrap();
+        let best =
+            noncirc::scene_file::load_scene(Some(dir.join("best.toml").to_str().unwrap())).unwrap();
+        let eval = noncirc::core::Evaluator::new().evaluate(&best).unwrap();
+        assert_eq!(eval.total_violation(), 0.0);
+        for file in ["pareto.csv", "pareto.json", "history.csv", "summary.json"] {
+            assert!(dir.join(file).exists(), "{file}");
+        }
+        std::fs::remove_dir_all(dir).ok();
+    } else {
+        assert!(!summary.feasible);
+    }
+}
