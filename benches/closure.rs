@@ -9,7 +9,10 @@ fn closure(c: &mut Criterion) {
     let curve = CurveSpec::paper().build().unwrap();
     let mut group = c.benchmark_group("closure_from_samples");
     for n in [60usize, 120, 360, 1440] {
-        let res = Resolution::DEFAULT.with_samples(n);
+        let res = Resolution {
+            closure_rel_tol: 1e-3,
+            ..Resolution::DEFAULT.with_samples(n)
+        };
         let rho: Vec<f64> = (0..n)
             .map(|j| curve.eval(std::f64::consts::TAU * j as f64 / n as f64).rho)
             .collect();
@@ -21,7 +24,10 @@ fn closure(c: &mut Criterion) {
     group.finish();
     let mut group = c.benchmark_group("gear_pair_solve");
     for n in [120usize, 360, 1440] {
-        let res = Resolution::DEFAULT.with_samples(n);
+        let res = Resolution {
+            closure_rel_tol: 1e-3,
+            ..Resolution::DEFAULT.with_samples(n)
+        };
         group.throughput(Throughput::Elements(1));
         group.bench_with_input(BenchmarkId::from_parameter(n), &res, |b, res| {
             b.iter(|| GearPair::solve(black_box(curve.clone()), *res).unwrap())

@@ -3,6 +3,9 @@
 //! The core stays free of I/O and threads; files, terminals and threads live here.
 
 pub mod accuracy;
+pub mod export;
+pub mod figures;
+pub mod plots;
 pub mod report;
 pub mod scene_file;
 pub mod search;

@@ -39,6 +39,9 @@ struct SceneArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Table)]
     format: Format,
+    /// Write figures (SVG and PNG) and CSV exports into this directory.
+    #[arg(long, value_name = "DIR")]
+    plot: Option<std::path::PathBuf>,
 }
 
 #[derive(clap::Args)]
@@ -78,6 +81,27 @@ struct OptimiseArgs {
 }
 
 #[derive(clap::Args)]
+struct GearArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Export the pitch curves (CSV, SVG, DXF in mm) into this directory.
+    #[arg(long, value_name = "DIR")]
+    export: Option<std::path::PathBuf>,
+}
+
+#[derive(clap::Args)]
+struct AnimateArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// The GIF to write.
+    #[arg(long, value_name = "FILE.gif")]
+    out: std::path::PathBuf,
+    /// Frames per carrier turn.
+    #[arg(long, default_value_t = 72)]
+    frames: usize,
+}
+
+#[derive(clap::Args)]
 struct SweepArgs {
     #[command(flatten)]
     scene: SceneArgs,
@@ -95,7 +119,9 @@ struct SweepArgs {
 #[derive(Subcommand)]
 enum Command {
     /// Solve a non-circular gear pair: centre distance, perimeter, ratio, largest module.
-    Gear(SceneArgs),
+    Gear(GearArgs),
+    /// Animate the mechanism turning (GIF).
+    Animate(AnimateArgs),
     /// Evaluate a three-arm design: trajectory, events and the eight agronomic objectives.
     Evaluate(SceneArgs),
     /// The variable-speed moving box: box travel while picking, speeds, forces.
@@ -167,6 +193,11 @@ fn optimise(args: OptimiseArgs) -> Result<(), Box<dyn std::error::Error>> {
     if let Some(dir) = &args.out {
         outcome.write(dir).map_err(|e| e.to_string())?;
     }
+    if let Some(dir) = &args.scene.plot {
+        for f in noncirc::plots::search_figures(&outcome, dir).map_err(|e| e.to_string())? {
+            eprintln!("wrote {}", f.display());
+        }
+    }
     let summary = outcome.summary();
     match args.scene.format {
         Format::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
@@ -175,19 +206,49 @@ fn optimise(args: OptimiseArgs) -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
+fn plot_evaluation(
+    scene: &noncirc::core::Scene,
+    eval: &noncirc::core::Evaluation,
+    dir: &std::path::Path,
+) -> Result<(), Box<dyn std::error::Error>> {
+    for f in noncirc::plots::evaluation_outputs(scene, eval, dir).map_err(|e| e.to_string())? {
+        eprintln!("wrote {}", f.display());
+    }
+    Ok(())
+}
+
 fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
     match cli.command {
         Command::Gear(args) => {
-            let scene = apply_overrides(load_scene(args.scene.as_deref())?, &args.set)?;
-            let (report, _) = GearReport::from_scene(&scene)?;
-            match args.format {
+            let scene = apply_overrides(load_scene(args.scene.scene.as_deref())?, &args.scene.set)?;
+            let (report, pair) = GearReport::from_scene(&scene)?;
+            for dir in [&args.export, &args.scene.plot].into_iter().flatten() {
+                for f in noncirc::export::export_gears(&pair, dir).map_err(|e| e.to_string())? {
+                    eprintln!("wrote {}", f.display());
+                }
+            }
+            match args.scene.format {
                 Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
                 Format::Table => print!("{}", report.table()),
             }
         }
+        Command::Animate(args) => {
+            let scene = apply_overrides(load_scene(args.scene.scene.as_deref())?, &args.scene.set)?;
+            let kin = noncirc::core::Kinematics::solve(
+                &scene.gear.curve.build()?,
+                &scene.train,
+                &scene.resolution,
+            )?;
+            noncirc::figures::animate(&kin, &args.out, args.frames.max(2))
+                .map_err(|e| e.to_string())?;
+            eprintln!("wrote {}", args.out.display());
+        }
         Command::Evaluate(args) => {
             let scene = apply_overrides(load_scene(args.scene.as_deref())?, &args.set)?;
-            let (report, _) = EvaluationReport::from_scene(&scene)?;
+            let (report, eval) = EvaluationReport::from_scene(&scene)?;
+            if let Some(dir) = &args.plot {
+                plot_evaluation(&scene, &eval, dir)?;
+            }
             match args.format {
                 Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
                 Format::Table => print!("{}", report.table()),
@@ -202,8 +263,21 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             if box_scene.kind != SceneKind::Transplanter {
                 box_scene.kind = SceneKind::MovingBox;
             }
-            let (report, _) = EvaluationReport::from_scene(&box_scene)?;
+            let (report, eval) = EvaluationReport::from_scene(&box_scene)?;
             let b = report.moving_box.ok_or("this scene has no moving box")?;
+            if let Some(dir) = &args.plot {
+                std::fs::create_dir_all(dir)?;
+                let fig = noncirc::figures::BoxFigure {
+                    spec: &box_scene.moving_box,
+                    report: &b,
+                };
+                for f in noncirc::figures::save(&fig, &dir.join("moving_box"))
+                    .map_err(|e| e.to_string())?
+                {
+                    eprintln!("wrote {}", f.display());
+                }
+                let _ = eval;
+            }
             match args.format {
                 Format::Json => println!("{}", serde_json::to_string_pretty(&b)?),
                 Format::Table => print!("{}", noncirc::report::box_table(&b)),
@@ -222,6 +296,13 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             let scene = apply_overrides(load_scene(args.scene.scene.as_deref())?, &args.scene.set)?;
             let rows = noncirc::search::sweep(&scene, &args.param, args.from, args.to, args.steps)
                 .map_err(|e| e.to_string())?;
+            if let Some(dir) = &args.scene.plot {
+                for f in noncirc::plots::sweep_figures(&scene, &args.param, &rows, dir)
+                    .map_err(|e| e.to_string())?
+                {
+                    eprintln!("wrote {}", f.display());
+                }
+            }
             match args.scene.format {
                 Format::Json => println!("{}", serde_json::to_string_pretty(&rows)?),
                 Format::Table => print!("{}", noncirc::report::sweep_table(&args.param, &rows)),

@@ -1,0 +1,157 @@
+//! Export for CAD and multibody tools: pitch curves as CSV, SVG and DXF (mm, each gear in
+//! its own frame, centre at the origin), and the tip trajectory as CSV.
+
+use noncirc_core::{GearPair, Kinematics};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+type BoxError = Box<dyn std::error::Error + Send + Sync>;
+
+/// A named closed polyline in mm.
+pub struct Outline {
+    pub name: &'static str,
+    pub points: Vec<[f64; 2]>,
+}
+
+/// The driving gear (sun and planets) and the driven gear (intermediates), each in its own
+/// frame: driver points at `ψ`, driven points at its own angle `χ = −φ2(ψ)`, radius `a − ρ`.
+pub fn outlines(pair: &GearPair) -> Vec<Outline> {
+    let a = pair.centre_distance();
+    let driver = pair.samples().iter().enumerate().map(|(j, p)| {
+        let psi = std::f64::consts::TAU * j as f64 / pair.samples().len() as f64;
+        [p.rho * psi.cos(), p.rho * psi.sin()]
+    });
+    let driven = pair
+        .samples()
+        .iter()
+        .zip(pair.phi2_nodes())
+        .map(|(p, phi2)| [(a - p.rho) * (-phi2).cos(), (a - p.rho) * (-phi2).sin()]);
+    vec![
+        Outline {
+            name: "driver",
+            points: driver.collect(),
+        },
+        Outline {
+            name: "driven",
+            points: driven.collect(),
+        },
+    ]
+}
+
+/// DXF R12 with one closed POLYLINE per outline, on a layer of its name.
+pub fn dxf(outlines: &[Outline]) -> String {
+    let mut s = String::from("0\nSECTION\n2\nENTITIES\n");
+    for o in outlines {
+        let _ = write!(
+            s,
+            "0\nPOLYLINE\n8\n{}\n66\n1\n70\n1\n10\n0.0\n20\n0.0\n30\n0.0\n",
+            o.name
+        );
+        for [x, y] in &o.points {
+            let _ = write!(
+                s,
+                "0\nVERTEX\n8\n{}\n10\n{x:.9}\n20\n{y:.9}\n30\n0.0\n",
+                o.name
+            );
+        }
+        let _ = write!(s, "0\nSEQEND\n8\n{}\n", o.name);
+    }
+    s + "0\nENDSEC\n0\nEOF\n"
+}
+
+/// SVG in mm (1 user unit = 1 mm, y up as in the model), one closed path per outline.
+pub fn svg(outlines: &[Outline]) -> String {
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for p in outlines.iter().flat_map(|o| &o.points) {
+        x0 = x0.min(p[0]);
+        x1 = x1.max(p[0]);
+        y0 = y0.min(p[1]);
+        y1 = y1.max(p[1]);
+    }
+    let gap = 0.1 * (x1 - x0);
+    let width: f64 = outlines.len() as f64 * (x1 - x0 + gap);
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.3}mm\" height=\"{h:.3}mm\" viewBox=\"0 0 {width:.6} {h:.6}\">\n",
+        h = y1 - y0
+    );
+    for (k, o) in outlines.iter().enumerate() {
+        let dx = k as f64 * (x1 - x0 + gap) - x0;
+        let d: Vec<String> = o
+            .points
+            .iter()
+            .map(|[x, y]| format!("{:.6},{:.6}", x + dx, y1 - y))
+            .collect();
+        let _ = writeln!(
+            s,
+            "  <path id=\"{}\" d=\"M {} Z\" fill=\"none\" stroke=\"black\" stroke-width=\"0.2\"/>",
+            o.name,
+            d.join(" L ")
+        );
+    }
+    s + "</svg>\n"
+}
+
+fn csv(points: &[[f64; 2]]) -> String {
+    let mut s = String::from("x_mm,y_mm\n");
+    for [x, y] in points {
+        let _ = writeln!(s, "{x:.9},{y:.9}");
+    }
+    s
+}
+
+/// Writes `<name>.csv` per outline, `pitch_curves.svg` and `pitch_curves.dxf` into `dir`.
+pub fn export_gears(pair: &GearPair, dir: &Path) -> Result<Vec<PathBuf>, BoxError> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let outlines = outlines(pair);
+    let mut files = Vec::new();
+    for o in &outlines {
+        let path = dir.join(format!("{}.csv", o.name));
+        std::fs::write(&path, csv(&o.points))?;
+        files.push(path);
+    }
+    for (name, text) in [
+        ("pitch_curves.svg", svg(&outlines)),
+        ("pitch_curves.dxf", dxf(&outlines)),
+    ] {
+        let path = dir.join(name);
+        std::fs::write(&path, text)?;
+        files.push(path);
+    }
+    Ok(files)
+}
+
+/// Writes `trajectory.csv`: carrier angle, tip of arm I, planet centre and orientation,
+/// and the arm's attitude, at every sample (for ADAMS, MATLAB, …).
+pub fn export_trajectory(kin: &Kinematics, dir: &Path) -> Result<PathBuf, BoxError> {
+    std::fs::create_dir_all(dir)?;
+    let mut s = String::from(
+        "carrier_deg,tip_x_mm,tip_y_mm,planet_x_mm,planet_y_mm,planet_angle_deg,attitude_deg\n",
+    );
+    for j in 0..kin.len() {
+        let (t, o, th) = (
+            kin.tips()[j],
+            kin.planet_centres()[j],
+            kin.planet_angles()[j],
+        );
+        let att = noncirc_core::objectives::attitude_deg(kin.pusher_angle(th));
+        let _ = writeln!(
+            s,
+            "{:.6},{:.9},{:.9},{:.9},{:.9},{:.9},{:.9}",
+            kin.theta(j).to_degrees(),
+            t[0],
+            t[1],
+            o[0],
+            o[1],
+            th.to_degrees(),
+            att
+        );
+    }
+    let path = dir.join("trajectory.csv");
+    std::fs::write(&path, s)?;
+    Ok(path)
+}

@@ -1,0 +1,137 @@
+//! What `--plot DIR` writes for each command: figures plus the CSV/SVG/DXF exports.
+
+use crate::export::{export_gears, export_trajectory};
+use crate::figures::{evaluation_figures, save, LinesFigure};
+use crate::search::{Outcome, SweepRow};
+use noncirc_core::{Evaluation, GearPair, Param, Scene};
+use std::path::{Path, PathBuf};
+
+type BoxError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Figures of an evaluation, the trajectory CSV and the pitch-curve exports.
+pub fn evaluation_outputs(
+    scene: &Scene,
+    eval: &Evaluation,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, BoxError> {
+    let mut files = evaluation_figures(scene, eval, dir)?;
+    if let Some(kin) = &eval.kinematics {
+        files.push(export_trajectory(kin, dir)?);
+        let pair = GearPair::solve(scene.gear.curve.build()?, eval.resolution)?;
+        files.extend(export_gears(&pair, dir)?);
+    }
+    Ok(files)
+}
+
+/// Search convergence, the Pareto set (two goals or more), and the best design's figures.
+pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>, BoxError> {
+    std::fs::create_dir_all(dir)?;
+    let h = &outcome.state.history;
+    let cv: Vec<(f64, f64)> = h
+        .iter()
+        .map(|r| (r.evaluations as f64, r.best_cv.max(1e-6).log10()))
+        .collect();
+    let goal: Vec<(f64, f64)> = h
+        .iter()
+        .filter(|r| r.best_cv == 0.0)
+        .map(|r| (r.evaluations as f64, r.best_goal))
+        .collect();
+    let mut files = save(
+        &LinesFigure {
+            title: format!("Search convergence ({})", outcome.state.algorithm.name()),
+            x_desc: "evaluations".into(),
+            y_desc: "log10 best violation  /  best goal once feasible".into(),
+            series: vec![
+                ("log10(best CV)".into(), cv),
+                ("best goal (feasible)".into(), goal),
+            ],
+            points_only: false,
+        },
+        &dir.join("convergence"),
+    )?;
+    let pareto = outcome.pareto();
+    if outcome.problem.goals() >= 2 {
+        let pts: Vec<(f64, f64)> = pareto.iter().map(|(_, f)| (f.f[0], f.f[1])).collect();
+        files.extend(save(
+            &LinesFigure {
+                title: "Pareto set (confirmed at the default resolution)".into(),
+                x_desc: "goal 0 (minimised)".into(),
+                y_desc: "goal 1 (minimised)".into(),
+                series: vec![("first front".into(), pts)],
+                points_only: true,
+            },
+            &dir.join("pareto"),
+        )?);
+    }
+    if let Some(best) = outcome.reported() {
+        let scene = outcome.problem.scene_at(&best.u);
+        if let Ok(eval) = noncirc_core::Evaluator::new().evaluate(&scene) {
+            files.extend(evaluation_outputs(&scene, &eval, &dir.join("best"))?);
+        }
+    }
+    Ok(files)
+}
+
+/// The paper's Figure 5: trajectories for each swept value, and every objective's response.
+pub fn sweep_figures(
+    scene: &Scene,
+    param: &str,
+    rows: &[SweepRow],
+    dir: &Path,
+) -> Result<Vec<PathBuf>, BoxError> {
+    std::fs::create_dir_all(dir)?;
+    let names: Vec<String> = rows
+        .iter()
+        .find(|r| !r.objectives.is_empty())
+        .map(|r| r.objectives.keys().cloned().collect())
+        .unwrap_or_default();
+    let mut files = Vec::new();
+    for name in &names {
+        let series = vec![(
+            name.clone(),
+            rows.iter()
+                .filter_map(|r| r.objectives.get(name).map(|v| (r.value, *v)))
+                .collect(),
+        )];
+        files.extend(save(
+            &LinesFigure {
+                title: format!("{name} against {param}"),
+                x_desc: param.into(),
+                y_desc: name.clone(),
+                series,
+                points_only: false,
+            },
+            &dir.join(format!("response_{name}")),
+        )?);
+    }
+    let p = Param::parse(param, scene)?;
+    let mut series = Vec::new();
+    for r in rows.iter().filter(|r| r.error.is_none()) {
+        let mut s = scene.clone();
+        p.set(&mut s, r.value);
+        if let Ok(kin) =
+            noncirc_core::Kinematics::solve(&s.gear.curve.build()?, &s.train, &s.resolution)
+        {
+            let pts = kin
+                .tips()
+                .iter()
+                .chain(kin.tips().first())
+                .map(|t| (t[0], t[1]))
+                .collect();
+            series.push((format!("{param} = {:.3}", r.value), pts));
+        }
+    }
+    if !series.is_empty() {
+        files.extend(save(
+            &LinesFigure {
+                title: format!("Tip trajectory as {param} varies"),
+                x_desc: "x (mm)".into(),
+                y_desc: "y (mm)".into(),
+                series,
+                points_only: false,
+            },
+            &dir.join("response_trajectories"),
+        )?);
+    }
+    Ok(files)
+}
