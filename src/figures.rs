@@ -772,7 +772,10 @@ impl Figure for LinesFigure {
         if !x0.is_finite() {
             (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
         }
-        let (dx, dy) = (((x1 - x0) * 0.05).max(1e-9), ((y1 - y0) * 0.08).max(1e-9));
+        // Pad the ranges; a degenerate range (one point) gets ±1 % of its value.
+        let pad =
+            |lo: f64, hi: f64, f: f64| ((hi - lo) * f).max(0.01 * lo.abs().max(hi.abs())).max(1e-9);
+        let (dx, dy) = (pad(x0, x1, 0.05), pad(y0, y1, 0.08));
         let mut chart = ChartBuilder::on(root)
             .caption(&self.title, (FONT, 20))
             .margin(12)

@@ -55,8 +55,8 @@ pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>, Box
         files.extend(save(
             &LinesFigure {
                 title: "Pareto set (confirmed at the default resolution)".into(),
-                x_desc: "goal 0 (minimised)".into(),
-                y_desc: "goal 1 (minimised)".into(),
+                x_desc: outcome.problem.goal_names()[0].clone(),
+                y_desc: outcome.problem.goal_names()[1].clone(),
                 series: vec![("first front".into(), pts)],
                 points_only: true,
             },

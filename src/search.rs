@@ -1,7 +1,9 @@
 //! Running searches: parallel batch evaluation, progress, checkpoints, Ctrl-C, outputs.
 
 use noncirc_core::search::problem::SceneProblem;
-use noncirc_core::search::{Algorithm, BatchEvaluator, Candidate, Fitness, SearchState};
+use noncirc_core::search::{
+    non_dominated_fronts, Algorithm, BatchEvaluator, Candidate, Fitness, SearchState,
+};
 use noncirc_core::{Evaluator, Resolution, Scene};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -304,16 +306,26 @@ impl Outcome {
                 )
             })
             .collect();
-        let feasible: Vec<_> = confirmed
+        let feasible: Vec<Candidate> = confirmed
             .iter()
             .filter(|(_, f)| f.feasible())
-            .cloned()
+            .map(|(x, f)| Candidate {
+                u: x.clone(),
+                fitness: f.clone(),
+            })
             .collect();
         if feasible.is_empty() {
-            confirmed.into_iter().take(1).collect()
-        } else {
-            feasible
+            return confirmed.into_iter().take(1).collect();
         }
+        // Confirmation moves the goals slightly: keep the non-dominated confirmed designs.
+        let front = non_dominated_fronts(&feasible)
+            .into_iter()
+            .next()
+            .unwrap_or_default();
+        front
+            .into_iter()
+            .map(|i| (feasible[i].u.clone(), feasible[i].fitness.clone()))
+            .collect()
     }
 
     /// Writes best.toml, pareto.csv/json, history.csv and summary.json into `dir`.

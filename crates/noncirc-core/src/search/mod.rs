@@ -14,7 +14,7 @@ mod rng;
 pub use cmaes::Cmaes;
 pub use de::DifferentialEvolution;
 pub use guided::ParameterGuided;
-pub use nsga2::Nsga2;
+pub use nsga2::{non_dominated_fronts, Nsga2};
 pub use rng::Rng;
 
 use serde::{Deserialize, Serialize};

@@ -194,6 +194,19 @@ impl SceneProblem {
         self.goals.len()
     }
 
+    /// The goals' names, as a person reads them (all minimised).
+    pub fn goal_names(&self) -> Vec<String> {
+        self.goals
+            .iter()
+            .map(|g| match g {
+                Goal::LeastMargin => "−(least normalised margin)".to_string(),
+                Goal::Margin(k) => format!("−({} normalised margin)", k.name()),
+                Goal::PickingTipSpeed => "picking tip speed (m/s)".to_string(),
+                Goal::BoxTravel => "box travel while picking (mm)".to_string(),
+            })
+            .collect()
+    }
+
     /// The free parameters' names.
     pub fn names(&self) -> Vec<&str> {
         self.params.iter().map(|p| p.name()).collect()
