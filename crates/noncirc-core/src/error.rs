@@ -4,10 +4,10 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {
     /// A number that must be finite is NaN or infinite.
-    #[error("{name} must be a finite number, got {value}")]
+    #[error("{name} must be a finite number, got {}", Num(*value))]
     NonFinite { name: String, value: f64 },
     /// A scalar parameter is outside its admissible range.
-    #[error("{name} = {value} is out of range: expected {expected}")]
+    #[error("{name} = {} is out of range: expected {expected}", Num(*value))]
     OutOfRange {
         name: String,
         value: f64,
@@ -57,6 +57,20 @@ pub enum Error {
     Infeasible(String),
 }
 
+/// Displays a number readably: scientific notation when very large or very small.
+struct Num(f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.0;
+        if v.is_finite() && v != 0.0 && !(1e-4..1e9).contains(&v.abs()) {
+            write!(f, "{v:e}")
+        } else {
+            write!(f, "{v}")
+        }
+    }
+}
+
 /// Shorthand for core results.
 pub type Result<T> = std::result::Result<T, Error>;
 
@@ -68,6 +82,44 @@ pub fn finite(name: &str, value: f64) -> Result<f64> {
         Err(Error::NonFinite {
             name: name.to_string(),
             value,
+        })
+    }
+}
+
+/// Like [`finite`], naming the value only when it is bad (no formatting on the hot path).
+pub fn finite_with(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        finite(&name(), value)
+    }
+}
+
+/// A positive length (mm) up to [`MAX_LENGTH_MM`], naming the value only when it is bad.
+pub fn positive_with(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 && value <= MAX_LENGTH_MM {
+        Ok(value)
+    } else {
+        let name = name();
+        positive(&name, value)?;
+        length(&name, value)
+    }
+}
+
+/// Largest accepted length (mm): a thousand kilometres. Larger inputs overflow the
+/// geometry (squares of lengths) and are refused by name instead.
+pub const MAX_LENGTH_MM: f64 = 1e9;
+
+/// Checks that a length (mm) is finite, non-negative and at most [`MAX_LENGTH_MM`].
+pub fn length(name: &str, value: f64) -> Result<f64> {
+    finite(name, value)?;
+    if (0.0..=MAX_LENGTH_MM).contains(&value) {
+        Ok(value)
+    } else {
+        Err(Error::OutOfRange {
+            name: name.to_string(),
+            value,
+            expected: format!("0 to {MAX_LENGTH_MM:e} mm"),
         })
     }
 }

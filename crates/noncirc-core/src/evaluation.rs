@@ -1,7 +1,7 @@
 //! Staged evaluation: pitch curve → closure → kinematics → each objective (and the moving
 //! box apart). A scene runs only the stages its outputs need; counters prove it.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::gear::{perimeter, GearPair, ModuleReport};
 use crate::moving_box::{evaluate_box, BoxReport};
 use crate::objectives::{events, module, objective_value, Events, ObjectiveKind, ObjectiveValue};
@@ -166,6 +166,16 @@ impl Evaluator {
                 }
                 out.events = ev;
                 out.kinematics = Some(kin);
+                // Safety net: a value that broke down numerically is an error, never a NaN.
+                if let Some(o) = out.objectives.iter().find(|o| o.value.is_nan()) {
+                    return Err(Error::NonFinite {
+                        name: format!(
+                            "objective '{}' (numerical breakdown for this design)",
+                            o.kind.name()
+                        ),
+                        value: o.value,
+                    });
+                }
             }
             SceneKind::MovingBox => {
                 self.counts.moving_box += 1;

@@ -1,6 +1,6 @@
 //! Non-circular gear pairs of average ratio 1: closure, conjugate curve, ratio, module.
 
-use crate::curve::{refined_sample_min, PitchCurve, Polar, TAU};
+use crate::curve::{parabola_vertex, PitchCurve, Polar, TAU};
 use crate::error::{Error, Result};
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
@@ -108,8 +108,7 @@ fn mean_ratio(rho: &[f64], a: f64) -> (f64, f64) {
 /// Radius of curvature `R_c = (ρ² + ρ'²)^{3/2} / (ρ² + 2ρ'² - ρρ'')` (mm): positive on convex arcs.
 #[inline]
 pub fn curvature_radius(p: Polar) -> f64 {
-    let s = p.rho * p.rho + p.d1 * p.d1;
-    s * s.sqrt() / (p.rho * p.rho + 2.0 * p.d1 * p.d1 - p.rho * p.d2)
+    1.0 / curvature(p)
 }
 
 /// The driven curve's `(ρ2, dρ2/dφ2, d²ρ2/dφ2²)` at the contact where the driver shows `p`.
@@ -194,26 +193,56 @@ pub fn module_max(
 
 /// Pitch perimeter from uniform samples over one turn: trapezoid rule of `√(ρ² + ρ'²)` (mm).
 pub fn perimeter(samples: &[Polar]) -> f64 {
-    samples.iter().map(|p| p.rho.hypot(p.d1)).sum::<f64>() * TAU / samples.len() as f64
+    samples
+        .iter()
+        .map(|p| (p.rho * p.rho + p.d1 * p.d1).sqrt())
+        .sum::<f64>()
+        * TAU
+        / samples.len() as f64
 }
 
-/// Least convex and least concave |R_c| of the driver and its conjugate at the given samples,
-/// each refined by the parabola through the least sample and its neighbours.
+/// Signed curvature `κ = 1/R_c` (1/mm): positive on convex arcs, smooth through inflections.
+#[inline]
+pub fn curvature(p: Polar) -> f64 {
+    let s = p.rho * p.rho + p.d1 * p.d1;
+    (p.rho * p.rho + 2.0 * p.d1 * p.d1 - p.rho * p.d2) / (s * s.sqrt())
+}
+
+/// Least convex and least concave |R_c| of the driver and its conjugate at the given
+/// uniform samples, each refined by the parabola through the extreme sample of the
+/// curvature and its neighbours. One pass, no allocation.
 pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
+    let n = samples.len();
+    let kappa = |driven: bool, j: usize| {
+        let p = samples[j % n];
+        curvature(if driven { conjugate_polar(p, a) } else { p })
+    };
     let mut convex = f64::INFINITY;
     let mut concave = f64::INFINITY;
     for driven in [false, true] {
-        let rc: Vec<f64> = samples
-            .iter()
-            .map(|&p| curvature_radius(if driven { conjugate_polar(p, a) } else { p }))
-            .collect();
-        // Curvature κ = 1/R_c is smooth through inflections: refine its extremes.
-        let kappa: Vec<f64> = rc.iter().map(|r| 1.0 / r).collect();
-        if kappa.iter().any(|&k| k > 0.0) {
-            convex = convex.min(1.0 / -refined_sample_min(&kappa, |k| -k));
+        let (mut jmax, mut kmax, mut jmin, mut kmin) = (0, f64::NEG_INFINITY, 0, f64::INFINITY);
+        for j in 0..n {
+            let k = kappa(driven, j);
+            if k > kmax {
+                (jmax, kmax) = (j, k);
+            }
+            if k < kmin {
+                (jmin, kmin) = (j, k);
+            }
         }
-        if kappa.iter().any(|&k| k < 0.0) {
-            concave = concave.min(-1.0 / refined_sample_min(&kappa, |k| k));
+        let refine = |j: usize, sign: f64| {
+            let (ym, y0, yp) = (
+                sign * kappa(driven, j + n - 1),
+                sign * kappa(driven, j),
+                sign * kappa(driven, j + 1),
+            );
+            sign * parabola_vertex(ym, y0, yp)
+        };
+        if kmax > 0.0 {
+            convex = convex.min(1.0 / refine(jmax, -1.0));
+        }
+        if kmin < 0.0 {
+            concave = concave.min(-1.0 / refine(jmin, 1.0));
         }
     }
     (convex, concave)

@@ -1,8 +1,8 @@
 //! The eight agronomic objectives of the three-arm paper (spec §3), with value, bounds,
 //! unit and violation, plus the events (picking, planting) they are measured at.
 
-use crate::curve::TAU;
-use crate::error::{finite, Error, Result};
+use crate::curve::{parabola_vertex, TAU};
+use crate::error::{finite, length, Result};
 use crate::gear::{curvature_extremes, module_max, perimeter, ModuleReport, ModuleRule};
 use crate::planetary::{unit, Kinematics};
 use serde::{Deserialize, Serialize};
@@ -69,14 +69,7 @@ impl Agronomy {
             ("agronomy.arm_half_width_mm", self.arm_half_width_mm),
             ("agronomy.housing_margin_mm", self.housing_margin_mm),
         ] {
-            finite(name, v)?;
-            if v < 0.0 {
-                return Err(Error::OutOfRange {
-                    name: name.into(),
-                    value: v,
-                    expected: ">= 0".into(),
-                });
-            }
+            length(name, v)?;
         }
         Ok(())
     }
@@ -318,16 +311,6 @@ fn extreme_node(tips: &[[f64; 2]], dir: [f64; 2], max: bool) -> usize {
     best
 }
 
-/// Vertex of the parabola through three equally spaced samples, as (offset in steps, value).
-fn parabola_min(ym: f64, y0: f64, yp: f64) -> (f64, f64) {
-    let curvature = ym - 2.0 * y0 + yp;
-    if curvature <= 0.0 {
-        return (0.0, y0);
-    }
-    let offset = (0.5 * (ym - yp) / curvature).clamp(-1.0, 1.0);
-    (offset, y0 - 0.25 * (ym - yp) * offset)
-}
-
 /// Locates picking, planting, the window and the extremes of height.
 pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
     let tips = kin.tips();
@@ -414,7 +397,8 @@ pub fn point_segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     } else {
         0.0
     };
-    (ap[0] - t * ab[0]).hypot(ap[1] - t * ab[1])
+    let (dx, dy) = (ap[0] - t * ab[0], ap[1] - t * ab[1]);
+    (dx * dx + dy * dy).sqrt()
 }
 
 /// Objective 1: least clearance between arm capsules and against the other planets' gear
@@ -438,7 +422,7 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     let j = (0..n)
         .min_by(|&a, &b| values[a].total_cmp(&values[b]))
         .unwrap_or(0);
-    parabola_min(values[(j + n - 1) % n], values[j], values[(j + 1) % n]).1
+    parabola_vertex(values[(j + n - 1) % n], values[j], values[(j + 1) % n])
 }
 
 /// Objective 5: worst forward excursion of the tip past the planted seedling in the ground
@@ -478,7 +462,7 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
         );
     if worst > 0.0 && j > 0 && j + 1 < excursion.len() {
         let (ym, y0, yp) = (-excursion[j - 1], -worst, -excursion[j + 1]);
-        -parabola_min(ym, y0, yp).1
+        -parabola_vertex(ym, y0, yp)
     } else {
         worst
     }

@@ -2,7 +2,7 @@
 //! and planet (congruent to the sun) gears on a carrier, an arm on each planet (spec §2).
 
 use crate::curve::{PitchCurve, Polar, TAU};
-use crate::error::{finite, positive, Error, Result};
+use crate::error::{finite, length, positive, Error, Result};
 use crate::gear::solve_closure;
 use crate::quadrature::{MonotoneDrift, SpectralIntegrator};
 use crate::resolution::Resolution;
@@ -115,6 +115,7 @@ impl TrainSpec {
         finite("train.beta0_deg", self.beta0_deg)?;
         finite("train.gamma0_deg", self.gamma0_deg)?;
         positive("train.arm_length_mm", self.arm_length_mm)?;
+        length("train.arm_length_mm", self.arm_length_mm)?;
         positive("train.carrier_speed_rpm", self.carrier_speed_rpm)?;
         finite("train.pusher_offset_mm", self.pusher_offset_mm)?;
         if !(self.pusher_offset_mm >= 0.0 && self.pusher_offset_mm < self.arm_length_mm) {
@@ -250,12 +251,23 @@ impl Kinematics {
             tip: vec![[0.0; 2]; n],
         };
         let mut hint = 0;
+        // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
+        let step = unit(sigma * h);
+        let phi_h0 = spec.phi0_deg.to_radians();
+        let (mut e1, mut e2) = (unit(phi_h0), unit(phi_h0 + spec.gamma0_deg.to_radians()));
+        let rotate = |e: [f64; 2]| {
+            [
+                e[0] * step[0] - e[1] * step[1],
+                e[0] * step[1] + e[1] * step[0],
+            ]
+        };
         for j in 0..n {
             let theta = h * j as f64;
             let (ts, cell) = kin.phi_fn().invert(kin.big_phi[j] - delay, hint);
             hint = cell;
             kin.theta_s[j] = ts;
-            let (_, o3) = kin.centres(theta);
+            let o3 = [a * (e1[0] + e2[0]), a * (e1[1] + e2[1])];
+            (e1, e2) = (rotate(e1), rotate(e2));
             let theta3 = spec.sun_angle() + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
             kin.theta3[j] = theta3;
             kin.o3[j] = o3;
@@ -377,7 +389,12 @@ impl Kinematics {
         let sigma = self.sigma;
         let phi = self.phi_fn();
         let (big_phi, _) = phi.eval(theta);
-        let (ts, _) = phi.invert(big_phi - self.delay, 0);
+        // Start the cell search where node ⌊θ/h⌋'s own θ_s lies: O(1) instead of O(N).
+        let n = self.len();
+        let h = TAU / n as f64;
+        let node = (theta.rem_euclid(TAU) / h) as usize % n;
+        let hint = (self.theta_s[node].rem_euclid(TAU) / h) as usize % n;
+        let (ts, _) = phi.invert(big_phi - self.delay, hint);
         let gamma0 = spec.gamma0_deg.to_radians();
         let beta0 = spec.beta0_deg.to_radians();
         let s = spec.arm_length_mm;

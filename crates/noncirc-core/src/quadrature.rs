@@ -212,19 +212,25 @@ impl MonotoneDrift<'_> {
             steps += 1;
         }
         let (y, d1, d2) = self.cell(j);
-        // Safeguarded Newton in s ∈ [0, 1].
+        // Safeguarded Newton in s ∈ [0, 1]; stop on the residual first, so that rounding
+        // at convergence cannot bounce the iterate between Newton and bisection. The
+        // residual tolerance (1e-13 rad) is far below the interpolation's own error.
         let (mut lo, mut hi) = (0.0, 1.0);
         let mut s = ((rest - y[0]) / (y[1] - y[0])).clamp(0.0, 1.0);
-        for _ in 0..50 {
+        let tolerance = 1e-13 * (rest.abs() + 1.0);
+        for _ in 0..60 {
             let (v, slope) = quintic_hermite(y, d1, d2, h, s);
             let f = v - rest;
+            if f.abs() <= tolerance {
+                break;
+            }
             if f > 0.0 {
                 hi = s;
             } else {
                 lo = s;
             }
             let mut next = s - f / (slope * h);
-            if !(next >= lo && next <= hi && next.is_finite()) {
+            if !(next > lo && next < hi && next.is_finite()) {
                 next = 0.5 * (lo + hi);
             }
             let done = (next - s).abs() < 1e-15;

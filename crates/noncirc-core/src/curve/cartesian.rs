@@ -200,6 +200,9 @@ impl CartesianCurve {
                 psi_t_val -= TAU;
             }
             let f = psi_t_val - target;
+            if f.abs() <= 1e-15 * (target.abs() + 1.0) {
+                break;
+            }
             if f > 0.0 {
                 hi = t;
             } else {

@@ -6,7 +6,7 @@ mod spline;
 pub use cartesian::{CartesianCurve, CartesianKind};
 pub use spline::PeriodicSpline;
 
-use crate::error::{finite, positive, Error, Result};
+use crate::error::{finite, finite_with, positive_with, Error, Result};
 use serde::{Deserialize, Serialize};
 
 pub(crate) const TAU: f64 = std::f64::consts::TAU;
@@ -121,8 +121,8 @@ impl CurveSpec {
                 same_length(name, radii_mm, angles_deg)?;
                 let mut points = Vec::with_capacity(radii_mm.len());
                 for (i, (&r, &a)) in radii_mm.iter().zip(angles_deg).enumerate() {
-                    positive(&format!("{name} radius {i} (mm)"), r)?;
-                    finite(&format!("{name} angle {i} (deg)"), a)?;
+                    positive_with(|| format!("{name} radius {i} (mm)"), r)?;
+                    finite_with(|| format!("{name} angle {i} (deg)"), a)?;
                     let t = a.to_radians();
                     points.push([r * t.cos(), r * t.sin()]);
                 }
@@ -202,11 +202,16 @@ pub fn refined_sample_min(values: &[f64], f: impl Fn(f64) -> f64) -> f64 {
     let j = (0..n)
         .min_by(|&a, &b| f(values[a]).total_cmp(&f(values[b])))
         .unwrap_or(0);
-    let (ym, y0, yp) = (
+    parabola_vertex(
         f(values[(j + n - 1) % n]),
         f(values[j]),
         f(values[(j + 1) % n]),
-    );
+    )
+}
+
+/// Least value of the parabola through three equally spaced samples whose middle one is
+/// the least (the middle sample if they are not convex).
+pub fn parabola_vertex(ym: f64, y0: f64, yp: f64) -> f64 {
     let curvature = ym - 2.0 * y0 + yp;
     if curvature <= 0.0 {
         return y0;
@@ -226,12 +231,12 @@ pub struct Fourier {
 impl Fourier {
     /// Validates finiteness and positivity (`rho > 0` everywhere).
     pub fn new(c0: f64, cos: &[f64], sin: &[f64]) -> Result<Self> {
-        finite("fourier c0_mm", c0)?;
+        positive_with(|| "fourier c0_mm".into(), c0)?;
         for (i, v) in cos.iter().enumerate() {
-            finite(&format!("fourier cos_mm[{i}]"), *v)?;
+            finite_with(|| format!("fourier cos_mm[{i}]"), *v)?;
         }
         for (i, v) in sin.iter().enumerate() {
-            finite(&format!("fourier sin_mm[{i}]"), *v)?;
+            finite_with(|| format!("fourier sin_mm[{i}]"), *v)?;
         }
         let k = cos.len().max(sin.len());
         let pad = |v: &[f64]| {
@@ -315,7 +320,7 @@ pub struct Ellipse {
 
 impl Ellipse {
     pub fn new(semi_major: f64, k: f64) -> Result<Self> {
-        positive("ellipse semi_major_mm", semi_major)?;
+        positive_with(|| "ellipse semi_major_mm".into(), semi_major)?;
         finite("ellipse eccentricity", k)?;
         if !(0.0..1.0).contains(&k) {
             return Err(Error::OutOfRange {

@@ -1,7 +1,7 @@
 //! Periodic cubic interpolating spline of `rho` in `psi` (period 2π).
 
 use crate::curve::{Polar, TAU};
-use crate::error::{finite, Error, Result};
+use crate::error::{finite_with, positive_with, Error, Result};
 
 /// A C² periodic cubic spline through `(psi_i, rho_i)`, period 2π.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,8 +24,12 @@ impl PeriodicSpline {
             });
         }
         for (i, (&p, &r)) in psi.iter().zip(rho).enumerate() {
-            finite(&format!("{kind} angle {i} (rad)"), p)?;
-            finite(&format!("{kind} radius {i} (mm)"), r)?;
+            finite_with(|| format!("{kind} angle {i} (rad)"), p)?;
+            if r > 0.0 {
+                positive_with(|| format!("{kind} radius {i} (mm)"), r)?;
+            } else {
+                finite_with(|| format!("{kind} radius {i} (mm)"), r)?;
+            }
             if r <= 0.0 {
                 return Err(Error::NonPositiveRadius {
                     psi_deg: p.to_degrees(),
