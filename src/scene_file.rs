@@ -106,23 +106,31 @@ pub fn apply_overrides(scene: Scene, assignments: &[String]) -> Result<Scene, Sc
                 .map_err(|e| err(e.to_string()))?,
             Err(_) => serde_json::Value::String(raw.to_string()),
         };
+        // Walk `a.b.c` and `a.b[i]` segments down to the slot, then replace it.
         let mut node = &mut tree;
-        let parts: Vec<&str> = key.trim().split('.').collect();
-        for (i, part) in parts.iter().enumerate() {
-            let obj = node
-                .as_object_mut()
-                .ok_or_else(|| err(format!("'{}' is not a table", parts[..i].join("."))))?;
-            if i + 1 == parts.len() {
-                if !obj.contains_key(*part) {
-                    return Err(err(format!("unknown key '{key}'")));
+        for part in key.trim().split('.') {
+            let (name, index) = match part.split_once('[') {
+                Some((name, rest)) => {
+                    let i = rest.strip_suffix(']').and_then(|i| i.parse::<usize>().ok());
+                    (
+                        name,
+                        Some(i.ok_or_else(|| err(format!("bad index in '{part}'")))?),
+                    )
                 }
-                obj.insert(part.to_string(), value.clone());
-                break;
+                None => (part, None),
+            };
+            node = node
+                .as_object_mut()
+                .and_then(|obj| obj.get_mut(name))
+                .ok_or_else(|| err(format!("unknown key '{key}'")))?;
+            if let Some(i) = index {
+                node = node
+                    .as_array_mut()
+                    .and_then(|a| a.get_mut(i))
+                    .ok_or_else(|| err(format!("'{key}': no element {i} in '{name}'")))?;
             }
-            node = obj
-                .get_mut(*part)
-                .ok_or_else(|| err(format!("unknown key '{}'", parts[..=i].join("."))))?;
         }
+        *node = value;
     }
     serde_path_to_error::deserialize(tree).map_err(|e| SceneError::Override {
         assignment: assignments.join(" "),
@@ -171,6 +179,16 @@ mod tests {
             apply_overrides(scene.clone(), &["resolution.samples_per_turn=720".into()]).unwrap();
         assert_eq!(s.resolution.samples_per_turn, 720);
         assert!(apply_overrides(scene.clone(), &["resolution.nope=1".into()]).is_err());
-        assert!(apply_overrides(scene, &["resolution.samples_per_turn=abc".into()]).is_err());
+        assert!(
+            apply_overrides(scene.clone(), &["resolution.samples_per_turn=abc".into()]).is_err()
+        );
+        let s = apply_overrides(scene.clone(), &["gear.curve.radii_mm[3]=33.5".into()]).unwrap();
+        assert_eq!(
+            noncirc_core::Param::parse("gear.curve.radii_mm[3]", &s)
+                .unwrap()
+                .get(&s),
+            33.5
+        );
+        assert!(apply_overrides(scene, &["gear.curve.radii_mm[12]=1".into()]).is_err());
     }
 }

@@ -8,7 +8,7 @@ cargo fmt --all -- --check
 echo "== cargo clippy --all-targets -- -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
 echo "== cargo test"
-cargo test --workspace --release
+cargo test --release          # default members: the core and the CLI (maturin builds the extension)
 # Benches compile and run once as tests (no timing).
 cargo test --release --benches
 

@@ -6,6 +6,7 @@ use crate::gear::{perimeter, GearPair, ModuleReport};
 use crate::moving_box::{evaluate_box, BoxReport};
 use crate::objectives::{events, module, objective_value, Events, ObjectiveKind, ObjectiveValue};
 use crate::planetary::Kinematics;
+use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use crate::scene::{Scene, SceneKind};
 use serde::Serialize;
@@ -56,10 +57,12 @@ impl Evaluation {
     }
 }
 
-/// Runs scenes through the stages they need, counting each stage.
+/// Runs scenes through the stages they need, counting each stage. Keep one per thread:
+/// it holds the planned FFTs that repeated evaluations reuse.
 #[derive(Debug, Clone, Default)]
 pub struct Evaluator {
     counts: StageCounts,
+    integrator: Option<SpectralIntegrator>,
 }
 
 impl Evaluator {
@@ -120,7 +123,11 @@ impl Evaluator {
                 let curve = scene.gear.curve.build()?;
                 self.counts.closure += 1;
                 self.counts.kinematics += 1;
-                let kin = Kinematics::solve(&curve, &scene.train, resolution)?;
+                let n = resolution.samples_per_turn;
+                let integrator = self
+                    .integrator
+                    .get_or_insert_with(|| SpectralIntegrator::new(n));
+                let kin = Kinematics::solve_with(&curve, &scene.train, resolution, integrator)?;
                 out.centre_distance_mm = Some(kin.centre_distance());
                 let coupled = scene.kind == SceneKind::Transplanter;
                 let ev = if coupled || scene.objectives.iter().any(|o| o.needs_events()) {

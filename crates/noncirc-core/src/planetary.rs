@@ -203,6 +203,21 @@ pub struct Kinematics {
 impl Kinematics {
     /// Samples the sun on the carrier grid, closes the pair and moves arm I through one turn.
     pub fn solve(curve: &PitchCurve, spec: &TrainSpec, resolution: &Resolution) -> Result<Self> {
+        Self::solve_with(
+            curve,
+            spec,
+            resolution,
+            &mut SpectralIntegrator::new(resolution.samples_per_turn),
+        )
+    }
+
+    /// As [`Kinematics::solve`], reusing a planned integrator of `samples_per_turn` points.
+    pub fn solve_with(
+        curve: &PitchCurve,
+        spec: &TrainSpec,
+        resolution: &Resolution,
+        integrator: &mut SpectralIntegrator,
+    ) -> Result<Self> {
         resolution.validate()?;
         spec.validate()?;
         let n = resolution.samples_per_turn;
@@ -228,7 +243,10 @@ impl Kinematics {
             .map(|p| sigma * a * p.d1 / ((a - p.rho) * (a - p.rho)))
             .collect();
         let mut big_phi = vec![0.0; n];
-        let phi_period = SpectralIntegrator::new(n).cumulative(&g, &mut big_phi) * TAU;
+        if integrator.len() != n {
+            *integrator = SpectralIntegrator::new(n);
+        }
+        let phi_period = integrator.cumulative(&g, &mut big_phi) * TAU;
         let gamma0 = spec.gamma0_deg.to_radians();
         let delay = (sigma * (gamma0 - std::f64::consts::PI)).rem_euclid(TAU);
         let mut kin = Self {

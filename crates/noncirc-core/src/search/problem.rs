@@ -261,6 +261,31 @@ impl SceneProblem {
         resolution: &Resolution,
     ) -> (Fitness, Option<Evaluation>) {
         self.apply(u, scratch);
+        let (fitness, outcome) = self.score(evaluator, scratch, resolution);
+        (fitness, outcome.ok())
+    }
+
+    /// Evaluates the design with parameter values `x` (not clamped to the bounds): the
+    /// fitness, and the evaluation or the error that refused it.
+    pub fn fitness_at_values(
+        &self,
+        x: &[f64],
+        evaluator: &mut Evaluator,
+        scratch: &mut Scene,
+        resolution: &Resolution,
+    ) -> (Fitness, Result<Evaluation>) {
+        for (p, v) in self.params.iter().zip(x) {
+            p.set(scratch, *v);
+        }
+        self.score(evaluator, scratch, resolution)
+    }
+
+    fn score(
+        &self,
+        evaluator: &mut Evaluator,
+        scratch: &Scene,
+        resolution: &Resolution,
+    ) -> (Fitness, Result<Evaluation>) {
         match evaluator.evaluate_at(scratch, resolution) {
             Ok(eval) => {
                 let bounds = &scratch.bounds;
@@ -275,14 +300,14 @@ impl SceneProblem {
                     INVALID_CV
                 };
                 let f = self.goals.iter().map(|g| g.value(&eval, bounds)).collect();
-                (Fitness { cv, f }, Some(eval))
+                (Fitness { cv, f }, Ok(eval))
             }
-            Err(_) => (
+            Err(e) => (
                 Fitness {
                     cv: INVALID_CV,
                     f: vec![INVALID_CV; self.goals.len()],
                 },
-                None,
+                Err(e),
             ),
         }
     }

@@ -1,0 +1,463 @@
+//! The `noncirc._noncirc` extension: a thin layer over the `noncirc` facade. Every error
+//! becomes `noncirc.NoncircError` (a `ValueError`), and heavy work runs with the GIL released.
+
+use noncirc::core::search::problem::SceneProblem;
+use noncirc::core::search::Algorithm;
+use noncirc::core::{Evaluator, GearPair, Resolution};
+use noncirc::scene_file::{apply_overrides, load_scene, parse_scene, BUILTIN};
+use numpy::ndarray::{Array1, Array2};
+use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use rayon::prelude::*;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
+
+create_exception!(
+    _noncirc,
+    NoncircError,
+    PyValueError,
+    "A noncirc input or model error (a ValueError)."
+);
+
+fn err(e: impl std::fmt::Display) -> PyErr {
+    NoncircError::new_err(e.to_string())
+}
+
+/// A scene: what is designed and asked. Immutable: `with_set` returns a new scene.
+#[pyclass(module = "noncirc._noncirc", frozen)]
+#[derive(Clone)]
+struct Scene {
+    inner: noncirc::core::Scene,
+}
+
+#[pymethods]
+impl Scene {
+    /// Loads a scene file (TOML or JSON).
+    #[staticmethod]
+    fn from_file(path: &str) -> PyResult<Self> {
+        if !std::path::Path::new(path).exists() {
+            return Err(err(format!("no such scene file: {path}")));
+        }
+        Ok(Self {
+            inner: load_scene(Some(path)).map_err(err)?,
+        })
+    }
+
+    /// Parses scene text (TOML, or JSON if it starts with `{`).
+    #[staticmethod]
+    #[pyo3(signature = (text, origin = "<string>"))]
+    fn from_string(text: &str, origin: &str) -> PyResult<Self> {
+        Ok(Self {
+            inner: parse_scene(text, origin).map_err(err)?,
+        })
+    }
+
+    /// A built-in scene by name (see `Scene.builtins()`).
+    #[staticmethod]
+    fn builtin(name: &str) -> PyResult<Self> {
+        if !BUILTIN.iter().any(|(n, _)| *n == name) {
+            return Err(err(format!("unknown built-in scene '{name}'")));
+        }
+        Ok(Self {
+            inner: load_scene(Some(name)).map_err(err)?,
+        })
+    }
+
+    /// Names of the built-in scenes.
+    #[staticmethod]
+    fn builtins() -> Vec<String> {
+        BUILTIN.iter().map(|(n, _)| n.to_string()).collect()
+    }
+
+    /// A copy with `key.path = value` set (value as TOML text, e.g. "720" or '"ccw"').
+    fn with_set(&self, key: &str, value: &str) -> PyResult<Self> {
+        let inner =
+            apply_overrides(self.inner.clone(), &[format!("{key}={value}")]).map_err(err)?;
+        Ok(Self { inner })
+    }
+
+    /// The scene as TOML text.
+    fn to_toml(&self) -> PyResult<String> {
+        toml::to_string(&self.inner).map_err(err)
+    }
+
+    /// The scene as JSON text (what pickling uses).
+    fn to_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.inner).map_err(err)
+    }
+
+    /// Rebuilds a scene from `to_json()`.
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        Self::from_string(text, "<json>")
+    }
+
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.name.clone()
+    }
+
+    /// The search space: `[(name, lower, upper), ...]` (the default space if none is given).
+    fn free_parameters(&self) -> PyResult<Vec<(String, f64, f64)>> {
+        let p = SceneProblem::new(&self.inner).map_err(err)?;
+        let lower = p.decode(&vec![0.0; p.dim()]);
+        let upper = p.decode(&vec![1.0; p.dim()]);
+        Ok(p.names()
+            .into_iter()
+            .zip(lower.into_iter().zip(upper))
+            .map(|(n, (l, u))| (n.to_string(), l, u))
+            .collect())
+    }
+
+    /// Names of the search goals (all minimised).
+    fn goal_names(&self) -> PyResult<Vec<String>> {
+        Ok(SceneProblem::new(&self.inner).map_err(err)?.goal_names())
+    }
+
+    /// Names of the objectives this scene evaluates, in order.
+    fn objective_names(&self) -> Vec<String> {
+        self.inner
+            .objectives
+            .iter()
+            .map(|o| o.name().to_string())
+            .collect()
+    }
+
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<(PyObject, (String,))> {
+        let rebuild = py.get_type::<Scene>().getattr("from_json")?.unbind();
+        Ok((rebuild, (self.to_json()?,)))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Scene(name={:?}, kind={:?})",
+            self.inner.name, self.inner.kind
+        )
+    }
+}
+
+/// The resolution from keyword arguments over the scene's own.
+fn resolution(
+    scene: &noncirc::core::Scene,
+    samples_per_turn: Option<usize>,
+    closure_rel_tol: Option<f64>,
+) -> PyResult<Resolution> {
+    let mut r = scene.resolution;
+    if let Some(n) = samples_per_turn {
+        r.samples_per_turn = n;
+    }
+    if let Some(t) = closure_rel_tol {
+        r.closure_rel_tol = t;
+    }
+    r.validate().map_err(err)?;
+    Ok(r)
+}
+
+fn points(list: &[[f64; 2]]) -> Array2<f64> {
+    Array2::from_shape_fn((list.len(), 2), |(i, j)| list[i][j])
+}
+
+/// Evaluates one design: objectives as a dict, trajectory and pitch curves as arrays.
+#[pyfunction]
+#[pyo3(signature = (scene, *, samples_per_turn = None, closure_rel_tol = None))]
+fn evaluate<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    samples_per_turn: Option<usize>,
+    closure_rel_tol: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let res = resolution(&scene.inner, samples_per_turn, closure_rel_tol)?;
+    let s = scene.inner.clone();
+    let eval = py
+        .allow_threads(|| Evaluator::new().evaluate_at(&s, &res))
+        .map_err(err)?;
+    let out = PyDict::new(py);
+    out.set_item("samples_per_turn", res.samples_per_turn)?;
+    out.set_item("feasible", eval.total_violation() == 0.0)?;
+    out.set_item("total_violation", eval.total_violation())?;
+    out.set_item("centre_distance_mm", eval.centre_distance_mm)?;
+    let objectives = PyDict::new(py);
+    for o in &eval.objectives {
+        let d = PyDict::new(py);
+        d.set_item("value", o.value)?;
+        d.set_item("unit", o.kind.unit())?;
+        d.set_item("lower", o.lower)?;
+        d.set_item("upper", o.upper)?;
+        d.set_item("violation", o.violation)?;
+        d.set_item("margin", o.margin)?;
+        objectives.set_item(o.kind.name(), d)?;
+    }
+    out.set_item("objectives", objectives)?;
+    if let Some(e) = &eval.events {
+        let d = PyDict::new(py);
+        d.set_item("picking_carrier_deg", e.picking.carrier_rad.to_degrees())?;
+        d.set_item("planting_carrier_deg", e.planting.carrier_rad.to_degrees())?;
+        d.set_item("picking_attitude_deg", e.picking.attitude_deg)?;
+        d.set_item("planting_attitude_deg", e.planting.attitude_deg)?;
+        d.set_item(
+            "picking_window_deg",
+            (
+                e.picking_window_rad[0].to_degrees(),
+                e.picking_window_rad[1].to_degrees(),
+            ),
+        )?;
+        d.set_item("picking_tip_speed_m_s", e.picking_tip_speed_m_s)?;
+        d.set_item("trajectory_height_mm", e.y_max_mm - e.y_min_mm)?;
+        out.set_item("events", d)?;
+    }
+    if let Some(kin) = &eval.kinematics {
+        let theta = Array1::from_iter((0..kin.len()).map(|j| kin.theta(j).to_degrees()));
+        out.set_item("carrier_deg", theta.into_pyarray(py))?;
+        out.set_item("trajectory", points(kin.tips()).into_pyarray(py))?;
+        out.set_item(
+            "planet_centres",
+            points(kin.planet_centres()).into_pyarray(py),
+        )?;
+        let curve = s.gear.curve.build().map_err(err)?;
+        let pair = py
+            .allow_threads(|| GearPair::solve(curve, res))
+            .map_err(err)?;
+        let outlines = noncirc::export::outlines(&pair);
+        out.set_item("driver_curve", points(&outlines[0].points).into_pyarray(py))?;
+        out.set_item("driven_curve", points(&outlines[1].points).into_pyarray(py))?;
+    }
+    if let Some(b) = &eval.moving_box {
+        out.set_item("moving_box", serde_json::to_string(b).map_err(err)?)?;
+    }
+    Ok(out)
+}
+
+/// Rayon pools by thread count, built once; `None` for one thread (the caller's own).
+fn pool(threads: Option<usize>) -> PyResult<Option<Arc<rayon::ThreadPool>>> {
+    static POOLS: OnceLock<Mutex<HashMap<usize, Arc<rayon::ThreadPool>>>> = OnceLock::new();
+    let n = threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    if n == 0 {
+        return Err(err("threads must be at least 1"));
+    }
+    if n == 1 {
+        return Ok(None);
+    }
+    let mut pools = POOLS.get_or_init(Default::default).lock().map_err(err)?;
+    if let Some(p) = pools.get(&n) {
+        return Ok(Some(p.clone()));
+    }
+    let p = Arc::new(
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(err)?,
+    );
+    pools.insert(n, p.clone());
+    Ok(Some(p))
+}
+
+/// Evaluates an `(n, d)` float64 array of designs (columns: `scene.free_parameters()`), in
+/// parallel with the GIL released. Returns arrays: `values`, `violations`,
+/// `normalised_violations` (n, k), `cv` (n,), `goals` (n, g), `valid` (n,) and `errors`.
+#[pyfunction]
+#[pyo3(signature = (scene, x, *, samples_per_turn = None, closure_rel_tol = None, threads = None))]
+fn evaluate_batch<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    x: &Bound<'py, PyAny>,
+    samples_per_turn: Option<usize>,
+    closure_rel_tol: Option<f64>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let problem = SceneProblem::new(&scene.inner).map_err(err)?;
+    let d = problem.dim();
+    let array = x.downcast::<PyArray2<f64>>().map_err(|_| {
+        let dtype = x
+            .getattr("dtype")
+            .map(|t| t.to_string())
+            .unwrap_or_else(|_| x.get_type().to_string());
+        err(format!(
+            "x must be a 2-D float64 array of shape (n, {d}); got {dtype}"
+        ))
+    })?;
+    let shape = array.shape().to_vec();
+    if shape[1] != d {
+        return Err(err(format!(
+            "x must have {d} columns ({}), got shape ({}, {})",
+            problem.names().join(", "),
+            shape[0],
+            shape[1]
+        )));
+    }
+    let rows: Vec<Vec<f64>> = {
+        let view = array.readonly();
+        let a = view.as_array();
+        a.outer_iter().map(|r| r.to_vec()).collect()
+    };
+    if let Some((i, j)) = rows
+        .iter()
+        .enumerate()
+        .find_map(|(i, r)| r.iter().position(|v| !v.is_finite()).map(|j| (i, j)))
+    {
+        return Err(err(format!(
+            "x[{i}, {j}] ({}) = {} is not finite",
+            problem.names()[j],
+            rows[i][j]
+        )));
+    }
+    let res = resolution(&scene.inner, samples_per_turn, closure_rel_tol)?;
+    let pool = pool(threads)?;
+    let k = scene.inner.objectives.len();
+    let g = problem.goals();
+    let evaluate_row = |(ev, scratch): &mut (Evaluator, noncirc::core::Scene), x: &Vec<f64>| {
+        problem.fitness_at_values(x, ev, scratch, &res)
+    };
+    let results = py.allow_threads(|| match &pool {
+        // One thread: run in the caller's thread, so that concurrent callers overlap.
+        None => {
+            let mut state = (Evaluator::new(), problem.base().clone());
+            rows.iter()
+                .map(|x| evaluate_row(&mut state, x))
+                .collect::<Vec<_>>()
+        }
+        Some(pool) => pool.install(|| {
+            rows.par_iter()
+                .map_init(|| (Evaluator::new(), problem.base().clone()), evaluate_row)
+                .collect::<Vec<_>>()
+        }),
+    });
+    let n = rows.len();
+    let mut values = Array2::from_elem((n, k), f64::NAN);
+    let mut violations = Array2::from_elem((n, k), f64::NAN);
+    let mut normalised = Array2::from_elem((n, k), noncirc::core::search::problem::INVALID_CV);
+    let mut goals = Array2::zeros((n, g));
+    let mut cv = Array1::zeros(n);
+    let mut valid = Array1::from_elem(n, false);
+    let errors = PyList::empty(py);
+    for (i, (fitness, outcome)) in results.into_iter().enumerate() {
+        cv[i] = fitness.cv;
+        for (j, v) in fitness.f.iter().enumerate() {
+            goals[[i, j]] = *v;
+        }
+        match outcome {
+            Ok(eval) => {
+                valid[i] = true;
+                for (j, o) in eval.objectives.iter().enumerate() {
+                    values[[i, j]] = o.value;
+                    violations[[i, j]] = o.violation;
+                    normalised[[i, j]] = o.violation
+                        / noncirc::core::search::problem::scale(o.kind, &scene.inner.bounds);
+                }
+                errors.append(py.None())?;
+            }
+            Err(e) => errors.append(e.to_string())?,
+        }
+    }
+    let out = PyDict::new(py);
+    out.set_item(
+        "objective_names",
+        scene
+            .inner
+            .objectives
+            .iter()
+            .map(|o| o.name())
+            .collect::<Vec<_>>(),
+    )?;
+    out.set_item("values", values.into_pyarray(py))?;
+    out.set_item("violations", violations.into_pyarray(py))?;
+    out.set_item("normalised_violations", normalised.into_pyarray(py))?;
+    out.set_item("cv", cv.into_pyarray(py))?;
+    out.set_item("goals", goals.into_pyarray(py))?;
+    out.set_item("valid", valid.into_pyarray(py))?;
+    out.set_item("errors", errors)?;
+    out.set_item("samples_per_turn", res.samples_per_turn)?;
+    Ok(out)
+}
+
+/// Runs a search (GIL released) and returns its summary and confirmed Pareto set.
+#[pyfunction]
+#[pyo3(signature = (scene, *, algorithm = None, seed = None, budget = None, population = None, threads = None, screening_samples_per_turn = None))]
+#[allow(clippy::too_many_arguments)]
+fn optimise<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    algorithm: Option<&str>,
+    seed: Option<u64>,
+    budget: Option<u64>,
+    population: Option<usize>,
+    threads: Option<usize>,
+    screening_samples_per_turn: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mut s = scene.inner.clone();
+    if let Some(n) = screening_samples_per_turn {
+        s.search.screening.samples_per_turn = n;
+    }
+    // The keywords override the scene's search settings, so the summary states what ran.
+    if let Some(a) = algorithm {
+        s.search.algorithm = a.to_string();
+    }
+    s.search.seed = seed.unwrap_or(s.search.seed);
+    s.search.budget = budget.unwrap_or(s.search.budget);
+    s.search.population = population.unwrap_or(s.search.population);
+    let name = s.search.algorithm.clone();
+    let algorithm = Algorithm::parse(&name).ok_or_else(|| {
+        err(format!(
+            "unknown algorithm '{name}': use guided, de, cmaes or nsga2"
+        ))
+    })?;
+    let opts = noncirc::search::RunOptions {
+        algorithm,
+        budget: s.search.budget,
+        population: s.search.population,
+        seed: s.search.seed,
+        threads: threads
+            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
+        checkpoint: None,
+        checkpoint_every: std::time::Duration::from_secs(3600),
+        resume: None,
+        progress: false,
+        stop: Arc::new(std::sync::atomic::AtomicBool::new(false)),
+        max_generations: None,
+    };
+    let outcome = py
+        .allow_threads(|| noncirc::search::run(&s, &opts))
+        .map_err(err)?;
+    let (summary, pareto) = py.allow_threads(|| (outcome.summary(), outcome.pareto()));
+    let json = serde_json::to_string(&summary).map_err(err)?;
+    let out = py
+        .import("json")?
+        .call_method1("loads", (json,))?
+        .downcast_into::<PyDict>()?;
+    let names = outcome.problem.names();
+    let front = PyList::empty(py);
+    for (x, f) in pareto {
+        let d = PyDict::new(py);
+        let params = PyDict::new(py);
+        for (n, v) in names.iter().zip(&x) {
+            params.set_item(*n, *v)?;
+        }
+        d.set_item("parameters", params)?;
+        d.set_item("goals", f.f.clone())?;
+        d.set_item("cv", f.cv)?;
+        front.append(d)?;
+    }
+    out.set_item("pareto", front)?;
+    if let Some(best) = outcome.reported() {
+        out.set_item(
+            "best_scene",
+            Scene {
+                inner: outcome.problem.scene_at(&best.u),
+            },
+        )?;
+    }
+    Ok(out)
+}
+
+#[pymodule]
+fn _noncirc(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Scene>()?;
+    m.add_function(wrap_pyfunction!(evaluate, m)?)?;
+    m.add_function(wrap_pyfunction!(evaluate_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(optimise, m)?)?;
+    m.add("NoncircError", m.py().get_type::<NoncircError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,62 @@
+"""Type stubs of the compiled extension."""
+
+from typing import Any, Optional
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class NoncircError(ValueError):
+    """A noncirc input or model error; the message names the bad value."""
+
+class Scene:
+    """A scene: what is designed and asked, and at which resolution. Immutable; pickles."""
+
+    @staticmethod
+    def from_file(path: str) -> Scene: ...
+    @staticmethod
+    def from_string(text: str, origin: str = "<string>") -> Scene: ...
+    @staticmethod
+    def from_json(text: str) -> Scene: ...
+    @staticmethod
+    def builtin(name: str) -> Scene: ...
+    @staticmethod
+    def builtins() -> list[str]: ...
+    def with_set(self, key: str, value: str) -> Scene:
+        """A copy with `key.path = value` (value as TOML text)."""
+    def to_toml(self) -> str: ...
+    def to_json(self) -> str: ...
+    @property
+    def name(self) -> str: ...
+    def free_parameters(self) -> list[tuple[str, float, float]]:
+        """The search space `(name, lower, upper)`: the columns of `evaluate_batch`'s x."""
+    def goal_names(self) -> list[str]: ...
+    def objective_names(self) -> list[str]: ...
+
+def evaluate(
+    scene: Scene, *, samples_per_turn: Optional[int] = None, closure_rel_tol: Optional[float] = None
+) -> dict[str, Any]:
+    """One design: objectives (dict), events, trajectory and pitch curves (arrays, mm)."""
+
+def evaluate_batch(
+    scene: Scene,
+    x: npt.NDArray[np.float64],
+    *,
+    samples_per_turn: Optional[int] = None,
+    closure_rel_tol: Optional[float] = None,
+    threads: Optional[int] = None,
+) -> dict[str, Any]:
+    """An (n, d) batch in parallel, GIL released: values, violations, cv, goals, valid."""
+
+def optimise(
+    scene: Scene,
+    *,
+    algorithm: Optional[str] = None,
+    seed: Optional[int] = None,
+    budget: Optional[int] = None,
+    population: Optional[int] = None,
+    threads: Optional[int] = None,
+    screening_samples_per_turn: Optional[int] = None,
+) -> dict[str, Any]:
+    """A search: summary (feasible, best, violations, evaluations, ...), pareto, best_scene."""

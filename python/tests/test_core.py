@@ -1,0 +1,142 @@
+"""The Python API over the Rust core: scenes, evaluation, batches, errors, search."""
+
+import pickle
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import noncirc
+from noncirc import NoncircError, Scene, evaluate, evaluate_batch, optimise
+
+
+def test_scenes_load_from_builtin_string_file_and_json(tmp_path):
+    assert "paper" in Scene.builtins() and "paper-search" in Scene.builtins()
+    paper = Scene.builtin("paper")
+    path = tmp_path / "paper.toml"
+    path.write_text(paper.to_toml())
+    for s in [Scene.from_file(str(path)), Scene.from_string(paper.to_toml()), Scene.from_json(paper.to_json())]:
+        assert s.to_json() == paper.to_json()
+    assert pickle.loads(pickle.dumps(paper)).to_json() == paper.to_json()
+
+
+def test_bad_scenes_raise_value_errors_naming_the_place():
+    assert issubclass(NoncircError, ValueError)
+    with pytest.raises(NoncircError, match=r"bad\.toml.*line 2.*samples_per_turn"):
+        Scene.from_string("[resolution]\nsamples_per_turn = 'many'\n", "bad.toml")
+    with pytest.raises(NoncircError, match="unknown"):
+        Scene.builtin("nope")
+    with pytest.raises(NoncircError, match="no such scene file"):
+        Scene.from_file("/nonexistent/scene.toml")
+    with pytest.raises(NoncircError, match="unknown key"):
+        Scene.builtin("paper").with_set("train.nope", "1")
+    with pytest.raises(NoncircError, match="arm_half_width_mm"):
+        evaluate(Scene.builtin("paper").with_set("agronomy.arm_half_width_mm", "-3"))
+
+
+def test_evaluate_matches_the_pinned_paper_design():
+    r = evaluate(Scene.builtin("paper"), samples_per_turn=360)
+    assert r["samples_per_turn"] == 360
+    assert abs(r["centre_distance_mm"] - 85.01753) < 1e-4
+    o = r["objectives"]
+    assert abs(o["picking_angle"]["value"] - (-0.3620)) < 1e-3
+    assert abs(o["pushing_angle"]["value"] - 53.9909) < 1e-3
+    assert o["module"]["violation"] > 2.0 and o["trajectory_height"]["violation"] == 0.0
+    assert r["trajectory"].shape == (360, 2) and r["trajectory"].dtype == np.float64
+    assert r["driver_curve"].shape == (360, 2) and r["driven_curve"].shape == (360, 2)
+    # The driven curve closes the pair: radii add up to the centre distance node by node.
+    radii = np.hypot(*r["driver_curve"].T) + np.hypot(*r["driven_curve"].T)
+    assert np.allclose(radii, r["centre_distance_mm"], atol=1e-9)
+
+
+def paper_batch(n, seed=0):
+    scene = Scene.builtin("paper-search")
+    params = scene.free_parameters()
+    rng = np.random.default_rng(seed)
+    lo = np.array([p[1] for p in params])
+    hi = np.array([p[2] for p in params])
+    return scene, lo + rng.random((n, len(params))) * (hi - lo)
+
+
+def test_batch_rows_equal_single_evaluations():
+    scene, x = paper_batch(40)
+    r = evaluate_batch(scene, x)
+    k = len(scene.objective_names())
+    assert r["values"].shape == (40, k) and r["cv"].shape == (40,) and r["goals"].shape == (40, 1)
+    names = [p[0] for p in scene.free_parameters()]
+    for i in range(0, 40, 7):
+        if not r["valid"][i]:
+            assert r["errors"][i]
+            continue
+        s = scene
+        for name, v in zip(names, x[i]):
+            s = s.with_set(name, repr(float(v)))
+        single = evaluate(s)
+        for j, name in enumerate(r["objective_names"]):
+            assert r["values"][i, j] == pytest.approx(single["objectives"][name]["value"], rel=1e-12, abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    "bad, message",
+    [
+        (np.zeros((3, 5)), "columns"),
+        (np.zeros(17), "2-D float64"),
+        (np.zeros((3, 17), dtype=np.float32), "float32"),
+        (np.zeros((3, 17), dtype=np.int64), "int64"),
+        ([[1.0] * 17], "2-D float64"),
+        (np.full((2, 17), np.nan), "not finite"),
+    ],
+)
+def test_bad_batches_raise_value_errors(bad, message):
+    scene = Scene.builtin("paper-search")
+    with pytest.raises(NoncircError, match=message):
+        evaluate_batch(scene, bad)
+
+
+def test_invalid_designs_are_flagged_not_nan_silently():
+    scene, x = paper_batch(4)
+    x[1, 0] = -5.0  # a negative control radius
+    r = evaluate_batch(scene, x)
+    assert not r["valid"][1] and "radius" in r["errors"][1]
+    assert r["cv"][1] == 1e5 and np.isfinite(r["cv"]).all()
+
+
+def test_two_python_threads_run_batches_concurrently():
+    """With the GIL released, two calls from two Python threads overlap in time."""
+    scene, x = paper_batch(2000, seed=1)
+    spans = {}
+
+    def run(name):
+        start = time.perf_counter()
+        evaluate_batch(scene, x, threads=1)
+        spans[name] = (start, time.perf_counter())
+
+    threads = [threading.Thread(target=run, args=(name,)) for name in ("a", "b")]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    (a0, a1), (b0, b1) = spans["a"], spans["b"]
+    overlap = min(a1, b1) - max(a0, b0)
+    # Holding the GIL would serialise the calls: no overlap at all.
+    assert overlap > 0.5 * min(a1 - a0, b1 - b0), f"calls overlapped {overlap:.3f}s of {spans}"
+
+
+def test_optimise_finds_a_feasible_design_reproducibly():
+    scene = Scene.builtin("paper-search")
+    a = optimise(scene, algorithm="de", seed=3, budget=30000)
+    b = optimise(scene, algorithm="de", seed=3, budget=30000, threads=1)
+    assert a["best"] == b["best"] and a["evaluations"] == b["evaluations"]
+    if a["feasible"]:
+        again = evaluate(a["best_scene"])
+        assert again["feasible"]
+    assert set(a) >= {"feasible", "best", "violations", "evaluations", "pareto"}
+
+
+def test_keyword_knobs_are_validated():
+    with pytest.raises(NoncircError, match="samples_per_turn"):
+        evaluate(Scene.builtin("paper"), samples_per_turn=7)
+    with pytest.raises(NoncircError, match="algorithm"):
+        optimise(Scene.builtin("paper-search"), algorithm="simplex", budget=10)
+    assert noncirc.__version__
