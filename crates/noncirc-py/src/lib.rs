@@ -307,8 +307,13 @@ fn evaluate_batch<'py>(
     let pool = pool(threads)?;
     let k = scene.inner.objectives.len();
     let g = problem.goals();
+    // Reduce each evaluation to its numbers at once: a batch keeps no trajectories alive.
     let evaluate_row = |(ev, scratch): &mut (Evaluator, noncirc::core::Scene), x: &Vec<f64>| {
-        problem.fitness_at_values(x, ev, scratch, &res)
+        let (fitness, outcome) = problem.fitness_at_values(x, ev, scratch, &res);
+        let outcome = outcome
+            .map(|eval| eval.objectives)
+            .map_err(|e| e.to_string());
+        (fitness, outcome)
     };
     let results = py.allow_threads(|| match &pool {
         // One thread: run in the caller's thread, so that concurrent callers overlap.
@@ -338,9 +343,9 @@ fn evaluate_batch<'py>(
             goals[[i, j]] = *v;
         }
         match outcome {
-            Ok(eval) => {
+            Ok(objectives) => {
                 valid[i] = true;
-                for (j, o) in eval.objectives.iter().enumerate() {
+                for (j, o) in objectives.iter().enumerate() {
                     values[[i, j]] = o.value;
                     violations[[i, j]] = o.violation;
                     normalised[[i, j]] = o.violation
@@ -348,7 +353,7 @@ fn evaluate_batch<'py>(
                 }
                 errors.append(py.None())?;
             }
-            Err(e) => errors.append(e.to_string())?,
+            Err(e) => errors.append(e)?,
         }
     }
     let out = PyDict::new(py);
