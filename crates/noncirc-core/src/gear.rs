@@ -44,6 +44,11 @@ pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
             } else {
                 (-1.0, f64::NAN)
             };
+            // Stop on the residual first: at convergence a rounding-level Newton step can land
+            // just outside the bracket and would otherwise trigger needless bisections.
+            if h.abs() <= 4.0 * f64::EPSILON {
+                break;
+            }
             if h < 0.0 {
                 lo = a;
             } else {
