@@ -99,7 +99,10 @@ impl Evaluator {
                 self.counts.pitch_curve += 1;
                 let curve = scene.gear.curve.build()?;
                 self.counts.closure += 1;
-                let pair = GearPair::solve(curve, *resolution)?;
+                let integrator = self
+                    .integrator
+                    .get_or_insert_with(|| SpectralIntegrator::new(resolution.samples_per_turn));
+                let pair = GearPair::solve_with(curve, *resolution, integrator)?;
                 let module = pair.module(&scene.gear.module);
                 out.centre_distance_mm = Some(pair.centre_distance());
                 out.gear = Some(GearSummary {
@@ -136,6 +139,10 @@ impl Evaluator {
                 } else {
                     None
                 };
+                let gear_module = scene
+                    .objectives
+                    .contains(&ObjectiveKind::Module)
+                    .then(|| module(&kin, &scene.gear.module));
                 for &kind in &scene.objectives {
                     self.counts.objectives[kind as usize] += 1;
                     let value = objective_value(
@@ -143,7 +150,7 @@ impl Evaluator {
                         &kin,
                         ev.as_ref(),
                         &scene.agronomy,
-                        &scene.gear.module,
+                        gear_module.as_ref(),
                     );
                     out.objectives
                         .push(ObjectiveValue::new(kind, value, &scene.bounds));
@@ -163,14 +170,12 @@ impl Evaluator {
                         resolution,
                     )?);
                 }
-                if scene.objectives.contains(&ObjectiveKind::Module) {
-                    out.gear = Some(GearSummary {
-                        centre_distance_mm: kin.centre_distance(),
-                        closure_error_mm: kin.closure_error(),
-                        perimeter_mm: perimeter(kin.sun_samples()),
-                        module: module(&kin, &scene.gear.module),
-                    });
-                }
+                out.gear = gear_module.map(|module| GearSummary {
+                    centre_distance_mm: kin.centre_distance(),
+                    closure_error_mm: kin.closure_error(),
+                    perimeter_mm: perimeter(kin.sun_samples()),
+                    module,
+                });
                 out.events = ev;
                 out.kinematics = Some(kin);
                 // Safety net: a value that broke down numerically is an error, never a NaN.

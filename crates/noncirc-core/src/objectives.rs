@@ -367,38 +367,66 @@ pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
     }
 }
 
+/// A segment `a→b` ready for repeated distance queries.
+#[derive(Debug, Clone, Copy)]
+struct Segment {
+    a: [f64; 2],
+    ab: [f64; 2],
+    /// `1/|ab|²`, or 0 for a degenerate segment.
+    inv_len2: f64,
+}
+
+impl Segment {
+    #[inline]
+    fn new(a: [f64; 2], b: [f64; 2]) -> Self {
+        let ab = [b[0] - a[0], b[1] - a[1]];
+        let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+        let inv_len2 = if len2 > 0.0 { 1.0 / len2 } else { 0.0 };
+        Self { a, ab, inv_len2 }
+    }
+
+    /// Squared distance from `p` (mm²): compare these, take one square root.
+    #[inline]
+    fn distance_sq(&self, p: [f64; 2]) -> f64 {
+        let ap = [p[0] - self.a[0], p[1] - self.a[1]];
+        let t = ((ap[0] * self.ab[0] + ap[1] * self.ab[1]) * self.inv_len2).clamp(0.0, 1.0);
+        let (dx, dy) = (ap[0] - t * self.ab[0], ap[1] - t * self.ab[1]);
+        dx * dx + dy * dy
+    }
+
+    /// Squared distance to another segment (mm²).
+    #[inline]
+    fn distance_sq_to(&self, other: &Segment) -> f64 {
+        let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+        let (r, s) = (self.ab, other.ab);
+        let d = [other.a[0] - self.a[0], other.a[1] - self.a[1]];
+        let denom = cross(r, s);
+        if denom != 0.0 {
+            // Crossing at t = cross(d, s)/denom, u = cross(d, r)/denom, both in [0, 1].
+            let sign = denom.signum();
+            let (t, u, scale) = (sign * cross(d, s), sign * cross(d, r), denom.abs());
+            if (0.0..=scale).contains(&t) && (0.0..=scale).contains(&u) {
+                return 0.0;
+            }
+        }
+        let end = |g: &Segment| [g.a[0] + g.ab[0], g.a[1] + g.ab[1]];
+        self.distance_sq(other.a)
+            .min(self.distance_sq(end(other)))
+            .min(other.distance_sq(self.a))
+            .min(other.distance_sq(end(self)))
+    }
+}
+
 /// Distance between segments `p0→p1` and `q0→q1` (mm).
 pub fn segment_distance(p0: [f64; 2], p1: [f64; 2], q0: [f64; 2], q1: [f64; 2]) -> f64 {
-    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
-    let sub = |a: [f64; 2], b: [f64; 2]| [a[0] - b[0], a[1] - b[1]];
-    let (r, s) = (sub(p1, p0), sub(q1, q0));
-    let d = sub(q0, p0);
-    let denom = cross(r, s);
-    if denom != 0.0 {
-        let t = cross(d, s) / denom;
-        let u = cross(d, r) / denom;
-        if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
-            return 0.0;
-        }
-    }
-    point_segment_distance(p0, q0, q1)
-        .min(point_segment_distance(p1, q0, q1))
-        .min(point_segment_distance(q0, p0, p1))
-        .min(point_segment_distance(q1, p0, p1))
+    Segment::new(p0, p1)
+        .distance_sq_to(&Segment::new(q0, q1))
+        .sqrt()
 }
 
 /// Distance from `p` to segment `a→b` (mm).
 pub fn point_segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let ab = [b[0] - a[0], b[1] - a[1]];
-    let ap = [p[0] - a[0], p[1] - a[1]];
-    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
-    let t = if len2 > 0.0 {
-        ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let (dx, dy) = (ap[0] - t * ab[0], ap[1] - t * ab[1]);
-    (dx * dx + dy * dy).sqrt()
+    Segment::new(a, b).distance_sq(p).sqrt()
 }
 
 /// Objective 1: least clearance between arm capsules and against the other planets' gear
@@ -411,18 +439,28 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     let w = agro.arm_half_width_mm;
     let clearance = |j: usize| {
         let (k2, k3) = (kin.arm_node(1, j), kin.arm_node(2, j));
-        let arms = segment_distance(centres[j], tips[j], centres[k2], tips[k2]) - 2.0 * w;
-        let planets = point_segment_distance(centres[k2], centres[j], tips[j])
-            .min(point_segment_distance(centres[k3], centres[j], tips[j]))
+        let arm = Segment::new(centres[j], tips[j]);
+        let arms = arm
+            .distance_sq_to(&Segment::new(centres[k2], tips[k2]))
+            .sqrt()
+            - 2.0 * w;
+        let planets = arm
+            .distance_sq(centres[k2])
+            .min(arm.distance_sq(centres[k3]))
+            .sqrt()
             - rmax
             - w;
         arms.min(planets)
     };
-    let values: Vec<f64> = (0..n).map(clearance).collect();
-    let j = (0..n)
-        .min_by(|&a, &b| values[a].total_cmp(&values[b]))
-        .unwrap_or(0);
-    parabola_vertex(values[(j + n - 1) % n], values[j], values[(j + 1) % n])
+    // The least clearance node; a NaN (numerical breakdown) loses to any number.
+    let (mut j, mut least) = (0, clearance(0));
+    for k in 1..n {
+        let c = clearance(k);
+        if c < least || least.is_nan() {
+            (j, least) = (k, c);
+        }
+    }
+    parabola_vertex(clearance((j + n - 1) % n), least, clearance((j + 1) % n))
 }
 
 /// Objective 5: worst forward excursion of the tip past the planted seedling in the ground
@@ -499,13 +537,14 @@ impl ObjectiveKind {
     }
 }
 
-/// One objective's value for a moved mechanism (`ev` must be given when `needs_events`).
+/// One objective's value for a moved mechanism. `ev` must be given when `needs_events`, and
+/// `gear_module` (from [`module`], computed once per design) for the module objective.
 pub fn objective_value(
     kind: ObjectiveKind,
     kin: &Kinematics,
     ev: Option<&Events>,
     agro: &Agronomy,
-    rule: &ModuleRule,
+    gear_module: Option<&ModuleReport>,
 ) -> f64 {
     let ev = || ev.expect("events are located before the objectives that need them");
     match kind {
@@ -516,7 +555,11 @@ pub fn objective_value(
         ObjectiveKind::SeedlingPush => seedling_push(kin, agro, ev()),
         ObjectiveKind::GroundClearance => ground_clearance(kin, agro, ev()),
         ObjectiveKind::TrajectoryHeight => ev().y_max_mm - ev().y_min_mm,
-        ObjectiveKind::Module => module(kin, rule).module_max_mm,
+        ObjectiveKind::Module => {
+            gear_module
+                .expect("the module is computed before the objective that needs it")
+                .module_max_mm
+        }
     }
 }
 
@@ -528,12 +571,13 @@ pub fn evaluate_all(
     rule: &ModuleRule,
 ) -> (Vec<ObjectiveValue>, Events) {
     let ev = events(kin, agro);
+    let gear_module = module(kin, rule);
     let values = ObjectiveKind::ALL
         .iter()
         .map(|&kind| {
             ObjectiveValue::new(
                 kind,
-                objective_value(kind, kin, Some(&ev), agro, rule),
+                objective_value(kind, kin, Some(&ev), agro, Some(&gear_module)),
                 bounds,
             )
         })

@@ -203,6 +203,7 @@ pub struct Kinematics {
 impl Kinematics {
     /// Samples the sun on the carrier grid, closes the pair and moves arm I through one turn.
     pub fn solve(curve: &PitchCurve, spec: &TrainSpec, resolution: &Resolution) -> Result<Self> {
+        resolution.validate()?;
         Self::solve_with(
             curve,
             spec,
@@ -224,9 +225,7 @@ impl Kinematics {
         let h = TAU / n as f64;
         let sigma = spec.rotation.sign();
         let psi0 = spec.psi_start();
-        let sun: Vec<Polar> = (0..n)
-            .map(|j| curve.eval(psi0 + sigma * h * j as f64))
-            .collect();
+        let sun = curve.sample_uniform(psi0, sigma * h, n);
         let rho: Vec<f64> = sun.iter().map(|p| p.rho).collect();
         let closure = solve_closure(&rho, resolution)?;
         let a = closure.centre_distance;
@@ -386,10 +385,17 @@ impl Kinematics {
         &self.theta3
     }
 
-    /// Node index of arm `k` (0, 1, 2) at node `j` of the carrier: arm k lags arm I by k·120°.
+    /// Node index of arm `k` (0, 1, 2) at node `j < len()` of the carrier: arm k lags arm I
+    /// by k·120°.
     pub fn arm_node(&self, k: usize, j: usize) -> usize {
         let n = self.len();
-        (j + n - (k * n / 3) % n) % n
+        let lag = (k % 3) * n / 3;
+        debug_assert!(j < n, "node {j} of {n}");
+        if j >= lag {
+            j - lag
+        } else {
+            j + n - lag
+        }
     }
 
     /// `g̃(u) = g(psi_start + σu)` and `g̃'(u)` at any carrier angle, from the curve itself.

@@ -178,6 +178,15 @@ impl PitchCurve {
         }
     }
 
+    /// Samples at `start + step·j` for `j = 0..n` (rad): as [`Self::eval`] at each point,
+    /// cheaper for the spline.
+    pub fn sample_uniform(&self, start: f64, step: f64, n: usize) -> Vec<Polar> {
+        match self {
+            PitchCurve::Spline(s) => s.sample_uniform(start, step, n),
+            _ => (0..n).map(|j| self.eval(start + step * j as f64)).collect(),
+        }
+    }
+
     /// `(min, max)` of `rho` (mm): exact for the spline and the ellipse, Newton-refined for
     /// the Fourier series, and refined from the given uniform samples otherwise.
     pub fn radius_range(&self, samples: &[Polar]) -> (f64, f64) {

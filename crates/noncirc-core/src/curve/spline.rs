@@ -98,6 +98,43 @@ impl PeriodicSpline {
     #[inline]
     pub fn eval(&self, psi: f64) -> Polar {
         let (i, t) = self.locate(psi);
+        self.eval_in(i, t)
+    }
+
+    /// Samples at `start + step·j` for `j = 0..n` (rad): the same values as [`Self::eval`],
+    /// found by walking the segments along the grid instead of searching for each point.
+    pub fn sample_uniform(&self, start: f64, step: f64, n: usize) -> Vec<Polar> {
+        let (first, last) = (self.knots[0], self.knots.len() - 1);
+        let (mut i, t0) = self.locate(start);
+        let base = self.knots[i] + t0;
+        let mut turns = 0.0;
+        (0..n)
+            .map(|j| {
+                let mut x = base + step * j as f64 + turns;
+                while x >= first + TAU {
+                    x -= TAU;
+                    turns -= TAU;
+                    i = 0;
+                }
+                while x < first {
+                    x += TAU;
+                    turns += TAU;
+                    i = last;
+                }
+                while x < self.knots[i] {
+                    i -= 1;
+                }
+                while i < last && x >= self.knots[i + 1] {
+                    i += 1;
+                }
+                self.eval_in(i, x - self.knots[i])
+            })
+            .collect()
+    }
+
+    /// rho and its first two derivatives at offset `t` (rad) into segment `i`.
+    #[inline]
+    fn eval_in(&self, i: usize, t: f64) -> Polar {
         let [a, b, c, d] = self.coeffs[i];
         Polar {
             rho: a + t * (b + t * (c + t * d)),
@@ -119,18 +156,19 @@ impl PeriodicSpline {
             };
             let [a, b, c, d] = self.coeffs[i];
             let value = |t: f64| a + t * (b + t * (c + t * d));
-            // Candidates: segment start and the roots of b + 2c t + 3d t² in (0, h).
-            let mut candidates = vec![0.0];
+            // Candidates: segment start and the roots of b + 2c t + 3d t² in (0, h); NaN
+            // marks an absent root and fails the range test below.
+            let mut candidates = [0.0, f64::NAN, f64::NAN];
             let (qa, qb, qc) = (3.0 * d, 2.0 * c, b);
             if qa.abs() > 1e-300 {
                 let disc = qb * qb - 4.0 * qa * qc;
                 if disc >= 0.0 {
                     let s = disc.sqrt();
-                    candidates.push((-qb + s) / (2.0 * qa));
-                    candidates.push((-qb - s) / (2.0 * qa));
+                    candidates[1] = (-qb + s) / (2.0 * qa);
+                    candidates[2] = (-qb - s) / (2.0 * qa);
                 }
             } else if qb.abs() > 1e-300 {
-                candidates.push(-qc / qb);
+                candidates[1] = -qc / qb;
             }
             for t in candidates.into_iter().filter(|t| (0.0..h).contains(t)) {
                 let v = value(t);
@@ -205,6 +243,31 @@ fn solve_tridiagonal(sub: &[f64], diag: &[f64], sup: &[f64], rhs: &[f64]) -> Vec
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn uniform_sampling_matches_pointwise_evaluation() {
+        let psi: Vec<f64> = [10.0f64, 80.0, 150.0, 200.0, 300.0]
+            .iter()
+            .map(|d| d.to_radians())
+            .collect();
+        let s = PeriodicSpline::new("spline", &psi, &[30.0, 45.0, 25.0, 40.0, 35.0]).unwrap();
+        // Both senses, starts outside [0, 2π) and before the first knot, several turns.
+        for (start, step, n) in [
+            (0.0, TAU / 120.0, 120),
+            (1.5, -TAU / 120.0, 120),
+            (-7.0, TAU / 36.0, 100),
+            (20.0, -TAU / 50.0, 130),
+            (psi[2], TAU / 7.0, 21),
+        ] {
+            for (j, p) in s.sample_uniform(start, step, n).into_iter().enumerate() {
+                let q = s.eval(start + step * j as f64);
+                assert!(
+                    (p.rho - q.rho).abs() < 1e-11 && (p.d1 - q.d1).abs() < 1e-9,
+                    "start {start} step {step} j {j}: {p:?} vs {q:?}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn interpolates_and_is_c2_periodic() {
