@@ -4,7 +4,7 @@
 use crate::curve::{parabola_vertex, TAU};
 use crate::error::{finite, length, Result};
 use crate::gear::{curvature_extremes, module_max, perimeter, ModuleReport, ModuleRule};
-use crate::planetary::{unit, Kinematics};
+use crate::planetary::{unit, ArmState, Kinematics};
 use serde::{Deserialize, Serialize};
 
 /// Which way the machine travels over the field.
@@ -264,35 +264,39 @@ pub fn attitude_deg(pusher_angle: f64) -> f64 {
 }
 
 /// Refines the extreme of `t ↦ D(t)·dir` near node `j` by Newton on the derivative,
-/// using the exact tip derivatives; `max` chooses maximum or minimum. Returns `(θ, value)`.
-fn refine_extreme(kin: &Kinematics, dir: [f64; 2], j: usize, max: bool) -> (f64, f64) {
+/// using the exact tip derivatives; `max` chooses maximum or minimum. Returns the arm's
+/// state there (`state.theta` is the carrier angle) and the extreme value.
+fn refine_extreme(kin: &Kinematics, dir: [f64; 2], j: usize, max: bool) -> (ArmState, f64) {
     let h = TAU / kin.len() as f64;
     let dot = |v: [f64; 2]| v[0] * dir[0] + v[1] * dir[1];
     let start = kin.theta(j);
     let mut t = start;
+    let mut state = kin.state_at(t);
     for _ in 0..20 {
-        let s = kin.state_at(t);
-        let (d1, d2) = (dot(s.tip_d1), dot(s.tip_d2));
+        let (d1, d2) = (dot(state.tip_d1), dot(state.tip_d2));
         if (max && d2 >= 0.0) || (!max && d2 <= 0.0) {
             break;
         }
         let step = (d1 / d2).clamp(-h, h);
         t -= step;
-        if step.abs() < 1e-13 {
+        state = kin.state_at(t);
+        // Newton converges quadratically: after a step below 1e-7 rad the next one is
+        // below 1e-13 rad, and the extreme value's error is second order in it.
+        if step.abs() < 1e-7 {
             break;
         }
     }
     let node_value = dot(kin.tips()[j]);
-    let refined = dot(kin.state_at(t).tip);
+    let refined = dot(state.tip);
     let better = if max {
         refined >= node_value
     } else {
         refined <= node_value
     };
     if better && (t - start).abs() <= 1.5 * h {
-        (t, refined)
+        (state, refined)
     } else {
-        (start, node_value)
+        (kin.state_at(start), node_value)
     }
 }
 
@@ -316,25 +320,19 @@ pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
     let tips = kin.tips();
     let normal = unit(agro.tray_normal_deg.to_radians());
     let jp = extreme_node(tips, normal, true);
-    let (tp, depth) = refine_extreme(kin, normal, jp, true);
+    let (picked, depth) = refine_extreme(kin, normal, jp, true);
     let down = [0.0, -1.0];
     let jl = extreme_node(tips, down, true);
-    let (tl, neg_low) = refine_extreme(kin, down, jl, true);
+    let (planted, neg_low) = refine_extreme(kin, down, jl, true);
     let jh = extreme_node(tips, [0.0, 1.0], true);
     let (_, y_max) = refine_extreme(kin, [0.0, 1.0], jh, true);
-    let event = |t: f64| {
-        let s = kin.state_at(t);
-        Event {
-            carrier_rad: t.rem_euclid(TAU),
-            tip_mm: s.tip,
-            attitude_deg: attitude_deg(s.pusher_angle),
-        }
+    let event = |s: &ArmState| Event {
+        carrier_rad: s.theta.rem_euclid(TAU),
+        tip_mm: s.tip,
+        attitude_deg: attitude_deg(s.pusher_angle),
     };
-    let picking = event(tp);
-    let speed = {
-        let s = kin.state_at(tp);
-        s.tip_d1[0].hypot(s.tip_d1[1]) * kin.carrier_speed() / 1000.0
-    };
+    let picking = event(&picked);
+    let speed = picked.tip_d1[0].hypot(picked.tip_d1[1]) * kin.carrier_speed() / 1000.0;
     // Window: walk both ways from the picking node while the tip is beyond the tray surface,
     // then interpolate the crossing linearly between nodes.
     let n = kin.len();
@@ -359,7 +357,7 @@ pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
     let shift = (w0 / TAU).floor() * TAU;
     Events {
         picking,
-        planting: event(tl),
+        planting: event(&planted),
         picking_window_rad: [w0 - shift, w1 - shift],
         picking_tip_speed_m_s: speed,
         y_min_mm: -neg_low,

@@ -307,19 +307,6 @@ impl Kinematics {
         }
     }
 
-    /// `O2` and `O3` at carrier angle `theta` (rad).
-    #[inline]
-    fn centres(&self, theta: f64) -> ([f64; 2], [f64; 2]) {
-        let a = self.centre_distance;
-        let phi_h = self.spec.phi0_deg.to_radians() + self.sigma * theta;
-        let e1 = unit(phi_h);
-        let e2 = unit(phi_h + self.spec.gamma0_deg.to_radians());
-        (
-            [a * e1[0], a * e1[1]],
-            [a * (e1[0] + e2[0]), a * (e1[1] + e2[1])],
-        )
-    }
-
     /// Centre distance `a` shared by both meshes (mm).
     pub fn centre_distance(&self) -> f64 {
         self.centre_distance
@@ -423,7 +410,6 @@ impl Kinematics {
         let beta0 = spec.beta0_deg.to_radians();
         let s = spec.arm_length_mm;
         let a = self.centre_distance;
-        let (o2, o3) = self.centres(theta);
         let theta3 = spec.sun_angle() + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
         let (g_t, dg_t) = self.ratio_at(theta);
         let (g_s, dg_s) = self.ratio_at(ts);
@@ -433,6 +419,8 @@ impl Kinematics {
         let th2 = -sigma * ts2;
         let phi_h = spec.phi0_deg.to_radians() + sigma * theta;
         let (e1, e2) = (unit(phi_h), unit(phi_h + gamma0));
+        let o2 = [a * e1[0], a * e1[1]];
+        let o3 = [a * (e1[0] + e2[0]), a * (e1[1] + e2[1])];
         let u = unit(theta3 + beta0);
         let tip = [o3[0] + s * u[0], o3[1] + s * u[1]];
         // O3' = σ a (e1⊥ + e2⊥), O3'' = −a (e1 + e2); u' = θ3' u⊥.

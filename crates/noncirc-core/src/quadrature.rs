@@ -108,34 +108,42 @@ impl SpectralIntegrator {
     }
 }
 
-/// Quintic Hermite interpolation on one cell from values, first and second derivatives
-/// at both ends; `s` in [0, 1] is the position in the cell, `h` its width.
-/// Returns the value and the first derivative (per unit of the abscissa).
-#[inline]
-pub fn quintic_hermite(y: [f64; 2], d1: [f64; 2], d2: [f64; 2], h: f64, s: f64) -> (f64, f64) {
-    let (s2, s3) = (s * s, s * s * s);
-    let (s4, s5) = (s3 * s, s3 * s2);
-    let h00 = 1.0 - 10.0 * s3 + 15.0 * s4 - 6.0 * s5;
-    let h10 = s - 6.0 * s3 + 8.0 * s4 - 3.0 * s5;
-    let h20 = 0.5 * (s2 - 3.0 * s3 + 3.0 * s4 - s5);
-    let h01 = 10.0 * s3 - 15.0 * s4 + 6.0 * s5;
-    let h11 = -4.0 * s3 + 7.0 * s4 - 3.0 * s5;
-    let h21 = 0.5 * (s3 - 2.0 * s4 + s5);
-    let dh00 = -30.0 * s2 + 60.0 * s3 - 30.0 * s4;
-    let dh10 = 1.0 - 18.0 * s2 + 32.0 * s3 - 15.0 * s4;
-    let dh20 = 0.5 * (2.0 * s - 9.0 * s2 + 12.0 * s3 - 5.0 * s4);
-    let dh01 = 30.0 * s2 - 60.0 * s3 + 30.0 * s4;
-    let dh11 = -12.0 * s2 + 28.0 * s3 - 15.0 * s4;
-    let dh21 = 0.5 * (3.0 * s2 - 8.0 * s3 + 5.0 * s4);
-    let value = h00 * y[0]
-        + h * (h10 * d1[0] + h11 * d1[1])
-        + h * h * (h20 * d2[0] + h21 * d2[1])
-        + h01 * y[1];
-    let slope = (dh00 * y[0] + dh01 * y[1]) / h
-        + dh10 * d1[0]
-        + dh11 * d1[1]
-        + h * (dh20 * d2[0] + dh21 * d2[1]);
-    (value, slope)
+/// The quintic Hermite interpolant on one cell of width `h`, from values, first and second
+/// derivatives at both ends, as a polynomial in the cell position `s ∈ [0, 1]`: built once,
+/// evaluated by Horner's rule.
+#[derive(Debug, Clone, Copy)]
+pub struct QuinticCell {
+    /// Coefficients of `s⁰..s⁵`.
+    c: [f64; 6],
+    h: f64,
+}
+
+impl QuinticCell {
+    #[inline]
+    pub fn new(y: [f64; 2], d1: [f64; 2], d2: [f64; 2], h: f64) -> Self {
+        let (rise, p0, p1) = (y[1] - y[0], h * d1[0], h * d1[1]);
+        let (q0, q1) = (0.5 * h * h * d2[0], 0.5 * h * h * d2[1]);
+        Self {
+            c: [
+                y[0],
+                p0,
+                q0,
+                10.0 * rise - 6.0 * p0 - 4.0 * p1 - 3.0 * q0 + q1,
+                -15.0 * rise + 8.0 * p0 + 7.0 * p1 + 3.0 * q0 - 2.0 * q1,
+                6.0 * rise - 3.0 * p0 - 3.0 * p1 - q0 + q1,
+            ],
+            h,
+        }
+    }
+
+    /// The value and its derivative per unit of the abscissa at cell position `s`.
+    #[inline]
+    pub fn eval(&self, s: f64) -> (f64, f64) {
+        let c = &self.c;
+        let value = c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * (c[4] + s * c[5]))));
+        let slope = c[1] + s * (2.0 * c[2] + s * (3.0 * c[3] + s * (4.0 * c[4] + s * 5.0 * c[5])));
+        (value, slope / self.h)
+    }
 }
 
 /// Starting point in `s ∈ [0, 1]` for inverting one monotone cell at `target`: the cubic
@@ -200,7 +208,7 @@ impl MonotoneDrift<'_> {
         let rest = u - turns * std::f64::consts::TAU;
         let j = ((rest / h) as usize).min(n - 1);
         let (y, d1, d2) = self.cell(j);
-        let (v, s) = quintic_hermite(y, d1, d2, h, (rest - j as f64 * h) / h);
+        let (v, s) = QuinticCell::new(y, d1, d2, h).eval((rest - j as f64 * h) / h);
         (v + turns * self.period_increment, s)
     }
 
@@ -247,10 +255,11 @@ impl MonotoneDrift<'_> {
         // (1e-13 rad, far below the interpolation's own error).
         let (mut lo, mut hi) = (0.0, 1.0);
         let mut s = inverse_hermite_guess(y, d1, h, rest);
+        let quintic = QuinticCell::new(y, d1, d2, h);
         let tolerance = 1e-13 * (rest.abs() + 1.0);
         let curvature_bound = 2.0 * (d2[0].abs().max(d2[1].abs()) + (d1[1] - d1[0]).abs() / h);
         for _ in 0..60 {
-            let (v, slope) = quintic_hermite(y, d1, d2, h, s);
+            let (v, slope) = quintic.eval(s);
             let f = v - rest;
             if f.abs() <= tolerance {
                 break;
@@ -322,7 +331,25 @@ mod tests {
     }
 
     #[test]
-    fn quintic_hermite_reproduces_quintics_and_inverse_round_trips() {
+    fn quintic_cell_reproduces_quintics() {
+        let p = |u: f64| {
+            0.3 - 1.2 * u + 0.7 * u.powi(2) + 2.0 * u.powi(3) - 0.9 * u.powi(4) + 0.4 * u.powi(5)
+        };
+        let dp = |u: f64| -1.2 + 1.4 * u + 6.0 * u.powi(2) - 3.6 * u.powi(3) + 2.0 * u.powi(4);
+        let ddp = |u: f64| 1.4 + 12.0 * u - 10.8 * u.powi(2) + 8.0 * u.powi(3);
+        let (u0, h) = (0.4, 0.7);
+        let u1 = u0 + h;
+        let cell = QuinticCell::new([p(u0), p(u1)], [dp(u0), dp(u1)], [ddp(u0), ddp(u1)], h);
+        for k in 0..=10 {
+            let s = k as f64 / 10.0;
+            let (v, slope) = cell.eval(s);
+            assert!((v - p(u0 + s * h)).abs() < 1e-13, "{s}");
+            assert!((slope - dp(u0 + s * h)).abs() < 1e-12, "{s}");
+        }
+    }
+
+    #[test]
+    fn monotone_drift_interpolates_and_inverse_round_trips() {
         // F(u) = u + 0.3 sin u: monotone, drift 1.
         let n = 48;
         let h = TAU / n as f64;
