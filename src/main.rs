@@ -48,7 +48,7 @@ struct SceneArgs {
 struct OptimiseArgs {
     #[command(flatten)]
     scene: SceneArgs,
-    /// Algorithm: guided, de, cmaes or nsga2 (default: the scene's, `de`).
+    /// Algorithm: guided, de, cmaes, nsga2 or nsga3 (default: the scene's, `de`).
     #[arg(long)]
     algorithm: Option<String>,
     /// Evaluation budget (default: the scene's).
@@ -166,7 +166,7 @@ fn optimise(args: OptimiseArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let algorithm = Algorithm::parse(&scene.search.algorithm).ok_or_else(|| {
         format!(
-            "unknown algorithm '{}': use guided, de, cmaes or nsga2",
+            "unknown algorithm '{}': use guided, de, cmaes, nsga2 or nsga3",
             scene.search.algorithm
         )
     })?;

@@ -124,7 +124,13 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<Outcome, BoxError> {
         }
         None => {
             let problem = SceneProblem::new(scene)?;
-            let state = SearchState::new(opts.algorithm, problem.dim(), opts.population, opts.seed);
+            let state = SearchState::new(
+                opts.algorithm,
+                problem.dim(),
+                problem.goals(),
+                opts.population,
+                opts.seed,
+            );
             (scene.clone(), opts.budget, state)
         }
     };

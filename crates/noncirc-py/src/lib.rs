@@ -405,7 +405,7 @@ fn optimise<'py>(
     let name = s.search.algorithm.clone();
     let algorithm = Algorithm::parse(&name).ok_or_else(|| {
         err(format!(
-            "unknown algorithm '{name}': use guided, de, cmaes or nsga2"
+            "unknown algorithm '{name}': use guided, de, cmaes, nsga2 or nsga3"
         ))
     })?;
     let opts = noncirc::search::RunOptions {

@@ -7,14 +7,14 @@
 mod cmaes;
 mod de;
 mod guided;
-mod nsga2;
+mod nsga;
 pub mod problem;
 mod rng;
 
 pub use cmaes::Cmaes;
 pub use de::DifferentialEvolution;
 pub use guided::ParameterGuided;
-pub use nsga2::{non_dominated_fronts, Nsga2};
+pub use nsga::{das_dennis, non_dominated_fronts, Nsga, Survival};
 pub use rng::Rng;
 
 use serde::{Deserialize, Serialize};
@@ -106,16 +106,19 @@ pub enum Algorithm {
     Cmaes,
     /// NSGA-II with constraint domination.
     Nsga2,
+    /// NSGA-III with constraint domination, for more than three goals.
+    Nsga3,
 }
 
 impl Algorithm {
-    /// Parses a name: `guided`, `de`, `cmaes`, `nsga2`.
+    /// Parses a name: `guided`, `de`, `cmaes`, `nsga2`, `nsga3`.
     pub fn parse(name: &str) -> Option<Self> {
         match name {
             "guided" | "parameter-guided" => Some(Algorithm::Guided),
             "de" => Some(Algorithm::De),
             "cmaes" | "cma-es" => Some(Algorithm::Cmaes),
             "nsga2" | "nsga-ii" => Some(Algorithm::Nsga2),
+            "nsga3" | "nsga-iii" => Some(Algorithm::Nsga3),
             _ => None,
         }
     }
@@ -126,6 +129,7 @@ impl Algorithm {
             Algorithm::De => "de",
             Algorithm::Cmaes => "cmaes",
             Algorithm::Nsga2 => "nsga2",
+            Algorithm::Nsga3 => "nsga3",
         }
     }
 }
@@ -136,18 +140,26 @@ pub enum Solver {
     Guided(ParameterGuided),
     De(DifferentialEvolution),
     Cmaes(Cmaes),
-    Nsga2(Nsga2),
+    Nsga2(Nsga),
+    Nsga3(Nsga),
 }
 
 impl Solver {
-    /// A fresh solver for `dim` parameters.
-    pub fn new(algorithm: Algorithm, dim: usize, population: usize, seed: u64) -> Self {
+    /// A fresh solver for `dim` parameters and `goals` goals.
+    pub fn new(
+        algorithm: Algorithm,
+        dim: usize,
+        goals: usize,
+        population: usize,
+        seed: u64,
+    ) -> Self {
         let rng = Rng::new(seed);
         match algorithm {
             Algorithm::Guided => Solver::Guided(ParameterGuided::new(dim, rng)),
             Algorithm::De => Solver::De(DifferentialEvolution::new(dim, population, rng)),
             Algorithm::Cmaes => Solver::Cmaes(Cmaes::new(dim, population, rng)),
-            Algorithm::Nsga2 => Solver::Nsga2(Nsga2::new(dim, population, rng)),
+            Algorithm::Nsga2 => Solver::Nsga2(Nsga::nsga2(dim, population, rng)),
+            Algorithm::Nsga3 => Solver::Nsga3(Nsga::nsga3(dim, population, goals, rng)),
         }
     }
 
@@ -157,14 +169,14 @@ impl Solver {
             Solver::Guided(s) => s.step(eval),
             Solver::De(s) => s.step(eval),
             Solver::Cmaes(s) => s.step(eval),
-            Solver::Nsga2(s) => s.step(eval),
+            Solver::Nsga2(s) | Solver::Nsga3(s) => s.step(eval),
         }
     }
 
     /// The current non-dominated feasible set (multi-objective solvers), if any.
     pub fn front(&self) -> Vec<Candidate> {
         match self {
-            Solver::Nsga2(s) => s.front(),
+            Solver::Nsga2(s) | Solver::Nsga3(s) => s.front(),
             _ => Vec::new(),
         }
     }
@@ -200,10 +212,16 @@ pub struct SearchState {
 }
 
 impl SearchState {
-    pub fn new(algorithm: Algorithm, dim: usize, population: usize, seed: u64) -> Self {
+    pub fn new(
+        algorithm: Algorithm,
+        dim: usize,
+        goals: usize,
+        population: usize,
+        seed: u64,
+    ) -> Self {
         Self {
             algorithm,
-            solver: Solver::new(algorithm, dim, population, seed),
+            solver: Solver::new(algorithm, dim, goals, population, seed),
             generation: 0,
             evaluations: 0,
             confirmations: 0,
