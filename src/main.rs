@@ -31,7 +31,8 @@ enum Format {
 /// Options shared by every command that reads a scene.
 #[derive(clap::Args)]
 struct SceneArgs {
-    /// Scene file (TOML or JSON) or built-in scene name; default: the three-arm paper's design.
+    /// Scene file (TOML or JSON) or built-in scene name (`noncirc scenes`); default: the
+    /// command's own (see its description; the three-arm paper's design for most).
     scene: Option<String>,
     /// Override any scene parameter, e.g. `--set resolution.samples_per_turn=720`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
