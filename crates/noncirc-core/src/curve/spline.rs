@@ -244,13 +244,21 @@ fn solve_tridiagonal(sub: &[f64], diag: &[f64], sup: &[f64], rhs: &[f64]) -> Vec
 mod tests {
     use super::*;
 
-    #[test]
-    fn uniform_sampling_matches_pointwise_evaluation() {
+    const RADII: [f64; 5] = [30.0, 45.0, 25.0, 40.0, 35.0];
+
+    /// A five-point spline: its knot angles (rad) and the spline.
+    fn five_point_spline() -> (Vec<f64>, PeriodicSpline) {
         let psi: Vec<f64> = [10.0f64, 80.0, 150.0, 200.0, 300.0]
             .iter()
             .map(|d| d.to_radians())
             .collect();
-        let s = PeriodicSpline::new("spline", &psi, &[30.0, 45.0, 25.0, 40.0, 35.0]).unwrap();
+        let spline = PeriodicSpline::new("spline", &psi, &RADII).unwrap();
+        (psi, spline)
+    }
+
+    #[test]
+    fn uniform_sampling_matches_pointwise_evaluation() {
+        let (psi, s) = five_point_spline();
         // Both senses, starts outside [0, 2π) and before the first knot, several turns.
         for (start, step, n) in [
             (0.0, TAU / 120.0, 120),
@@ -271,13 +279,8 @@ mod tests {
 
     #[test]
     fn interpolates_and_is_c2_periodic() {
-        let psi: Vec<f64> = [10.0f64, 80.0, 150.0, 200.0, 300.0]
-            .iter()
-            .map(|d| d.to_radians())
-            .collect();
-        let rho = [30.0, 45.0, 25.0, 40.0, 35.0];
-        let s = PeriodicSpline::new("spline", &psi, &rho).unwrap();
-        for (p, r) in psi.iter().zip(&rho) {
+        let (psi, s) = five_point_spline();
+        for (p, r) in psi.iter().zip(&RADII) {
             assert!((s.eval(*p).rho - r).abs() < 1e-12);
             assert!((s.eval(*p + TAU).rho - r).abs() < 1e-11);
         }
