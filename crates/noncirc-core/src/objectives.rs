@@ -271,7 +271,8 @@ fn refine_extreme(kin: &Kinematics, dir: [f64; 2], j: usize, max: bool) -> (ArmS
     let dot = |v: [f64; 2]| v[0] * dir[0] + v[1] * dir[1];
     let start = kin.theta(j);
     let mut t = start;
-    let mut state = kin.state_at(t);
+    let at_node = kin.state_at(t);
+    let mut state = at_node;
     for _ in 0..20 {
         let (d1, d2) = (dot(state.tip_d1), dot(state.tip_d2));
         if (max && d2 >= 0.0) || (!max && d2 <= 0.0) {
@@ -296,7 +297,7 @@ fn refine_extreme(kin: &Kinematics, dir: [f64; 2], j: usize, max: bool) -> (ArmS
     if better && (t - start).abs() <= 1.5 * h {
         (state, refined)
     } else {
-        (kin.state_at(start), node_value)
+        (at_node, node_value)
     }
 }
 

@@ -372,12 +372,12 @@ impl Kinematics {
         &self.theta3
     }
 
-    /// Node index of arm `k` (0, 1, 2) at node `j < len()` of the carrier: arm k lags arm I
-    /// by k·120°.
+    /// Node index of arm `k` (0, 1, 2) at node `j` of the carrier: arm k lags arm I by k·120°.
     pub fn arm_node(&self, k: usize, j: usize) -> usize {
         let n = self.len();
         let lag = (k % 3) * n / 3;
-        debug_assert!(j < n, "node {j} of {n}");
+        // No integer division on the usual path (`j < n`): this runs at every node.
+        let j = if j < n { j } else { j % n };
         if j >= lag {
             j - lag
         } else {
