@@ -416,18 +416,6 @@ impl Segment {
     }
 }
 
-/// Distance between segments `p0→p1` and `q0→q1` (mm).
-pub fn segment_distance(p0: [f64; 2], p1: [f64; 2], q0: [f64; 2], q1: [f64; 2]) -> f64 {
-    Segment::new(p0, p1)
-        .distance_sq_to(&Segment::new(q0, q1))
-        .sqrt()
-}
-
-/// Distance from `p` to segment `a→b` (mm).
-pub fn point_segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    Segment::new(a, b).distance_sq(p).sqrt()
-}
-
 /// Objective 1: least clearance between arm capsules and against the other planets' gear
 /// envelopes (circles of the sun's largest radius) over the cycle (mm). By the train's
 /// three-fold symmetry, arm I against arm II and planets II, III covers every pair.
@@ -603,14 +591,18 @@ mod tests {
 
     #[test]
     fn segment_distances() {
+        let between = |p0, p1, q0, q1| {
+            Segment::new(p0, p1)
+                .distance_sq_to(&Segment::new(q0, q1))
+                .sqrt()
+        };
         assert_eq!(
-            segment_distance([0.0, 0.0], [2.0, 0.0], [1.0, -1.0], [1.0, 1.0]),
+            between([0.0, 0.0], [2.0, 0.0], [1.0, -1.0], [1.0, 1.0]),
             0.0
         );
-        assert!(
-            (segment_distance([0.0, 0.0], [1.0, 0.0], [0.0, 2.0], [1.0, 2.0]) - 2.0).abs() < 1e-15
-        );
-        assert!((point_segment_distance([3.0, 4.0], [0.0, 0.0], [0.0, 0.0]) - 5.0).abs() < 1e-15);
+        assert!((between([0.0, 0.0], [1.0, 0.0], [0.0, 2.0], [1.0, 2.0]) - 2.0).abs() < 1e-15);
+        let degenerate = Segment::new([0.0, 0.0], [0.0, 0.0]);
+        assert!((degenerate.distance_sq([3.0, 4.0]).sqrt() - 5.0).abs() < 1e-15);
     }
 
     #[test]
