@@ -139,10 +139,17 @@ impl QuinticCell {
     /// The value and its derivative per unit of the abscissa at cell position `s`.
     #[inline]
     pub fn eval(&self, s: f64) -> (f64, f64) {
+        let (value, per_cell) = self.eval_in_cell(s);
+        (value, per_cell / self.h)
+    }
+
+    /// The value and its derivative in `s` (per cell width) at cell position `s`.
+    #[inline]
+    fn eval_in_cell(&self, s: f64) -> (f64, f64) {
         let c = &self.c;
         let value = c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * (c[4] + s * c[5]))));
         let slope = c[1] + s * (2.0 * c[2] + s * (3.0 * c[3] + s * (4.0 * c[4] + s * 5.0 * c[5])));
-        (value, slope / self.h)
+        (value, slope)
     }
 }
 
@@ -259,7 +266,7 @@ impl MonotoneDrift<'_> {
         let tolerance = 1e-13 * (rest.abs() + 1.0);
         let curvature_bound = 2.0 * (d2[0].abs().max(d2[1].abs()) + (d1[1] - d1[0]).abs() / h);
         for _ in 0..60 {
-            let (v, slope) = quintic.eval(s);
+            let (v, slope_in_cell) = quintic.eval_in_cell(s);
             let f = v - rest;
             if f.abs() <= tolerance {
                 break;
@@ -269,7 +276,7 @@ impl MonotoneDrift<'_> {
             } else {
                 lo = s;
             }
-            let newton = s - f / (slope * h);
+            let newton = s - f / slope_in_cell;
             let is_newton = newton > lo && newton < hi && newton.is_finite();
             let next = if is_newton { newton } else { 0.5 * (lo + hi) };
             let du = (next - s) * h;
