@@ -4,7 +4,7 @@
 use crate::curve::{PitchCurve, Polar, TAU};
 use crate::error::{finite, length, positive, Error, Result};
 use crate::gear::solve_closure;
-use crate::quadrature::{MonotoneDrift, SpectralIntegrator};
+use crate::quadrature::{DriftInverse, MonotoneDrift, SpectralIntegrator};
 use crate::resolution::Resolution;
 use serde::{Deserialize, Serialize};
 
@@ -187,6 +187,9 @@ pub struct Kinematics {
     big_phi: Vec<f64>,
     g: Vec<f64>,
     dg: Vec<f64>,
+    /// `(Φ⁻¹)' = 1/g̃` and `(Φ⁻¹)'' = −g̃'/g̃³` at the nodes.
+    inv_d1: Vec<f64>,
+    inv_d2: Vec<f64>,
     /// Exact (or refined) least and largest sun radius (mm).
     radius_range: (f64, f64),
     /// Mesh delay of the intermediate between its two meshes (rad).
@@ -241,6 +244,11 @@ impl Kinematics {
             .iter()
             .map(|p| sigma * a * p.d1 / ((a - p.rho) * (a - p.rho)))
             .collect();
+        let (inv_d1, inv_d2) = g
+            .iter()
+            .zip(&dg)
+            .map(|(&g, &dg)| DriftInverse::node_derivatives(g, dg))
+            .unzip();
         let mut big_phi = vec![0.0; n];
         if integrator.len() != n {
             *integrator = SpectralIntegrator::new(n);
@@ -259,6 +267,8 @@ impl Kinematics {
             big_phi,
             g,
             dg,
+            inv_d1,
+            inv_d2,
             radius_range: (rmin, rmax),
             delay,
             phi_period,
@@ -280,7 +290,7 @@ impl Kinematics {
         };
         for j in 0..n {
             let theta = h * j as f64;
-            let (ts, cell) = kin.phi_fn().invert(kin.big_phi[j] - delay, hint);
+            let (ts, cell) = kin.phi_inverse().eval(kin.big_phi[j] - delay, hint);
             hint = cell;
             kin.theta_s[j] = ts;
             let o3 = [a * (e1[0] + e2[0]), a * (e1[1] + e2[1])];
@@ -304,6 +314,15 @@ impl Kinematics {
             d1: &self.g,
             d2: &self.dg,
             period_increment: self.phi_period,
+        }
+    }
+
+    /// `Φ⁻¹`, interpolated from the same nodes.
+    fn phi_inverse(&self) -> DriftInverse<'_> {
+        DriftInverse {
+            forward: self.phi_fn(),
+            d1: &self.inv_d1,
+            d2: &self.inv_d2,
         }
     }
 
@@ -398,14 +417,13 @@ impl Kinematics {
     pub fn state_at(&self, theta: f64) -> ArmState {
         let spec = &self.spec;
         let sigma = self.sigma;
-        let phi = self.phi_fn();
-        let (big_phi, _) = phi.eval(theta);
+        let (big_phi, _) = self.phi_fn().eval(theta);
         // Start the cell search where node ⌊θ/h⌋'s own θ_s lies: O(1) instead of O(N).
         let n = self.len();
         let h = TAU / n as f64;
         let node = (theta.rem_euclid(TAU) / h) as usize % n;
         let hint = (self.theta_s[node].rem_euclid(TAU) / h) as usize % n;
-        let (ts, _) = phi.invert(big_phi - self.delay, hint);
+        let (ts, _) = self.phi_inverse().eval(big_phi - self.delay, hint);
         let gamma0 = spec.gamma0_deg.to_radians();
         let beta0 = spec.beta0_deg.to_radians();
         let s = spec.arm_length_mm;

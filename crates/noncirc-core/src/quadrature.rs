@@ -153,24 +153,6 @@ impl QuinticCell {
     }
 }
 
-/// Starting point in `s ∈ [0, 1]` for inverting one monotone cell at `target`: the cubic
-/// Hermite interpolant of the inverse function, whose end slopes are `1/F'`. Its error is
-/// O(h⁴), so one Newton step from it reaches rounding level.
-#[inline]
-fn inverse_hermite_guess(y: [f64; 2], d1: [f64; 2], h: f64, target: f64) -> f64 {
-    let rise = y[1] - y[0];
-    let t = ((target - y[0]) / rise).clamp(0.0, 1.0);
-    // Slopes of s(t), the inverse in cell units: ds/dt = rise / (h F').
-    let (m0, m1) = (rise / (h * d1[0]), rise / (h * d1[1]));
-    let (t2, t3) = (t * t, t * t * t);
-    let s = (t3 - 2.0 * t2 + t) * m0 + (3.0 * t2 - 2.0 * t3) + (t3 - t2) * m1;
-    if s.is_finite() {
-        s.clamp(0.0, 1.0)
-    } else {
-        t
-    }
-}
-
 /// A strictly increasing function with periodic derivative (`F(u + 2π) = F(u) + drift·2π`),
 /// known at uniform nodes with its first two derivatives: interpolated by quintic Hermite
 /// cells, evaluated and inverted at any real argument.
@@ -218,13 +200,37 @@ impl MonotoneDrift<'_> {
         let (v, s) = QuinticCell::new(y, d1, d2, h).eval((rest - j as f64 * h) / h);
         (v + turns * self.period_increment, s)
     }
+}
+
+/// The inverse `F⁻¹` of a [`MonotoneDrift`], interpolated directly rather than solved for:
+/// quintic Hermite cells on the non-uniform abscissae `[F(u_j), F(u_{j+1})]`, from
+/// `(F⁻¹)' = 1/F'` and `(F⁻¹)'' = −F''/F'³` at the nodes. No Newton iteration; its error is
+/// O(h⁶), the same order as the forward interpolant's.
+#[derive(Debug, Clone, Copy)]
+pub struct DriftInverse<'a> {
+    /// The function being inverted (its node values are the inverse's abscissae).
+    pub forward: MonotoneDrift<'a>,
+    /// `1/F'(u_j)`.
+    pub d1: &'a [f64],
+    /// `−F''(u_j)/F'(u_j)³`.
+    pub d2: &'a [f64],
+}
+
+impl DriftInverse<'_> {
+    /// The inverse's node derivatives `(1/F', −F''/F'³)` from the forward ones.
+    #[inline]
+    pub fn node_derivatives(d1: f64, d2: f64) -> (f64, f64) {
+        let r = 1.0 / d1;
+        (r, -d2 * r * r * r)
+    }
 
     /// The `u` with `F(u) = target`, starting the cell search at `hint` (a node index);
     /// returns `(u, cell)` so that sorted targets cost O(1) each.
-    pub fn invert(&self, target: f64, hint: usize) -> (f64, usize) {
-        let n = self.value.len();
-        let h = self.h();
-        let (first, period) = (self.value[0], self.period_increment);
+    pub fn eval(&self, target: f64, hint: usize) -> (f64, usize) {
+        let f = &self.forward;
+        let n = f.value.len();
+        let h = f.h();
+        let (first, period) = (f.value[0], f.period_increment);
         let (turns, rest) = if target >= first && target < first + period {
             (0.0, target)
         } else {
@@ -237,12 +243,12 @@ impl MonotoneDrift<'_> {
             if j + 1 == n {
                 first + period
             } else {
-                self.value[j + 1]
+                f.value[j + 1]
             }
         };
         let mut steps = 0;
-        while steps < 2 * n && !(self.value[j] <= rest && rest < upper(j)) {
-            j = if rest < self.value[j] {
+        while steps < 2 * n && !(f.value[j] <= rest && rest < upper(j)) {
+            j = if rest < f.value[j] {
                 if j == 0 {
                     n - 1
                 } else {
@@ -255,37 +261,17 @@ impl MonotoneDrift<'_> {
             };
             steps += 1;
         }
-        let (y, d1, d2) = self.cell(j);
-        // Safeguarded Newton in s ∈ [0, 1] from the O(h⁴) inverse-Hermite guess. It stops
-        // on the residual, or once the quadratic convergence bound `|F''|/2 · Δu²` (with a
-        // safety factor 4 on the nodes' |F''|) puts the next residual below the tolerance
-        // (1e-13 rad, far below the interpolation's own error).
-        let (mut lo, mut hi) = (0.0, 1.0);
-        let mut s = inverse_hermite_guess(y, d1, h, rest);
-        let quintic = QuinticCell::new(y, d1, d2, h);
-        let tolerance = 1e-13 * (rest.abs() + 1.0);
-        let curvature_bound = 2.0 * (d2[0].abs().max(d2[1].abs()) + (d1[1] - d1[0]).abs() / h);
-        for _ in 0..60 {
-            let (v, slope_in_cell) = quintic.eval_in_cell(s);
-            let f = v - rest;
-            if f.abs() <= tolerance {
-                break;
-            }
-            if f > 0.0 {
-                hi = s;
-            } else {
-                lo = s;
-            }
-            let newton = s - f / slope_in_cell;
-            let is_newton = newton > lo && newton < hi && newton.is_finite();
-            let next = if is_newton { newton } else { 0.5 * (lo + hi) };
-            let du = (next - s) * h;
-            s = next;
-            if du.abs() < 1e-15 * h || (is_newton && curvature_bound * du * du <= tolerance) {
-                break;
-            }
-        }
-        (turns * std::f64::consts::TAU + (j as f64 + s) * h, j)
+        let j1 = if j + 1 == n { 0 } else { j + 1 };
+        let (y0, y1) = (f.value[j], upper(j));
+        let width = y1 - y0;
+        let s = ((rest - y0) / width).clamp(0.0, 1.0);
+        let cell = QuinticCell::new(
+            [j as f64 * h, (j + 1) as f64 * h],
+            [self.d1[j], self.d1[j1]],
+            [self.d2[j], self.d2[j1]],
+            width,
+        );
+        (turns * std::f64::consts::TAU + cell.eval_in_cell(s).0, j)
     }
 }
 
@@ -315,29 +301,6 @@ mod tests {
     }
 
     #[test]
-    fn inverse_guess_converges_at_fourth_order() {
-        // F(u) = u + 0.4 sin u; the guess's worst error in u over all cells, at n and 2n.
-        let worst = |n: usize| {
-            let h = TAU / n as f64;
-            let f = |u: f64| u + 0.4 * u.sin();
-            let df = |u: f64| 1.0 + 0.4 * u.cos();
-            let mut worst = 0.0f64;
-            for j in 0..n {
-                let (u0, u1) = (j as f64 * h, (j + 1) as f64 * h);
-                for k in 1..10 {
-                    let u = u0 + h * k as f64 / 10.0;
-                    let s = inverse_hermite_guess([f(u0), f(u1)], [df(u0), df(u1)], h, f(u));
-                    worst = worst.max((u0 + s * h - u).abs());
-                }
-            }
-            worst
-        };
-        let (coarse, fine) = (worst(24), worst(48));
-        let order = (coarse / fine).log2();
-        assert!(order > 3.7, "order {order} ({coarse:e} -> {fine:e})");
-    }
-
-    #[test]
     fn quintic_cell_reproduces_quintics() {
         let p = |u: f64| {
             0.3 - 1.2 * u + 0.7 * u.powi(2) + 2.0 * u.powi(3) - 0.9 * u.powi(4) + 0.4 * u.powi(5)
@@ -355,29 +318,80 @@ mod tests {
         }
     }
 
+    /// Node data of `F(u) = u + c sin u` (monotone for |c| < 1, drift 1) at `n` nodes, with
+    /// the inverse's node derivatives.
+    fn sine_drift(n: usize, c: f64) -> [Vec<f64>; 5] {
+        let u = |j: usize| TAU * j as f64 / n as f64;
+        let v = (0..n).map(|j| u(j) + c * u(j).sin()).collect();
+        let d1: Vec<f64> = (0..n).map(|j| 1.0 + c * u(j).cos()).collect();
+        let d2: Vec<f64> = (0..n).map(|j| -c * u(j).sin()).collect();
+        let (i1, i2) = d1
+            .iter()
+            .zip(&d2)
+            .map(|(&a, &b)| DriftInverse::node_derivatives(a, b))
+            .unzip();
+        [v, d1, d2, i1, i2]
+    }
+
     #[test]
     fn monotone_drift_interpolates_and_inverse_round_trips() {
-        // F(u) = u + 0.3 sin u: monotone, drift 1.
-        let n = 48;
-        let h = TAU / n as f64;
-        let v: Vec<f64> = (0..n)
-            .map(|j| j as f64 * h + 0.3 * (j as f64 * h).sin())
-            .collect();
-        let d1: Vec<f64> = (0..n).map(|j| 1.0 + 0.3 * (j as f64 * h).cos()).collect();
-        let d2: Vec<f64> = (0..n).map(|j| -0.3 * (j as f64 * h).sin()).collect();
-        let f = MonotoneDrift {
+        let c = 0.3;
+        let [v, d1, d2, i1, i2] = sine_drift(48, c);
+        let forward = MonotoneDrift {
             value: &v,
             d1: &d1,
             d2: &d2,
             period_increment: TAU,
         };
+        let inverse = DriftInverse {
+            forward,
+            d1: &i1,
+            d2: &i2,
+        };
         for k in -30..90 {
             let u = 0.173 * k as f64;
-            let (val, slope) = f.eval(u);
-            assert!((val - (u + 0.3 * u.sin())).abs() < 1e-8);
-            assert!((slope - (1.0 + 0.3 * u.cos())).abs() < 1e-6);
-            let (back, _) = f.invert(val, 0);
-            assert!((back - u).abs() < 1e-12, "{u} -> {back}");
+            let (val, slope) = forward.eval(u);
+            assert!((val - (u + c * u.sin())).abs() < 1e-8);
+            assert!((slope - (1.0 + c * u.cos())).abs() < 1e-6);
+            let (back, _) = inverse.eval(u + c * u.sin(), 0);
+            assert!((back - u).abs() < 1e-8, "{u} -> {back}");
         }
+        // At the nodes the inverse is exact, from any hint.
+        for (j, &y) in v.iter().enumerate() {
+            let (back, cell) = inverse.eval(y, (j * 7) % v.len());
+            assert_eq!(cell, j);
+            assert!((back - TAU * j as f64 / 48.0).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn inverse_converges_at_sixth_order() {
+        // Worst error of F⁻¹ over many targets, at n and 2n nodes, for a strongly varying F.
+        let c = 0.8;
+        let worst = |n: usize| {
+            let [v, d1, d2, i1, i2] = sine_drift(n, c);
+            let inverse = DriftInverse {
+                forward: MonotoneDrift {
+                    value: &v,
+                    d1: &d1,
+                    d2: &d2,
+                    period_increment: TAU,
+                },
+                d1: &i1,
+                d2: &i2,
+            };
+            (0..997)
+                .map(|k| {
+                    let u = -1.0 + 0.0137 * k as f64;
+                    (inverse.eval(u + c * u.sin(), 0).0 - u).abs()
+                })
+                .fold(0.0, f64::max)
+        };
+        let (coarse, fine) = (worst(64), worst(128));
+        let order = (coarse / fine).log2();
+        assert!(
+            order > 5.5 && fine < 1e-8,
+            "order {order} ({coarse:e} -> {fine:e})"
+        );
     }
 }
