@@ -1,10 +1,11 @@
 //! Figures (SVG and PNG, plotters) and the animation (GIF). Text uses DejaVu Sans, embedded
 //! in the binary, so rendering needs no system font or package.
 
+use noncirc_core::angle::unit;
 use noncirc_core::curve::PitchCurve;
 use noncirc_core::moving_box::{box_curves, BoxReport, BoxSpec};
 use noncirc_core::objectives::{Events, Travel};
-use noncirc_core::planetary::{unit, Kinematics};
+use noncirc_core::planetary::Kinematics;
 use noncirc_core::{Evaluation, GearPair, ObjectiveValue, Scene};
 use plotters::coord::Shift;
 use plotters::prelude::*;

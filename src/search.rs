@@ -417,10 +417,10 @@ pub fn sweep(
         .collect();
     Ok(values
         .par_iter()
-        .map(|&v| {
+        .map_init(Evaluator::new, |ev, &v| {
             let mut s = scene.clone();
             p.set(&mut s, v);
-            match Evaluator::new().evaluate(&s) {
+            match ev.evaluate(&s) {
                 Ok(e) => SweepRow {
                     value: v,
                     objectives: e

@@ -3,8 +3,9 @@
 //! contact point on the line of centres; the curves are tangent there; the material points'
 //! velocities agree. Run for both rotation senses, both sun frames and several designs.
 
+use noncirc::core::angle::unit;
 use noncirc::core::curve::{CurveSpec, PitchCurve};
-use noncirc::core::planetary::{unit, Kinematics, Rotation, SunFrame, TrainSpec};
+use noncirc::core::planetary::{Kinematics, Rotation, SunFrame, TrainSpec};
 use noncirc::core::{GearPair, Resolution};
 use std::f64::consts::{PI, TAU};
 

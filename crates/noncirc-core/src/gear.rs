@@ -147,13 +147,14 @@ pub fn curvature_radius(p: Polar) -> f64 {
 #[inline]
 pub fn conjugate_polar(p: Polar, a: f64) -> Polar {
     let gap = a - p.rho;
-    // dφ2/dψ = ρ/(a-ρ); dρ2/dψ = -ρ'.
-    let q = -p.d1 * gap / p.rho;
-    let dq = -p.d2 * gap / p.rho + p.d1 * p.d1 / p.rho + p.d1 * p.d1 * gap / (p.rho * p.rho);
+    // dφ2/dψ = ρ/(a-ρ); dρ2/dψ = -ρ'. One division: everything is over powers of ρ.
+    let (inv, slope2) = (1.0 / p.rho, p.d1 * p.d1);
+    let q = -p.d1 * gap * inv;
+    let dq = inv * (slope2 * (1.0 + gap * inv) - p.d2 * gap);
     Polar {
         rho: gap,
         d1: q,
-        d2: dq * gap / p.rho,
+        d2: dq * gap * inv,
     }
 }
 
@@ -245,8 +246,9 @@ pub fn curvature(p: Polar) -> f64 {
 /// curvature and its neighbours. One pass, no allocation.
 pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     let n = samples.len();
+    // `j` is at most 2n − 1 here: a subtraction wraps it (no integer division per sample).
     let kappa = |driven: bool, j: usize| {
-        let p = samples[j % n];
+        let p = samples[if j < n { j } else { j - n }];
         curvature(if driven { conjugate_polar(p, a) } else { p })
     };
     let mut convex = f64::INFINITY;

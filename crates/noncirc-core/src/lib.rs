@@ -3,6 +3,7 @@
 //! Units: millimetres and radians inside; degrees only where a person reads or writes.
 
 pub mod accuracy;
+pub mod angle;
 pub mod curve;
 pub mod error;
 pub mod evaluation;

@@ -1,10 +1,11 @@
 //! The eight agronomic objectives of the three-arm paper (spec §3), with value, bounds,
 //! unit and violation, plus the events (picking, planting) they are measured at.
 
+use crate::angle::unit;
 use crate::curve::{parabola_vertex, TAU};
 use crate::error::{finite, length, Result};
 use crate::gear::{curvature_extremes, module_max, perimeter, ModuleReport, ModuleRule};
-use crate::planetary::{unit, ArmState, Kinematics};
+use crate::planetary::{ArmState, Kinematics};
 use serde::{Deserialize, Serialize};
 
 /// Which way the machine travels over the field.

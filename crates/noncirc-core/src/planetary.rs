@@ -1,6 +1,7 @@
 //! The three-arm planetary transplanting mechanism: fixed sun, intermediate (conjugate)
 //! and planet (congruent to the sun) gears on a carrier, an arm on each planet (spec §2).
 
+use crate::angle::unit;
 use crate::curve::{PitchCurve, Polar, TAU};
 use crate::error::{finite, length, positive, Error, Result};
 use crate::gear::solve_closure;
@@ -137,13 +138,6 @@ impl TrainSpec {
     }
 }
 
-/// `(cos x, sin x)`.
-#[inline]
-pub fn unit(x: f64) -> [f64; 2] {
-    let (s, c) = x.sin_cos();
-    [c, s]
-}
-
 /// The state of arm I at one carrier angle: positions (mm), angles (rad) and the tip's
 /// derivatives per radian of carrier angle.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -192,6 +186,8 @@ pub struct Kinematics {
     inv_d2: Vec<f64>,
     /// Exact (or refined) least and largest sun radius (mm).
     radius_range: (f64, f64),
+    /// Pusher-axis direction less the planet orientation (rad): `β0 ± asin(H1/S)`.
+    pusher_turn: f64,
     /// Mesh delay of the intermediate between its two meshes (rad).
     delay: f64,
     /// `Φ(2π) − Φ(0)` (rad; 2π up to the closure error).
@@ -270,6 +266,11 @@ impl Kinematics {
             inv_d1,
             inv_d2,
             radius_range: (rmin, rmax),
+            pusher_turn: spec.beta0_deg.to_radians()
+                + match spec.pusher_side {
+                    PusherSide::Left => 1.0,
+                    PusherSide::Right => -1.0,
+                } * (spec.pusher_offset_mm / spec.arm_length_mm).asin(),
             delay,
             phi_period,
             theta_s: vec![0.0; n],
@@ -404,6 +405,18 @@ impl Kinematics {
         }
     }
 
+    /// The node at or below carrier angle `u` (rad, any real), wrapped into one turn.
+    fn node_below(&self, u: f64) -> usize {
+        let n = self.len();
+        // `rem_euclid` is a library call (fmod): only off the usual range.
+        let u = if (0.0..TAU).contains(&u) {
+            u
+        } else {
+            u.rem_euclid(TAU)
+        };
+        ((u * (n as f64 / TAU)) as usize).min(n - 1)
+    }
+
     /// `g̃(u) = g(psi_start + σu)` and `g̃'(u)` at any carrier angle, from the curve itself.
     fn ratio_at(&self, u: f64) -> (f64, f64) {
         let a = self.centre_distance;
@@ -419,10 +432,7 @@ impl Kinematics {
         let sigma = self.sigma;
         let (big_phi, _) = self.phi_fn().eval(theta);
         // Start the cell search where node ⌊θ/h⌋'s own θ_s lies: O(1) instead of O(N).
-        let n = self.len();
-        let h = TAU / n as f64;
-        let node = (theta.rem_euclid(TAU) / h) as usize % n;
-        let hint = (self.theta_s[node].rem_euclid(TAU) / h) as usize % n;
+        let hint = self.node_below(self.theta_s[self.node_below(theta)]);
         let (ts, _) = self.phi_inverse().eval(big_phi - self.delay, hint);
         let gamma0 = spec.gamma0_deg.to_radians();
         let beta0 = spec.beta0_deg.to_radians();
@@ -468,13 +478,7 @@ impl Kinematics {
 
     /// Pusher-axis direction (rad) for planet orientation `theta3`.
     pub fn pusher_angle(&self, theta3: f64) -> f64 {
-        let spec = &self.spec;
-        let side = match spec.pusher_side {
-            PusherSide::Left => 1.0,
-            PusherSide::Right => -1.0,
-        };
-        let offset = (spec.pusher_offset_mm / spec.arm_length_mm).asin();
-        theta3 + spec.beta0_deg.to_radians() + side * offset
+        theta3 + self.pusher_turn
     }
 
     /// Carrier angular speed (rad/s).

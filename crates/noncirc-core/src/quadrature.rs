@@ -193,7 +193,12 @@ impl MonotoneDrift<'_> {
     pub fn eval(&self, u: f64) -> (f64, f64) {
         let n = self.value.len();
         let h = self.h();
-        let turns = (u / std::f64::consts::TAU).floor();
+        // `floor` is a library call on baseline x86-64: only off the first period.
+        let turns = if (0.0..std::f64::consts::TAU).contains(&u) {
+            0.0
+        } else {
+            (u / std::f64::consts::TAU).floor()
+        };
         let rest = u - turns * std::f64::consts::TAU;
         let j = ((rest / h) as usize).min(n - 1);
         let (y, d1, d2) = self.cell(j);

@@ -47,23 +47,25 @@ impl PeriodicSpline {
                 }
             })
             .collect();
+        // Cyclic neighbours without an integer division each.
+        let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+        let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
         // Second derivatives M from the cyclic tridiagonal system.
-        let sub: Vec<f64> = (0..n).map(|i| h[(i + n - 1) % n]).collect();
-        let diag: Vec<f64> = (0..n).map(|i| 2.0 * (h[(i + n - 1) % n] + h[i])).collect();
+        let sub: Vec<f64> = (0..n).map(|i| h[prev(i)]).collect();
+        let diag: Vec<f64> = (0..n).map(|i| 2.0 * (h[prev(i)] + h[i])).collect();
         let sup: Vec<f64> = h.clone();
         let rhs: Vec<f64> = (0..n)
             .map(|i| {
-                let next = rho[(i + 1) % n];
-                let prev = rho[(i + n - 1) % n];
-                6.0 * ((next - rho[i]) / h[i] - (rho[i] - prev) / h[(i + n - 1) % n])
+                let (up, down) = (rho[next(i)], rho[prev(i)]);
+                6.0 * ((up - rho[i]) / h[i] - (rho[i] - down) / h[prev(i)])
             })
             .collect();
         let m = solve_cyclic_tridiagonal(&sub, &diag, &sup, &rhs);
         let coeffs = (0..n)
             .map(|i| {
-                let (m0, m1, hi) = (m[i], m[(i + 1) % n], h[i]);
+                let (m0, m1, hi) = (m[i], m[next(i)], h[i]);
                 let y0 = rho[i];
-                let y1 = rho[(i + 1) % n];
+                let y1 = rho[next(i)];
                 [
                     y0,
                     (y1 - y0) / hi - hi * (2.0 * m0 + m1) / 6.0,
@@ -89,7 +91,14 @@ impl PeriodicSpline {
     /// Segment index and local offset for `psi` (any real angle).
     #[inline]
     fn locate(&self, psi: f64) -> (usize, f64) {
-        let x = self.knots[0] + (psi - self.knots[0]).rem_euclid(TAU);
+        let offset = psi - self.knots[0];
+        // `rem_euclid` is a library call (fmod): only off the first turn.
+        let x = self.knots[0]
+            + if (0.0..TAU).contains(&offset) {
+                offset
+            } else {
+                offset.rem_euclid(TAU)
+            };
         let i = self.knots.partition_point(|&k| k <= x).saturating_sub(1);
         (i, x - self.knots[i])
     }
