@@ -39,7 +39,7 @@ const REDUCTION_LIMIT: f64 = 1e9;
 /// non-finite `x` gives NaNs.
 #[inline]
 pub fn unit(x: f64) -> [f64; 2] {
-    if !(x.abs() < REDUCTION_LIMIT) {
+    if x.abs() >= REDUCTION_LIMIT || x.is_nan() {
         let (s, c) = x.sin_cos();
         return [c, s];
     }
