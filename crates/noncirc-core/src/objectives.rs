@@ -377,12 +377,24 @@ struct Segment {
 }
 
 impl Segment {
-    #[inline]
+    #[cfg(test)]
     fn new(a: [f64; 2], b: [f64; 2]) -> Self {
         let ab = [b[0] - a[0], b[1] - a[1]];
         let len2 = ab[0] * ab[0] + ab[1] * ab[1];
-        let inv_len2 = if len2 > 0.0 { 1.0 / len2 } else { 0.0 };
+        Self::with_inv_len2(a, b, if len2 > 0.0 { 1.0 / len2 } else { 0.0 })
+    }
+
+    /// The segment `a→b` whose `1/|ab|²` is known (an arm: `1/S²`), without a division.
+    #[inline]
+    fn with_inv_len2(a: [f64; 2], b: [f64; 2], inv_len2: f64) -> Self {
+        let ab = [b[0] - a[0], b[1] - a[1]];
         Self { a, ab, inv_len2 }
+    }
+
+    /// Midpoint (mm).
+    #[inline]
+    fn midpoint(&self) -> [f64; 2] {
+        [self.a[0] + 0.5 * self.ab[0], self.a[1] + 0.5 * self.ab[1]]
     }
 
     /// Squared distance from `p` (mm²): compare these, take one square root.
@@ -425,30 +437,44 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     let (tips, centres) = (kin.tips(), kin.planet_centres());
     let rmax = kin.radius_range().1;
     let w = agro.arm_half_width_mm;
-    let clearance = |j: usize| {
+    // Every arm segment O3→D has length S.
+    let s = kin.spec().arm_length_mm;
+    let arm = |j: usize| Segment::with_inv_len2(centres[j], tips[j], 1.0 / (s * s));
+    let planets = |seg: &Segment, j: usize| {
         let (k2, k3) = (kin.arm_node(1, j), kin.arm_node(2, j));
-        let arm = Segment::new(centres[j], tips[j]);
-        let arms = arm
-            .distance_sq_to(&Segment::new(centres[k2], tips[k2]))
-            .sqrt()
-            - 2.0 * w;
-        let planets = arm
-            .distance_sq(centres[k2])
-            .min(arm.distance_sq(centres[k3]))
+        seg.distance_sq(centres[k2])
+            .min(seg.distance_sq(centres[k3]))
             .sqrt()
             - rmax
-            - w;
-        arms.min(planets)
+            - w
     };
+    let arms =
+        |seg: &Segment, j: usize| seg.distance_sq_to(&arm(kin.arm_node(1, j))).sqrt() - 2.0 * w;
+    let clearance = |j: usize| {
+        let seg = arm(j);
+        arms(&seg, j).min(planets(&seg, j))
+    };
+    // Every point of arm I lies within S/2 of its midpoint, so arm II is at least
+    // dist(midpoint, arm II) − S/2 away: where that cannot beat the least clearance so far,
+    // the segment–segment distance (four point–segment distances) is skipped. The margin
+    // covers rounding in |O3D| = S.
+    let half = 0.5 * s * (1.0 + 1e-12);
     // The least clearance node; a NaN (numerical breakdown) loses to any number.
     let (mut j, mut least) = (0, clearance(0));
     for k in 1..n {
-        let c = clearance(k);
+        let seg = arm(k);
+        let mut c = planets(&seg, k);
+        let reach = least + 2.0 * w + half;
+        let arm_2 = arm(kin.arm_node(1, k));
+        if !(reach > 0.0 && arm_2.distance_sq(seg.midpoint()) >= reach * reach) {
+            c = c.min(arms(&seg, k));
+        }
         if c < least || least.is_nan() {
             (j, least) = (k, c);
         }
     }
-    parabola_vertex(clearance((j + n - 1) % n), least, clearance((j + 1) % n))
+    let wrap = |j: usize| if j >= n { j - n } else { j };
+    parabola_vertex(clearance(wrap(j + n - 1)), least, clearance(wrap(j + 1)))
 }
 
 /// Objective 5: worst forward excursion of the tip past the planted seedling in the ground
@@ -604,6 +630,54 @@ mod tests {
         assert!((between([0.0, 0.0], [1.0, 0.0], [0.0, 2.0], [1.0, 2.0]) - 2.0).abs() < 1e-15);
         let degenerate = Segment::new([0.0, 0.0], [0.0, 0.0]);
         assert!((degenerate.distance_sq([3.0, 4.0]).sqrt() - 5.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn pruned_interference_equals_the_full_scan() {
+        // Every node's exact clearance, no pruning, the same parabola refinement.
+        let full_scan = |kin: &Kinematics, agro: &Agronomy| {
+            let (n, s) = (kin.len(), kin.spec().arm_length_mm);
+            let (tips, centres) = (kin.tips(), kin.planet_centres());
+            let arm = |j: usize| Segment::with_inv_len2(centres[j], tips[j], 1.0 / (s * s));
+            let w = agro.arm_half_width_mm;
+            let clearance = |j: usize| {
+                let (k2, k3) = (kin.arm_node(1, j), kin.arm_node(2, j));
+                let planets = arm(j)
+                    .distance_sq(centres[k2])
+                    .min(arm(j).distance_sq(centres[k3]));
+                let arms = arm(j).distance_sq_to(&arm(k2));
+                (arms.sqrt() - 2.0 * w).min(planets.sqrt() - kin.radius_range().1 - w)
+            };
+            let values: Vec<f64> = (0..n).map(clearance).collect();
+            let j = (0..n).fold(0, |b, j| if values[j] < values[b] { j } else { b });
+            parabola_vertex(values[(j + n - 1) % n], values[j], values[(j + 1) % n])
+        };
+        let curve = crate::CurveSpec::paper().build().unwrap();
+        let agro = Agronomy::default();
+        let mut checked = 0;
+        for beta0 in [-60.0, -29.0, 0.0, 40.0, 120.0] {
+            for gamma0 in [-80.0, -53.0, -20.0, 60.0] {
+                for width in [2.0, 12.0, 40.0] {
+                    let spec = crate::TrainSpec {
+                        beta0_deg: beta0,
+                        gamma0_deg: gamma0,
+                        ..Default::default()
+                    };
+                    let agro = Agronomy {
+                        arm_half_width_mm: width,
+                        ..agro.clone()
+                    };
+                    let kin =
+                        Kinematics::solve(&curve, &spec, &crate::Resolution::DEFAULT).unwrap();
+                    let (fast, full) =
+                        (interference_clearance(&kin, &agro), full_scan(&kin, &agro));
+                    assert_eq!(fast, full, "β0 {beta0}, γ0 {gamma0}, w {width}");
+                    checked += usize::from(full < 0.0);
+                }
+            }
+        }
+        // Some of these designs interfere: the pruning is tested on both signs.
+        assert!(checked > 0);
     }
 
     #[test]
