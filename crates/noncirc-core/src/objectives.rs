@@ -665,7 +665,7 @@ mod tests {
                     };
                     let agro = Agronomy {
                         arm_half_width_mm: width,
-                        ..agro.clone()
+                        ..agro
                     };
                     let kin =
                         Kinematics::solve(&curve, &spec, &crate::Resolution::DEFAULT).unwrap();
