@@ -273,12 +273,22 @@ impl Kinematics {
                 } * (spec.pusher_offset_mm / spec.arm_length_mm).asin(),
             delay,
             phi_period,
-            theta_s: vec![0.0; n],
+            theta_s: Vec::new(),
             theta3: vec![0.0; n],
             o3: vec![[0.0; 2]; n],
             tip: vec![[0.0; 2]; n],
         };
+        // θ_s at every node: sorted targets, so each cell search starts at the last cell.
+        let inverse = kin.phi_inverse();
         let mut hint = 0;
+        let theta_s = (kin.big_phi.iter())
+            .map(|&phi| {
+                let (ts, cell) = inverse.eval(phi - delay, hint);
+                hint = cell;
+                ts
+            })
+            .collect();
+        kin.theta_s = theta_s;
         // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
         let step = unit(sigma * h);
         let phi_h0 = spec.phi0_deg.to_radians();
@@ -291,9 +301,7 @@ impl Kinematics {
         };
         for j in 0..n {
             let theta = h * j as f64;
-            let (ts, cell) = kin.phi_inverse().eval(kin.big_phi[j] - delay, hint);
-            hint = cell;
-            kin.theta_s[j] = ts;
+            let ts = kin.theta_s[j];
             let o3 = [a * (e1[0] + e2[0]), a * (e1[1] + e2[1])];
             (e1, e2) = (rotate(e1), rotate(e2));
             let theta3 = spec.sun_angle() + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
