@@ -191,7 +191,7 @@ impl PitchCurve {
     /// the Fourier series, and refined from the given uniform samples otherwise.
     pub fn radius_range(&self, samples: &[Polar]) -> (f64, f64) {
         match self {
-            PitchCurve::Spline(s) => (s.extreme(false).1, s.extreme(true).1),
+            PitchCurve::Spline(s) => s.rho_range(),
             PitchCurve::Ellipse(e) => (e.semi_major * (1.0 - e.k), e.semi_major * (1.0 + e.k)),
             PitchCurve::Fourier(f) => (f.refine(false).1, f.refine(true).1),
             PitchCurve::Cartesian(_) => {

@@ -10,6 +10,8 @@ pub struct PeriodicSpline {
     knots: Vec<f64>,
     /// Per-segment coefficients `[a, b, c, d]`: rho = a + b t + c t² + d t³, t = psi - knot.
     coeffs: Vec<[f64; 4]>,
+    /// Exact least and largest `rho` (mm), found once.
+    rho_range: (f64, f64),
 }
 
 impl PeriodicSpline {
@@ -74,18 +76,25 @@ impl PeriodicSpline {
                 ]
             })
             .collect();
-        let spline = Self {
+        let mut spline = Self {
             knots: psi.to_vec(),
             coeffs,
+            rho_range: (f64::NAN, f64::NAN),
         };
-        let (psi_min, rho_min) = spline.extreme(false);
+        let [(psi_min, rho_min), (_, rho_max)] = spline.extremes();
         if rho_min <= 0.0 {
             return Err(Error::NonPositiveRadius {
                 psi_deg: psi_min.to_degrees(),
                 rho_mm: rho_min,
             });
         }
+        spline.rho_range = (rho_min, rho_max);
         Ok(spline)
+    }
+
+    /// Exact `(min, max)` of `rho` (mm).
+    pub fn rho_range(&self) -> (f64, f64) {
+        self.rho_range
     }
 
     /// Segment index and local offset for `psi` (any real angle).
@@ -152,11 +161,11 @@ impl PeriodicSpline {
         }
     }
 
-    /// Exact minimum (`max = false`) or maximum of the spline: `(psi, rho)`.
-    pub fn extreme(&self, max: bool) -> (f64, f64) {
-        let sign = if max { -1.0 } else { 1.0 };
+    /// Exact minimum and maximum of the spline, each as `(psi, rho)`, in one pass.
+    fn extremes(&self) -> [(f64, f64); 2] {
         let n = self.knots.len();
-        let mut best = (self.knots[0], self.coeffs[0][0]);
+        let mut least = (self.knots[0], self.coeffs[0][0]);
+        let mut most = least;
         for i in 0..n {
             let h = if i + 1 < n {
                 self.knots[i + 1] - self.knots[i]
@@ -181,12 +190,15 @@ impl PeriodicSpline {
             }
             for t in candidates.into_iter().filter(|t| (0.0..h).contains(t)) {
                 let v = value(t);
-                if sign * v < sign * best.1 {
-                    best = (self.knots[i] + t, v);
+                if v < least.1 {
+                    least = (self.knots[i] + t, v);
+                }
+                if v > most.1 {
+                    most = (self.knots[i] + t, v);
                 }
             }
         }
-        best
+        [least, most]
     }
 }
 
