@@ -454,21 +454,34 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
         let seg = arm(j);
         arms(&seg, j).min(planets(&seg, j))
     };
-    // Every point of arm I lies within S/2 of its midpoint, so arm II is at least
-    // dist(midpoint, arm II) − S/2 away: where that cannot beat the least clearance so far,
-    // the segment–segment distance (four point–segment distances) is skipped. The margin
-    // covers rounding in |O3D| = S.
+    // Every point of an arm lies within S/2 of its midpoint m, so arm I is at least
+    // |m − c| − S/2 from a planet centre c, and at least |m − m₂| − S, then
+    // dist(m, arm II) − S/2, from arm II. Where such a bound cannot beat the least
+    // clearance so far, the exact distance is skipped: squared distances only, no root.
+    // The margin covers rounding in |O3D| = S.
     let half = 0.5 * s * (1.0 + 1e-12);
+    let beyond = |d2: f64, reach: f64| reach > 0.0 && d2 >= reach * reach;
+    let dist_sq = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
     // The least clearance node; a NaN (numerical breakdown) loses to any number.
     let (mut j, mut least) = (0, clearance(0));
     for k in 1..n {
+        let (k2, k3) = (kin.arm_node(1, k), kin.arm_node(2, k));
         let seg = arm(k);
-        let mut c = planets(&seg, k);
-        let reach = least + 2.0 * w + half;
-        let arm_2 = arm(kin.arm_node(1, k));
-        if !(reach > 0.0 && arm_2.distance_sq(seg.midpoint()) >= reach * reach) {
-            c = c.min(arms(&seg, k));
-        }
+        let m = seg.midpoint();
+        let planet_reach = least + rmax + w + half;
+        let planets_far = beyond(dist_sq(m, centres[k2]), planet_reach)
+            && beyond(dist_sq(m, centres[k3]), planet_reach);
+        let arm_2 = arm(k2);
+        let arms_far = beyond(dist_sq(m, arm_2.midpoint()), least + 2.0 * w + 2.0 * half)
+            || beyond(arm_2.distance_sq(m), least + 2.0 * w + half);
+        // A part whose bound holds is at least `least`: leaving it out cannot change
+        // whether, or to what, the least clearance moves.
+        let c = match (planets_far, arms_far) {
+            (true, true) => continue,
+            (true, false) => arms(&seg, k),
+            (false, true) => planets(&seg, k),
+            (false, false) => arms(&seg, k).min(planets(&seg, k)),
+        };
         if c < least || least.is_nan() {
             (j, least) = (k, c);
         }
