@@ -21,6 +21,8 @@ pub struct ParallelEvaluator<'a> {
     problem: &'a SceneProblem,
     pool: rayon::ThreadPool,
     confirm_at: Resolution,
+    /// Evaluators planned for the screening and the confirming resolution, cloned by workers.
+    planned: [Evaluator; 2],
 }
 
 impl<'a> ParallelEvaluator<'a> {
@@ -28,20 +30,35 @@ impl<'a> ParallelEvaluator<'a> {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()?;
+        let confirm_at = problem.base().resolution;
         Ok(Self {
             problem,
             pool,
-            confirm_at: problem.base().resolution,
+            confirm_at,
+            planned: [problem.screening(), confirm_at].map(|r| Evaluator::planned(&r)),
         })
     }
 
     fn run(&self, points: &[Vec<f64>], resolution: Resolution) -> Vec<Fitness> {
         let problem = self.problem;
+        let planned = if resolution == self.confirm_at {
+            &self.planned[1]
+        } else {
+            &self.planned[0]
+        };
+        // About 32 pieces per thread: small enough that the last piece leaves the other
+        // threads idle only briefly (designs differ in cost), large enough that each piece's
+        // setup (cloning a planned evaluator and the scene to edit) is negligible.
+        let piece = points
+            .len()
+            .div_ceil(32 * self.pool.current_num_threads())
+            .max(1);
         self.pool.install(|| {
             points
                 .par_iter()
+                .with_min_len(piece)
                 .map_init(
-                    || (Evaluator::new(), problem.base().clone()),
+                    || (planned.clone(), problem.base().clone()),
                     |(evaluator, scratch), u| problem.fitness(u, evaluator, scratch, &resolution).0,
                 )
                 .collect()

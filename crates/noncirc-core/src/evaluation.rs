@@ -70,6 +70,19 @@ impl Evaluator {
         Self::default()
     }
 
+    /// An evaluator with its transforms already planned for `resolution` (if it is valid;
+    /// evaluating then reports why not): its clones share the plans, so parallel workers
+    /// start without planning their own.
+    pub fn planned(resolution: &Resolution) -> Self {
+        Self {
+            counts: StageCounts::default(),
+            integrator: resolution
+                .validate()
+                .is_ok()
+                .then(|| SpectralIntegrator::new(resolution.samples_per_turn)),
+        }
+    }
+
     /// Stage executions so far.
     pub fn counts(&self) -> StageCounts {
         self.counts

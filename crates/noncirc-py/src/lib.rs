@@ -318,14 +318,17 @@ fn evaluate_batch<'py>(
     let results = py.allow_threads(|| match &pool {
         // One thread: run in the caller's thread, so that concurrent callers overlap.
         None => {
-            let mut state = (Evaluator::new(), problem.base().clone());
+            let mut state = (Evaluator::planned(&res), problem.base().clone());
             rows.iter()
                 .map(|x| evaluate_row(&mut state, x))
                 .collect::<Vec<_>>()
         }
         Some(pool) => pool.install(|| {
+            let planned = Evaluator::planned(&res);
+            let piece = rows.len().div_ceil(32 * pool.current_num_threads()).max(1);
             rows.par_iter()
-                .map_init(|| (Evaluator::new(), problem.base().clone()), evaluate_row)
+                .with_min_len(piece)
+                .map_init(|| (planned.clone(), problem.base().clone()), evaluate_row)
                 .collect::<Vec<_>>()
         }),
     });
