@@ -440,19 +440,19 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     // Every arm segment O3→D has length S.
     let s = kin.spec().arm_length_mm;
     let arm = |j: usize| Segment::with_inv_len2(centres[j], tips[j], 1.0 / (s * s));
-    let planets = |seg: &Segment, j: usize| {
-        let (k2, k3) = (kin.arm_node(1, j), kin.arm_node(2, j));
+    // Arm I (`seg`) against the planets at nodes k2, k3, and against arm II (`other`).
+    let planets = |seg: &Segment, k2: usize, k3: usize| {
         seg.distance_sq(centres[k2])
             .min(seg.distance_sq(centres[k3]))
             .sqrt()
             - rmax
             - w
     };
-    let arms =
-        |seg: &Segment, j: usize| seg.distance_sq_to(&arm(kin.arm_node(1, j))).sqrt() - 2.0 * w;
+    let arms = |seg: &Segment, other: &Segment| seg.distance_sq_to(other).sqrt() - 2.0 * w;
     let clearance = |j: usize| {
+        let (k2, k3) = (kin.arm_node(1, j), kin.arm_node(2, j));
         let seg = arm(j);
-        arms(&seg, j).min(planets(&seg, j))
+        arms(&seg, &arm(k2)).min(planets(&seg, k2, k3))
     };
     // Every point of an arm lies within S/2 of its midpoint m, so arm I is at least
     // |m − c| − S/2 from a planet centre c, and at least |m − m₂| − S, then
@@ -478,9 +478,9 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
         // whether, or to what, the least clearance moves.
         let c = match (planets_far, arms_far) {
             (true, true) => continue,
-            (true, false) => arms(&seg, k),
-            (false, true) => planets(&seg, k),
-            (false, false) => arms(&seg, k).min(planets(&seg, k)),
+            (true, false) => arms(&seg, &arm_2),
+            (false, true) => planets(&seg, k2, k3),
+            (false, false) => arms(&seg, &arm_2).min(planets(&seg, k2, k3)),
         };
         if c < least || least.is_nan() {
             (j, least) = (k, c);

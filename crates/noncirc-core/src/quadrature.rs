@@ -157,7 +157,7 @@ impl QuinticCell {
 
 /// A strictly increasing function with periodic derivative (`F(u + 2π) = F(u) + drift·2π`),
 /// known at uniform nodes with its first two derivatives: interpolated by quintic Hermite
-/// cells, evaluated and inverted at any real argument.
+/// cells, evaluated at any real argument; [`DriftInverse`] inverts it.
 #[derive(Debug, Clone, Copy)]
 pub struct MonotoneDrift<'a> {
     /// Node values `F(u_j)`, `u_j = j·h`.
