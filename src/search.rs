@@ -15,6 +15,14 @@ use std::time::{Duration, Instant};
 
 type BoxError = Box<dyn std::error::Error + Send + Sync>;
 
+/// Least designs per parallel piece of a batch of `len` on `threads`: about 32 pieces per
+/// thread, small enough that the last piece leaves the other threads idle only briefly
+/// (designs differ in cost), large enough that each piece's setup (cloning a planned
+/// evaluator and the scene to edit) is negligible.
+pub fn batch_piece(len: usize, threads: usize) -> usize {
+    len.div_ceil(32 * threads).max(1)
+}
+
 /// Evaluates batches in parallel on a private rayon pool; results keep the input order,
 /// so a run is bit-identical whatever the thread count.
 pub struct ParallelEvaluator<'a> {
@@ -46,13 +54,7 @@ impl<'a> ParallelEvaluator<'a> {
         } else {
             &self.planned[0]
         };
-        // About 32 pieces per thread: small enough that the last piece leaves the other
-        // threads idle only briefly (designs differ in cost), large enough that each piece's
-        // setup (cloning a planned evaluator and the scene to edit) is negligible.
-        let piece = points
-            .len()
-            .div_ceil(32 * self.pool.current_num_threads())
-            .max(1);
+        let piece = batch_piece(points.len(), self.pool.current_num_threads());
         self.pool.install(|| {
             points
                 .par_iter()

@@ -325,7 +325,7 @@ fn evaluate_batch<'py>(
         }
         Some(pool) => pool.install(|| {
             let planned = Evaluator::planned(&res);
-            let piece = rows.len().div_ceil(32 * pool.current_num_threads()).max(1);
+            let piece = noncirc::search::batch_piece(rows.len(), pool.current_num_threads());
             rows.par_iter()
                 .with_min_len(piece)
                 .map_init(|| (planned.clone(), problem.base().clone()), evaluate_row)
