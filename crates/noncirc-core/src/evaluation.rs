@@ -143,7 +143,7 @@ impl Evaluator {
                 let integrator = self
                     .integrator
                     .get_or_insert_with(|| SpectralIntegrator::new(n));
-                let kin = Kinematics::solve_with(&curve, &scene.train, resolution, integrator)?;
+                let kin = Kinematics::solve_with(curve, &scene.train, resolution, integrator)?;
                 out.centre_distance_mm = Some(kin.centre_distance());
                 let coupled = scene.kind == SceneKind::Transplanter;
                 let ev = if coupled || scene.objectives.iter().any(|o| o.needs_events()) {

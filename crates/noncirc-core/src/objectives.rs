@@ -512,24 +512,26 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     let top = ev.planting.tip_mm[1] + agro.seedling_height_mm;
     let ahead = |x: f64, t: f64| forward * (x - ev.planting.tip_mm[0]) + advance * (t - tp);
     let first = (tp / h).floor() as usize + 1;
-    let mut excursion = Vec::with_capacity(n);
+    // The largest excursion ahead, with its neighbours along the path for the parabola.
+    let (mut worst, mut before, mut after) = (0.0f64, None, None);
+    let mut previous = None;
     for k in first..first + n {
         let p = kin.tips()[k % n];
         if p[1] > top {
             break;
         }
-        excursion.push(ahead(p[0], k as f64 * h));
+        let v = ahead(p[0], k as f64 * h);
+        if after.is_none() && worst > 0.0 && before.is_some() {
+            after = Some(v);
+        }
+        if v > worst {
+            (worst, before, after) = (v, previous, None);
+        }
+        previous = Some(v);
     }
-    let (j, worst) =
-        excursion.iter().enumerate().fold(
-            (0, 0.0f64),
-            |best, (j, &v)| if v > best.1 { (j, v) } else { best },
-        );
-    if worst > 0.0 && j > 0 && j + 1 < excursion.len() {
-        let (ym, y0, yp) = (-excursion[j - 1], -worst, -excursion[j + 1]);
-        -parabola_vertex(ym, y0, yp)
-    } else {
-        worst
+    match (before, after) {
+        (Some(ym), Some(yp)) if worst > 0.0 => -parabola_vertex(-ym, -worst, -yp),
+        _ => worst,
     }
 }
 

@@ -204,16 +204,17 @@ impl Kinematics {
     pub fn solve(curve: &PitchCurve, spec: &TrainSpec, resolution: &Resolution) -> Result<Self> {
         resolution.validate()?;
         Self::solve_with(
-            curve,
+            curve.clone(),
             spec,
             resolution,
             &mut SpectralIntegrator::new(resolution.samples_per_turn),
         )
     }
 
-    /// As [`Kinematics::solve`], reusing a planned integrator of `samples_per_turn` points.
+    /// As [`Kinematics::solve`], taking the curve and reusing a planned integrator of
+    /// `samples_per_turn` points.
     pub fn solve_with(
-        curve: &PitchCurve,
+        curve: PitchCurve,
         spec: &TrainSpec,
         resolution: &Resolution,
         integrator: &mut SpectralIntegrator,
@@ -225,8 +226,9 @@ impl Kinematics {
         let sigma = spec.rotation.sign();
         let psi0 = spec.psi_start();
         let sun = curve.sample_uniform(psi0, sigma * h, n);
-        let rho: Vec<f64> = sun.iter().map(|p| p.rho).collect();
-        let closure = solve_closure(&rho, resolution)?;
+        // `g` holds the radii for the closure first, then the ratio (one allocation).
+        let mut g: Vec<f64> = sun.iter().map(|p| p.rho).collect();
+        let closure = solve_closure(&g, resolution)?;
         let a = closure.centre_distance;
         let (rmin, rmax) = curve.radius_range(&sun);
         if rmax >= a {
@@ -235,7 +237,9 @@ impl Kinematics {
                 centre_distance_mm: a,
             });
         }
-        let g: Vec<f64> = sun.iter().map(|p| p.rho / (a - p.rho)).collect();
+        for (g, p) in g.iter_mut().zip(&sun) {
+            *g = p.rho / (a - p.rho);
+        }
         let dg: Vec<f64> = sun
             .iter()
             .map(|p| sigma * a * p.d1 / ((a - p.rho) * (a - p.rho)))
@@ -253,7 +257,7 @@ impl Kinematics {
         let gamma0 = spec.gamma0_deg.to_radians();
         let delay = (sigma * (gamma0 - std::f64::consts::PI)).rem_euclid(TAU);
         let mut kin = Self {
-            curve: curve.clone(),
+            curve,
             spec: *spec,
             resolution: *resolution,
             sigma,

@@ -97,7 +97,7 @@ impl CurveSpec {
                 same_length(kind, radii_mm, angles_deg)?;
                 let psi: Vec<f64> = angles_deg.iter().map(|d| d.to_radians()).collect();
                 Ok(PitchCurve::Spline(PeriodicSpline::new(
-                    kind, &psi, radii_mm,
+                    kind, psi, radii_mm,
                 )?))
             }
             CurveSpec::Bspline {

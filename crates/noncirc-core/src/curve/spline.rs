@@ -16,7 +16,7 @@ pub struct PeriodicSpline {
 
 impl PeriodicSpline {
     /// Builds the spline through `(psi_i [rad], rho_i [mm])`. `kind` names it in errors.
-    pub fn new(kind: &'static str, psi: &[f64], rho: &[f64]) -> Result<Self> {
+    pub fn new(kind: &'static str, psi: Vec<f64>, rho: &[f64]) -> Result<Self> {
         let n = psi.len();
         if n < 4 || rho.len() != n {
             return Err(Error::TooFewPoints {
@@ -39,33 +39,31 @@ impl PeriodicSpline {
                 });
             }
         }
-        check_angles(psi)?;
-        let h: Vec<f64> = (0..n)
-            .map(|i| {
-                if i + 1 < n {
-                    psi[i + 1] - psi[i]
-                } else {
-                    psi[0] + TAU - psi[n - 1]
-                }
-            })
-            .collect();
-        // Cyclic neighbours without an integer division each.
+        check_angles(&psi)?;
+        // Knot spacings and cyclic neighbours, without an integer division each.
+        let h = |i: usize| {
+            if i + 1 < n {
+                psi[i + 1] - psi[i]
+            } else {
+                psi[0] + TAU - psi[n - 1]
+            }
+        };
         let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
         let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
         // Second derivatives M from the cyclic tridiagonal system.
-        let sub: Vec<f64> = (0..n).map(|i| h[prev(i)]).collect();
-        let diag: Vec<f64> = (0..n).map(|i| 2.0 * (h[prev(i)] + h[i])).collect();
-        let sup: Vec<f64> = h.clone();
-        let rhs: Vec<f64> = (0..n)
-            .map(|i| {
+        let m = solve_cyclic_tridiagonal(
+            n,
+            |i| h(prev(i)),
+            |i| 2.0 * (h(prev(i)) + h(i)),
+            h,
+            |i| {
                 let (up, down) = (rho[next(i)], rho[prev(i)]);
-                6.0 * ((up - rho[i]) / h[i] - (rho[i] - down) / h[prev(i)])
-            })
-            .collect();
-        let m = solve_cyclic_tridiagonal(&sub, &diag, &sup, &rhs);
+                6.0 * ((up - rho[i]) / h(i) - (rho[i] - down) / h(prev(i)))
+            },
+        );
         let coeffs = (0..n)
             .map(|i| {
-                let (m0, m1, hi) = (m[i], m[next(i)], h[i]);
+                let (m0, m1, hi) = (m[i], m[next(i)], h(i));
                 let y0 = rho[i];
                 let y1 = rho[next(i)];
                 [
@@ -77,7 +75,7 @@ impl PeriodicSpline {
             })
             .collect();
         let mut spline = Self {
-            knots: psi.to_vec(),
+            knots: psi,
             coeffs,
             rho_range: (f64::NAN, f64::NAN),
         };
@@ -224,41 +222,59 @@ pub(crate) fn check_angles(psi: &[f64]) -> Result<()> {
     Ok(())
 }
 
-/// Solves a cyclic tridiagonal system (Sherman–Morrison on the Thomas algorithm).
-/// Row i: `sub[i] x[i-1] + diag[i] x[i] + sup[i] x[i+1] = rhs[i]`, indices mod n.
-fn solve_cyclic_tridiagonal(sub: &[f64], diag: &[f64], sup: &[f64], rhs: &[f64]) -> Vec<f64> {
-    let n = diag.len();
-    let gamma = -diag[0];
-    let mut b = diag.to_vec();
-    b[0] -= gamma;
-    b[n - 1] -= sup[n - 1] * sub[0] / gamma;
-    let x = solve_tridiagonal(sub, &b, sup, rhs);
-    let mut u = vec![0.0; n];
-    u[0] = gamma;
-    u[n - 1] = sup[n - 1];
-    let z = solve_tridiagonal(sub, &b, sup, &u);
-    let factor = (x[0] + sub[0] * x[n - 1] / gamma) / (1.0 + z[0] + sub[0] * z[n - 1] / gamma);
-    x.iter().zip(&z).map(|(xi, zi)| xi - factor * zi).collect()
-}
-
-/// Thomas algorithm for a (non-cyclic) tridiagonal system; `sub[0]`, `sup[n-1]` unused.
-fn solve_tridiagonal(sub: &[f64], diag: &[f64], sup: &[f64], rhs: &[f64]) -> Vec<f64> {
-    let n = diag.len();
-    let mut c = vec![0.0; n];
-    let mut d = vec![0.0; n];
-    c[0] = sup[0] / diag[0];
-    d[0] = rhs[0] / diag[0];
-    for i in 1..n {
-        let denom = diag[i] - sub[i] * c[i - 1];
-        c[i] = if i + 1 < n { sup[i] / denom } else { 0.0 };
-        d[i] = (rhs[i] - sub[i] * d[i - 1]) / denom;
+/// Solves the cyclic tridiagonal system of `n` rows
+/// `sub(i) x[i-1] + diag(i) x[i] + sup(i) x[i+1] = rhs(i)`, indices mod n, by
+/// Sherman–Morrison on the Thomas algorithm. The two Thomas solves share their matrix, so
+/// they run in one sweep.
+fn solve_cyclic_tridiagonal(
+    n: usize,
+    sub: impl Fn(usize) -> f64,
+    diag: impl Fn(usize) -> f64,
+    sup: impl Fn(usize) -> f64,
+    rhs: impl Fn(usize) -> f64,
+) -> Vec<f64> {
+    // The non-cyclic matrix A' = A − u vᵀ, u = (γ, 0, …, 0, sup(n−1)), v = (1, 0, …, sub(0)/γ).
+    let gamma = -diag(0);
+    let b = |i: usize| {
+        if i == 0 {
+            diag(0) - gamma
+        } else if i + 1 == n {
+            diag(i) - sup(i) * sub(0) / gamma
+        } else {
+            diag(i)
+        }
+    };
+    let u = |i: usize| {
+        if i == 0 {
+            gamma
+        } else if i + 1 == n {
+            sup(i)
+        } else {
+            0.0
+        }
+    };
+    // Forward sweep: per row the eliminated super-diagonal and both right-hand sides.
+    let mut rows = vec![[0.0; 3]; n];
+    let mut last = [0.0; 3];
+    for (i, row) in rows.iter_mut().enumerate() {
+        let denom = b(i) - sub(i) * last[0];
+        let c = if i + 1 < n { sup(i) / denom } else { 0.0 };
+        *row = [
+            c,
+            (rhs(i) - sub(i) * last[1]) / denom,
+            (u(i) - sub(i) * last[2]) / denom,
+        ];
+        last = *row;
     }
-    let mut x = vec![0.0; n];
-    x[n - 1] = d[n - 1];
+    // Back substitution: rows[i][1] becomes x (A' x = rhs), rows[i][2] z (A' z = u).
     for i in (0..n - 1).rev() {
-        x[i] = d[i] - c[i] * x[i + 1];
+        let (c, next) = (rows[i][0], rows[i + 1]);
+        rows[i][1] -= c * next[1];
+        rows[i][2] -= c * next[2];
     }
-    x
+    let (first, end) = (rows[0], rows[n - 1]);
+    let factor = (first[1] + sub(0) * end[1] / gamma) / (1.0 + first[2] + sub(0) * end[2] / gamma);
+    rows.iter().map(|r| r[1] - factor * r[2]).collect()
 }
 
 #[cfg(test)]
@@ -273,7 +289,7 @@ mod tests {
             .iter()
             .map(|d| d.to_radians())
             .collect();
-        let spline = PeriodicSpline::new("spline", &psi, &RADII).unwrap();
+        let spline = PeriodicSpline::new("spline", psi.clone(), &RADII).unwrap();
         (psi, spline)
     }
 
@@ -319,7 +335,7 @@ mod tests {
         let n = 64;
         let psi: Vec<f64> = (0..n).map(|i| TAU * i as f64 / n as f64).collect();
         let rho: Vec<f64> = psi.iter().map(|p| 40.0 + 5.0 * p.cos()).collect();
-        let s = PeriodicSpline::new("table", &psi, &rho).unwrap();
+        let s = PeriodicSpline::new("table", psi, &rho).unwrap();
         for k in 0..200 {
             let p = 0.0314 * k as f64;
             assert!((s.eval(p).rho - (40.0 + 5.0 * p.cos())).abs() < 1e-5);
@@ -333,7 +349,7 @@ mod tests {
             .map(|d| d.to_radians())
             .collect();
         let rho = [1.0, 50.0, 1.0, 50.0, 1.0];
-        match PeriodicSpline::new("spline", &psi, &rho) {
+        match PeriodicSpline::new("spline", psi, &rho) {
             Err(Error::NonPositiveRadius { rho_mm, .. }) => assert!(rho_mm <= 0.0),
             other => panic!("expected NonPositiveRadius, got {other:?}"),
         }

@@ -224,10 +224,14 @@ impl SceneProblem {
 
     /// Unit-cube point to parameter values.
     pub fn decode(&self, u: &[f64]) -> Vec<f64> {
+        self.decoded(u).collect()
+    }
+
+    /// As [`Self::decode`], without collecting.
+    fn decoded<'a>(&'a self, u: &'a [f64]) -> impl Iterator<Item = f64> + 'a {
         u.iter()
             .zip(self.lower.iter().zip(&self.upper))
             .map(|(u, (lo, hi))| lo + u.clamp(0.0, 1.0) * (hi - lo))
-            .collect()
     }
 
     /// Parameter values to unit-cube point.
@@ -240,7 +244,7 @@ impl SceneProblem {
 
     /// Writes the design `u` into `scene` (a scratch copy of the base scene).
     pub fn apply(&self, u: &[f64], scene: &mut Scene) {
-        for (p, x) in self.params.iter().zip(self.decode(u)) {
+        for (p, x) in self.params.iter().zip(self.decoded(u)) {
             p.set(scene, x);
         }
     }
