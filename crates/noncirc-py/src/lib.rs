@@ -327,7 +327,7 @@ fn evaluate_batch<'py>(
             let planned = Evaluator::planned(&res);
             let piece = noncirc::search::batch_piece(rows.len(), pool.current_num_threads());
             rows.par_iter()
-                .with_min_len(piece)
+                .with_max_len(piece)
                 .map_init(|| (planned.clone(), problem.base().clone()), evaluate_row)
                 .collect::<Vec<_>>()
         }),
