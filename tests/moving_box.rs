@@ -123,6 +123,29 @@ fn acceleration_and_forces_come_from_the_displacement_law() {
 }
 
 #[test]
+fn closed_form_extremes_bound_and_meet_dense_samples() {
+    for k in [0.0, 0.05, 1.0 / (2.0 + 3f64.sqrt()), 0.6, 0.9] {
+        let spec = BoxSpec {
+            eccentricity: k,
+            ..BoxSpec::default()
+        };
+        let c = box_curves(&spec, 72_000);
+        let accel = c
+            .elliptic_accel_m_s2
+            .iter()
+            .fold(0.0f64, |m, a| m.max(a.abs()));
+        let force = c.slider_normal_n.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+        let (accel_max, force_max) = (spec.accel_max(), spec.slider_force_max());
+        // Sampled at 0.005°: the sampled extremes fall short by O(step²) at most.
+        let near = |sampled: f64, exact: f64| {
+            sampled <= exact * (1.0 + 1e-12) && sampled >= exact * (1.0 - 1e-6)
+        };
+        assert!(near(accel, accel_max), "k={k}: {accel} vs {accel_max}");
+        assert!(near(force, force_max), "k={k}: {force} vs {force_max}");
+    }
+}
+
+#[test]
 fn eccentricity_from_speed_ratio_and_bad_inputs() {
     for r in [1.0, 2.0, 3.0, 9.0] {
         let k = eccentricity_for_ratio(r).unwrap();

@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::gear::{perimeter, GearPair, ModuleReport};
-use crate::moving_box::{evaluate_box, BoxReport};
+use crate::moving_box::{evaluate_box_with, BoxReport};
 use crate::objectives::{events, module, objective_value, Events, ObjectiveKind, ObjectiveValue};
 use crate::planetary::Kinematics;
 use crate::quadrature::SpectralIntegrator;
@@ -83,6 +83,12 @@ impl Evaluator {
         }
     }
 
+    /// The planned transforms for `n` samples per turn (planned on first use).
+    fn integrator(&mut self, n: usize) -> &mut SpectralIntegrator {
+        self.integrator
+            .get_or_insert_with(|| SpectralIntegrator::new(n))
+    }
+
     /// Stage executions so far.
     pub fn counts(&self) -> StageCounts {
         self.counts
@@ -112,9 +118,7 @@ impl Evaluator {
                 self.counts.pitch_curve += 1;
                 let curve = scene.gear.curve.build()?;
                 self.counts.closure += 1;
-                let integrator = self
-                    .integrator
-                    .get_or_insert_with(|| SpectralIntegrator::new(resolution.samples_per_turn));
+                let integrator = self.integrator(resolution.samples_per_turn);
                 let pair = GearPair::solve_with(curve, *resolution, integrator)?;
                 let module = pair.module(&scene.gear.module);
                 out.centre_distance_mm = Some(pair.centre_distance());
@@ -139,10 +143,7 @@ impl Evaluator {
                 let curve = scene.gear.curve.build()?;
                 self.counts.closure += 1;
                 self.counts.kinematics += 1;
-                let n = resolution.samples_per_turn;
-                let integrator = self
-                    .integrator
-                    .get_or_insert_with(|| SpectralIntegrator::new(n));
+                let integrator = self.integrator(resolution.samples_per_turn);
                 let kin = Kinematics::solve_with(curve, &scene.train, resolution, integrator)?;
                 out.centre_distance_mm = Some(kin.centre_distance());
                 let coupled = scene.kind == SceneKind::Transplanter;
@@ -177,10 +178,11 @@ impl Evaluator {
                         (window[1] - window[0]) * scene.moving_box.input_turns_per_carrier_turn;
                     let centre = scene.moving_box.window_centre_deg.to_radians();
                     self.counts.moving_box += 1;
-                    out.moving_box = Some(evaluate_box(
+                    out.moving_box = Some(evaluate_box_with(
                         &scene.moving_box,
                         Some([centre - span / 2.0, centre + span / 2.0]),
                         resolution,
+                        self.integrator(resolution.samples_per_turn),
                     )?);
                 }
                 out.gear = gear_module.map(|module| GearSummary {
@@ -204,7 +206,13 @@ impl Evaluator {
             }
             SceneKind::MovingBox => {
                 self.counts.moving_box += 1;
-                out.moving_box = Some(evaluate_box(&scene.moving_box, None, resolution)?);
+                let integrator = self.integrator(resolution.samples_per_turn);
+                out.moving_box = Some(evaluate_box_with(
+                    &scene.moving_box,
+                    None,
+                    resolution,
+                    integrator,
+                )?);
             }
         }
         Ok(out)

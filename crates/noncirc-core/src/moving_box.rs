@@ -4,6 +4,7 @@
 use crate::curve::{Ellipse, PitchCurve, TAU};
 use crate::error::{finite, positive, Error, Result};
 use crate::gear::GearPair;
+use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use serde::{Deserialize, Serialize};
 
@@ -214,6 +215,29 @@ impl BoxSpec {
         ]
     }
 
+    /// Largest box acceleration over the input turn, elliptical drive (m/s²; the least is
+    /// its negative). Closed form: `d²φ2/dφ1² ∝ sin φ1 / D²` with `D = 1 − 2k cos φ1 + k²`
+    /// is extreme where `2k c² + (1 + k²) c − 4k = 0`, `c = cos φ1`.
+    pub fn accel_max(&self) -> f64 {
+        let k = self.k().unwrap_or(0.0);
+        let p = 1.0 + k * k;
+        // The root in [0, 1), in the form without cancellation (0 at k = 0).
+        let c = 8.0 * k / (p + (p * p + 32.0 * k * k).sqrt());
+        let d = p - 2.0 * k * c;
+        let d2 = (1.0 - k * k) * 2.0 * k * (1.0 - c * c).sqrt() / (d * d);
+        let w = self.omega();
+        self.pot_pitch_mm / TAU * d2 * w * w / 1000.0
+    }
+
+    /// Largest slider normal force over the input turn, elliptical drive (N). The force is
+    /// affine in the acceleration, which sweeps `[−accel_max, accel_max]`: the larger of
+    /// the two ends.
+    pub fn slider_force_max(&self) -> f64 {
+        let a = self.accel_max();
+        let (up, down) = (self.slider_forces(a).0, self.slider_forces(-a).0);
+        up.abs().max(down.abs())
+    }
+
     /// Slider forces (paper eqs. 12–15) for a box acceleration `x_dd` (m/s²): `(F_n, F_oy)` in N.
     pub fn slider_forces(&self, x_dd: f64) -> (f64, f64) {
         let m = self.box_mass_kg;
@@ -301,6 +325,18 @@ pub fn evaluate_box(
     window: Option<[f64; 2]>,
     resolution: &Resolution,
 ) -> Result<BoxReport> {
+    resolution.validate()?;
+    let mut integrator = SpectralIntegrator::new(resolution.samples_per_turn);
+    evaluate_box_with(spec, window, resolution, &mut integrator)
+}
+
+/// As [`evaluate_box`], reusing planned transforms (re-planned if the length differs).
+pub fn evaluate_box_with(
+    spec: &BoxSpec,
+    window: Option<[f64; 2]>,
+    resolution: &Resolution,
+    integrator: &mut SpectralIntegrator,
+) -> Result<BoxReport> {
     spec.validate()?;
     let k = spec.k()?;
     let [a, b] = window.unwrap_or_else(|| {
@@ -311,7 +347,11 @@ pub fn evaluate_box(
         [c - w / 2.0, c + w / 2.0]
     });
     // Size: the ellipse whose perimeter carries `teeth` teeth of the module.
-    let unit_pair = GearPair::solve(PitchCurve::Ellipse(Ellipse::new(1.0, k)?), *resolution)?;
+    let unit_pair = GearPair::solve_with(
+        PitchCurve::Ellipse(Ellipse::new(1.0, k)?),
+        *resolution,
+        integrator,
+    )?;
     let semi_major =
         spec.module_mm * std::f64::consts::PI * spec.teeth as f64 / unit_pair.perimeter();
     let numeric = spec.pot_pitch_mm / TAU * (unit_pair.phi2(b) - unit_pair.phi2(a));
@@ -321,11 +361,6 @@ pub fn evaluate_box(
     let best = golden_min(travel, 0.0, TAU, 1e-10);
     let w = spec.omega();
     let scale = spec.pot_pitch_mm / TAU;
-    let curves = box_curves(spec, 720);
-    let force_max = curves
-        .slider_normal_n
-        .iter()
-        .fold(f64::NEG_INFINITY, |m, &f| m.max(f.abs()));
     let delta = spec.elliptic_delta_h(a, b);
     let limit = spec.pot_width_mm / 6.0;
     Ok(BoxReport {
@@ -343,7 +378,7 @@ pub fn evaluate_box(
         within_limit: delta <= limit,
         speed_min_mm_s: scale * w * (1.0 - k) / (1.0 + k),
         speed_max_mm_s: scale * w * (1.0 + k) / (1.0 - k),
-        slider_force_max_n: force_max,
+        slider_force_max_n: spec.slider_force_max(),
     })
 }
 

@@ -343,7 +343,7 @@ impl Ellipse {
 
     pub fn eval(&self, psi: f64) -> Polar {
         let c = self.semi_major * (1.0 - self.k * self.k);
-        let (s, co) = psi.sin_cos();
+        let [co, s] = crate::angle::unit(psi);
         let d = 1.0 - self.k * co;
         let (d1, d2) = (self.k * s, self.k * co);
         Polar {
