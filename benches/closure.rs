@@ -73,7 +73,7 @@ fn closure_batch(c: &mut Criterion) {
                     pool.install(|| {
                         curves
                             .par_iter()
-                            .with_min_len(256)
+                            .with_max_len(noncirc::search::batch_piece(curves.len(), threads))
                             .map(|rho| {
                                 solve_closure(black_box(rho), &res)
                                     .map_or(0.0, |c| c.centre_distance)
