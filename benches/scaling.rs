@@ -4,7 +4,8 @@
 //! quartiles, and the throughputs.
 //!
 //! `cargo bench --bench scaling` runs 300 rounds (~10 s); without `--bench` (as under
-//! `cargo test --benches`) it runs 3, to show it works.
+//! `cargo test --benches`) it runs 3, to show it works. `SCALING_DUMP=FILE` also writes
+//! each round's two times (s), one round per line.
 
 use noncirc::core::search::problem::SceneProblem;
 use noncirc::core::search::{BatchEvaluator, Rng};
