@@ -206,12 +206,11 @@ impl Evaluator {
             }
             SceneKind::MovingBox => {
                 self.counts.moving_box += 1;
-                let integrator = self.integrator(resolution.samples_per_turn);
                 out.moving_box = Some(evaluate_box_with(
                     &scene.moving_box,
                     None,
                     resolution,
-                    integrator,
+                    self.integrator(resolution.samples_per_turn),
                 )?);
             }
         }

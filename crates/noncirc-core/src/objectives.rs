@@ -512,7 +512,8 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     let top = ev.planting.tip_mm[1] + agro.seedling_height_mm;
     let ahead = |x: f64, t: f64| forward * (x - ev.planting.tip_mm[0]) + advance * (t - tp);
     let first = (tp / h).floor() as usize + 1;
-    // The largest excursion ahead, with its neighbours along the path for the parabola.
+    // The largest positive excursion ahead, with its neighbours along the path for the
+    // parabola (`before` is set only with a positive `worst`).
     let (mut worst, mut before, mut after) = (0.0f64, None, None);
     let mut previous = None;
     for k in first..first + n {
@@ -521,7 +522,7 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
             break;
         }
         let v = ahead(p[0], k as f64 * h);
-        if after.is_none() && worst > 0.0 && before.is_some() {
+        if before.is_some() && after.is_none() {
             after = Some(v);
         }
         if v > worst {
@@ -530,7 +531,7 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
         previous = Some(v);
     }
     match (before, after) {
-        (Some(ym), Some(yp)) if worst > 0.0 => -parabola_vertex(-ym, -worst, -yp),
+        (Some(ym), Some(yp)) => -parabola_vertex(-ym, -worst, -yp),
         _ => worst,
     }
 }
