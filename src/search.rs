@@ -15,9 +15,9 @@ use std::time::{Duration, Instant};
 
 type BoxError = Box<dyn std::error::Error + Send + Sync>;
 
-/// Most designs per parallel piece of a batch of `len` on `threads` (pass it to rayon's
-/// `with_max_len`): about 32 pieces per thread. Uncapped, rayon splits a batch only until
-/// every thread has a part, one half each on 2 threads; designs differ in cost, so one
+/// Most designs per parallel piece of a batch of `len` on `threads` ([`map_batch`] passes
+/// it to rayon's `with_max_len`): about 32 pieces per thread. Uncapped, rayon splits a
+/// batch only until every thread has a part, one half each on 2 threads; designs differ in cost, so one
 /// thread then idles at the end (10 % of a batch was measured). Small pieces leave work to
 /// steal. Each piece clones a planned evaluator and the scene to edit, so they are not
 /// made smaller.
@@ -56,18 +56,34 @@ impl<'a> ParallelEvaluator<'a> {
         } else {
             &self.planned[0]
         };
-        let piece = batch_piece(points.len(), self.pool.current_num_threads());
-        self.pool.install(|| {
-            points
-                .par_iter()
-                .with_max_len(piece)
-                .map_init(
-                    || (planned.clone(), problem.base().clone()),
-                    |(evaluator, scratch), u| problem.fitness(u, evaluator, scratch, &resolution).0,
-                )
-                .collect()
-        })
+        map_batch(
+            &self.pool,
+            planned,
+            problem.base(),
+            points,
+            |(evaluator, scratch), u| problem.fitness(u, evaluator, scratch, &resolution).0,
+        )
     }
+}
+
+/// Maps `f` over `items` on `pool`, keeping their order. The batch is cut into pieces of at
+/// most [`batch_piece`] items, and each piece's worker starts from its own clones of a
+/// `planned` evaluator and of the `base` scene to edit.
+pub fn map_batch<T: Sync, R: Send>(
+    pool: &rayon::ThreadPool,
+    planned: &Evaluator,
+    base: &Scene,
+    items: &[T],
+    f: impl Fn(&mut (Evaluator, Scene), &T) -> R + Sync + Send,
+) -> Vec<R> {
+    let piece = batch_piece(items.len(), pool.current_num_threads());
+    pool.install(|| {
+        items
+            .par_iter()
+            .with_max_len(piece)
+            .map_init(|| (planned.clone(), base.clone()), f)
+            .collect()
+    })
 }
 
 impl BatchEvaluator for ParallelEvaluator<'_> {

@@ -11,7 +11,6 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -323,14 +322,13 @@ fn evaluate_batch<'py>(
                 .map(|x| evaluate_row(&mut state, x))
                 .collect::<Vec<_>>()
         }
-        Some(pool) => pool.install(|| {
-            let planned = Evaluator::planned(&res);
-            let piece = noncirc::search::batch_piece(rows.len(), pool.current_num_threads());
-            rows.par_iter()
-                .with_max_len(piece)
-                .map_init(|| (planned.clone(), problem.base().clone()), evaluate_row)
-                .collect::<Vec<_>>()
-        }),
+        Some(pool) => noncirc::search::map_batch(
+            pool,
+            &Evaluator::planned(&res),
+            problem.base(),
+            &rows,
+            evaluate_row,
+        ),
     });
     let n = rows.len();
     let mut values = Array2::from_elem((n, k), f64::NAN);
