@@ -17,10 +17,10 @@ type BoxError = Box<dyn std::error::Error + Send + Sync>;
 
 /// Most designs per parallel piece of a batch of `len` on `threads` ([`map_batch`] passes
 /// it to rayon's `with_max_len`): about 32 pieces per thread. Uncapped, rayon splits a
-/// batch only until every thread has a part, one half each on 2 threads; designs differ in cost, so one
-/// thread then idles at the end (10 % of a batch was measured). Small pieces leave work to
-/// steal. Each piece clones a planned evaluator and the scene to edit, so they are not
-/// made smaller.
+/// batch only until every thread has a part, one half each on 2 threads; designs differ in
+/// cost, so one thread then idles at the end (10 % of a batch was measured). Small pieces
+/// leave work to steal. Each piece clones a planned evaluator and the scene to edit, so
+/// they are not made smaller.
 pub fn batch_piece(len: usize, threads: usize) -> usize {
     len.div_ceil(32 * threads).max(1)
 }
