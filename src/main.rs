@@ -1,6 +1,7 @@
 //! The `noncirc` command line.
 
 use clap::{Parser, Subcommand, ValueEnum};
+use noncirc::core::measures::Measure;
 use noncirc::core::search::Algorithm;
 use noncirc::core::SceneKind;
 use noncirc::report::{EvaluationReport, GearReport};
@@ -109,12 +110,18 @@ struct SweepArgs {
     /// Parameter path, e.g. `gear.curve.radii_mm[0]` or `train.phi0_deg`.
     #[arg(long)]
     param: String,
-    #[arg(long)]
+    /// First value of the parameter (negative values are values: `--from -60`).
+    #[arg(long, allow_negative_numbers = true)]
     from: f64,
-    #[arg(long)]
+    /// Last value of the parameter.
+    #[arg(long, allow_negative_numbers = true)]
     to: f64,
     #[arg(long, default_value_t = 11)]
     steps: usize,
+    /// A measure to report beside the objectives (repeatable), e.g. `loop_height_mm`;
+    /// `noncirc measures` lists them.
+    #[arg(long = "measure")]
+    measures: Vec<String>,
 }
 
 #[derive(Subcommand)]
@@ -137,6 +144,8 @@ enum Command {
     Sweep(SweepArgs),
     /// List the built-in scenes.
     Scenes,
+    /// List every measure (`sweep --measure`, goals `min:NAME`/`max:NAME`) with its unit.
+    Measures,
 }
 
 fn main() -> ExitCode {
@@ -295,8 +304,18 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
         Command::Optimise(args) => optimise(args)?,
         Command::Sweep(args) => {
             let scene = apply_overrides(load_scene(args.scene.scene.as_deref())?, &args.scene.set)?;
-            let rows = noncirc::search::sweep(&scene, &args.param, args.from, args.to, args.steps)
-                .map_err(|e| e.to_string())?;
+            let measures = (args.measures.iter())
+                .map(|m| Measure::parse(m))
+                .collect::<Result<Vec<_>, _>>()?;
+            let rows = noncirc::search::sweep(
+                &scene,
+                &args.param,
+                args.from,
+                args.to,
+                args.steps,
+                &measures,
+            )
+            .map_err(|e| e.to_string())?;
             if let Some(dir) = &args.scene.plot {
                 for f in noncirc::plots::sweep_figures(&scene, &args.param, &rows, dir)
                     .map_err(|e| e.to_string())?
@@ -307,6 +326,11 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             match args.scene.format {
                 Format::Json => println!("{}", serde_json::to_string_pretty(&rows)?),
                 Format::Table => print!("{}", noncirc::report::sweep_table(&args.param, &rows)),
+            }
+        }
+        Command::Measures => {
+            for m in Measure::all() {
+                println!("{:<32} {:<4} {}", m.name(), m.unit(), m.description());
             }
         }
         Command::Scenes => {

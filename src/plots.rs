@@ -80,17 +80,25 @@ pub fn sweep_figures(
     dir: &Path,
 ) -> Result<Vec<PathBuf>, BoxError> {
     std::fs::create_dir_all(dir)?;
-    let names: Vec<String> = rows
+    let mut names: Vec<String> = rows
         .iter()
         .find(|r| !r.objectives.is_empty())
         .map(|r| r.objectives.keys().cloned().collect())
         .unwrap_or_default();
+    names.extend(
+        rows.iter()
+            .flat_map(|r| r.measures.keys().cloned())
+            .collect::<std::collections::BTreeSet<_>>(),
+    );
     let mut files = Vec::new();
     for name in &names {
         let series = vec![(
             name.clone(),
             rows.iter()
-                .filter_map(|r| r.objectives.get(name).map(|v| (r.value, *v)))
+                .filter_map(|r| {
+                    let v = r.objectives.get(name).or_else(|| r.measures.get(name));
+                    v.map(|v| (r.value, *v))
+                })
                 .collect(),
         )];
         files.extend(save(

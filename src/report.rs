@@ -2,7 +2,9 @@
 
 use noncirc_core::evaluation::GearSummary;
 use noncirc_core::moving_box::BoxReport;
-use noncirc_core::objectives::Events;
+use noncirc_core::anatomy::{Anatomy, SectionMeasures};
+use noncirc_core::events::{Events, PickingCheck};
+use noncirc_core::measures::Measure;
 use noncirc_core::{Evaluation, Evaluator, GearPair, ObjectiveValue, Result, Scene, SceneKind};
 use serde::Serialize;
 
@@ -148,7 +150,16 @@ impl From<&ObjectiveValue> for ObjectiveRow {
     }
 }
 
-/// Located events of arm I (degrees).
+/// One arm's picking and planting carrier angles (deg; paper Table 1).
+#[derive(Debug, Clone, Serialize)]
+pub struct ArmEvents {
+    pub arm: &'static str,
+    pub picking_carrier_deg: f64,
+    pub planting_carrier_deg: f64,
+}
+
+/// Located events of arm I (degrees), whether a machine can pick there, and the events
+/// of all three arms.
 #[derive(Debug, Clone, Serialize)]
 pub struct EventsRow {
     pub picking_carrier_deg: f64,
@@ -159,10 +170,26 @@ pub struct EventsRow {
     pub planting_attitude_deg: f64,
     pub picking_window_deg: [f64; 2],
     pub picking_tip_speed_m_s: f64,
+    /// The picking conditions (mm each, positive when met).
+    pub picking_check: PickingCheck,
+    /// Why a machine cannot pick there (`None` when it can).
+    pub picking_refused: Option<String>,
+    /// Margins before the events move to another branch (mm; `None`: a single extreme).
+    pub picking_branch_gap_mm: Option<f64>,
+    pub planting_branch_gap_mm: Option<f64>,
+    /// Arms I, II and III: arm k's events are arm I's delayed by k·120° of carrier.
+    pub arms: Vec<ArmEvents>,
 }
 
 impl From<&Events> for EventsRow {
     fn from(e: &Events) -> Self {
+        let arm = |k: usize, name| ArmEvents {
+            arm: name,
+            picking_carrier_deg: (e.picking.carrier_rad.to_degrees() + 120.0 * k as f64)
+                .rem_euclid(360.0),
+            planting_carrier_deg: (e.planting.carrier_rad.to_degrees() + 120.0 * k as f64)
+                .rem_euclid(360.0),
+        };
         Self {
             picking_carrier_deg: e.picking.carrier_rad.to_degrees(),
             planting_carrier_deg: e.planting.carrier_rad.to_degrees(),
@@ -175,9 +202,49 @@ impl From<&Events> for EventsRow {
                 e.picking_window_rad[1].to_degrees(),
             ],
             picking_tip_speed_m_s: e.picking_tip_speed_m_s,
+            picking_check: e.check,
+            picking_refused: e.check.failures(),
+            picking_branch_gap_mm: e.picking_branch_gap_mm,
+            planting_branch_gap_mm: e.planting_branch_gap_mm,
+            arms: vec![arm(0, "I"), arm(1, "II"), arm(2, "III")],
         }
     }
 }
+
+/// One measure's value with its unit.
+#[derive(Debug, Clone, Serialize)]
+pub struct MeasureRow {
+    pub name: String,
+    pub value: f64,
+    pub unit: &'static str,
+    pub description: String,
+}
+
+/// Every measure an evaluation has, in `Measure::all()` order.
+pub fn measure_rows(eval: &Evaluation, anatomy: Option<&Anatomy>) -> Vec<MeasureRow> {
+    Measure::all()
+        .into_iter()
+        .filter_map(|m| {
+            m.value(eval, anatomy).map(|value| MeasureRow {
+                name: m.name(),
+                value,
+                unit: m.unit(),
+                description: m.description(),
+            })
+        })
+        .collect()
+}
+
+/// The trajectory-shape measures the evaluate table prints (JSON has every measure).
+const SHAPE: [&str; 7] = [
+    "loop_width_mm",
+    "loop_height_mm",
+    "picking_height_mm",
+    "planting_height_mm",
+    "return_height_mm",
+    "picking_to_planting_height_mm",
+    "planting_ground_speed_m_s",
+];
 
 /// Everything `noncirc evaluate` reports, for any scene kind.
 #[derive(Debug, Clone, Serialize)]
@@ -190,7 +257,11 @@ pub struct EvaluationReport {
     pub feasible: bool,
     pub total_violation: f64,
     pub events: Option<EventsRow>,
+    /// The trajectory's sections in the order of motion (three-arm scenes).
+    pub sections: Option<[SectionMeasures; 4]>,
     pub objectives: Vec<ObjectiveRow>,
+    /// Every measure with its unit: objectives, events, shape, sections, box travel.
+    pub measures: Vec<MeasureRow>,
     pub gear: Option<GearSummary>,
     pub moving_box: Option<BoxReport>,
 }
@@ -204,6 +275,7 @@ impl EvaluationReport {
 
     /// The report of an evaluation already made.
     pub fn new(scene: &Scene, eval: &Evaluation) -> Self {
+        let anatomy = eval.anatomy(&scene.agronomy);
         Self {
             scene: scene.name.clone(),
             kind: scene.kind,
@@ -213,7 +285,9 @@ impl EvaluationReport {
             feasible: eval.total_violation() == 0.0,
             total_violation: eval.total_violation(),
             events: eval.events.as_ref().map(EventsRow::from),
+            sections: anatomy.map(|a| a.sections),
             objectives: eval.objectives.iter().map(ObjectiveRow::from).collect(),
+            measures: measure_rows(eval, anatomy.as_ref()),
             gear: eval.gear,
             moving_box: eval.moving_box,
         }
@@ -247,7 +321,41 @@ impl EvaluationReport {
                 e.planting_tip_mm[0],
                 e.planting_tip_mm[1],
                 e.planting_attitude_deg
+            );            if let Some(why) = &e.picking_refused {
+                out += &format!("  a machine cannot pick there: {why}\n");
+            }
+            let gap = |g: Option<f64>| g.map_or("none (one extreme)".into(), |g| format!("{g:.2} mm"));
+            out += &format!(
+                "branch margins: picking {}, planting {}\n",
+                gap(e.picking_branch_gap_mm),
+                gap(e.planting_branch_gap_mm)
             );
+            out += "arm      picks at  plants at (carrier)\n";
+            for a in &e.arms {
+                out += &format!(
+                    "{:<6} {:9.2}° {:9.2}°\n",
+                    a.arm, a.picking_carrier_deg, a.planting_carrier_deg
+                );
+            }
+        }
+        if let Some(sections) = &self.sections {
+            out += "\nsection            carrier          span     path    lowest   highest\n";
+            for s in sections {
+                out += &format!(
+                    "{:<16} {:7.2}°..{:7.2}° {:6.2}° {:7.1} mm {:7.1} mm {:7.1} mm\n",
+                    s.section.label(),
+                    s.carrier_deg[0],
+                    s.carrier_deg[1],
+                    s.span_deg,
+                    s.length_mm,
+                    s.y_min_mm,
+                    s.y_max_mm
+                );
+            }
+            out += "\n";
+            for m in self.measures.iter().filter(|m| SHAPE.contains(&m.name.as_str())) {
+                out += &format!("{:<32} {:9.3} {}\n", m.description, m.value, m.unit);
+            }
         }
         if let Some(b) = &self.moving_box {
             out += "\n";
@@ -454,8 +562,14 @@ pub fn sweep_table(param: &str, rows: &[crate::search::SweepRow]) -> String {
         .find(|r| !r.objectives.is_empty())
         .map(|r| r.objectives.keys().cloned().collect())
         .unwrap_or_default();
+    let measures: Vec<String> = rows
+        .iter()
+        .flat_map(|r| r.measures.keys().cloned())
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
     let mut out = format!("{param:>24}");
-    for n in &names {
+    for n in names.iter().chain(&measures) {
         out += &format!(" {:>17}", n);
     }
     out += "   violation\n";
@@ -466,6 +580,12 @@ pub fn sweep_table(param: &str, rows: &[crate::search::SweepRow]) -> String {
             None => {
                 for n in &names {
                     out += &format!(" {:>17.4}", r.objectives[n]);
+                }
+                for n in &measures {
+                    match r.measures.get(n) {
+                        Some(v) => out += &format!(" {v:>17.4}"),
+                        None => out += &format!(" {:>17}", "-"),
+                    }
                 }
                 out += &format!("   {:.4}", r.violation.unwrap_or(f64::NAN));
             }

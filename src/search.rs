@@ -4,6 +4,7 @@ use noncirc_core::search::problem::SceneProblem;
 use noncirc_core::search::{
     non_dominated_fronts, Algorithm, BatchEvaluator, Candidate, Fitness, SearchState,
 };
+use noncirc_core::measures::Measure;
 use noncirc_core::{Evaluator, Resolution, Scene};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -433,18 +434,24 @@ impl Outcome {
 pub struct SweepRow {
     pub value: f64,
     pub objectives: BTreeMap<String, f64>,
+    /// The measures asked for (`--measure`), by name; a measure the design does not have
+    /// (no runner-up extreme, say) is absent.
+    pub measures: BTreeMap<String, f64>,
     pub violation: Option<f64>,
     pub error: Option<String>,
 }
 
-/// The response of every objective to one parameter (three-arm paper §4.2), in parallel.
+/// The response of every objective, and of the given measures, to one parameter
+/// (three-arm paper §4.2), in parallel.
 pub fn sweep(
     scene: &Scene,
     param: &str,
     from: f64,
     to: f64,
     steps: usize,
+    measures: &[Measure],
 ) -> Result<Vec<SweepRow>, BoxError> {
+    let anatomy_needed = measures.iter().any(|m| m.needs_anatomy());
     let p = noncirc_core::Param::parse(param, scene)?;
     if steps < 2 || !from.is_finite() || !to.is_finite() {
         return Err("sweep needs finite --from/--to and --steps >= 2".into());
@@ -465,12 +472,19 @@ pub fn sweep(
                         .iter()
                         .map(|o| (o.kind.name().to_string(), o.value))
                         .collect(),
+                    measures: {
+                        let anatomy = e.anatomy(&s.agronomy).filter(|_| anatomy_needed);
+                        (measures.iter())
+                            .filter_map(|m| Some((m.name(), m.value(&e, anatomy.as_ref())?)))
+                            .collect()
+                    },
                     violation: Some(e.total_violation()),
                     error: None,
                 },
                 Err(err) => SweepRow {
                     value: v,
                     objectives: BTreeMap::new(),
+                    measures: BTreeMap::new(),
                     violation: None,
                     error: Some(err.to_string()),
                 },

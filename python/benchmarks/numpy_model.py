@@ -207,7 +207,7 @@ PAPER = {
     "arm_length_mm": 145.0,
     "pusher_offset_mm": 65.0,
     "gamma0_deg": -53.0,
-    "tray_normal_deg": 135.0,
+    "tray_normal_deg": -10.0,
     "housing_margin_mm": 10.0,
     "planting_depth_mm": 25.0,
     "arm_half_width_mm": 12.0,

@@ -37,7 +37,12 @@ class Scene:
 def evaluate(
     scene: Scene, *, samples_per_turn: Optional[int] = None, closure_rel_tol: Optional[float] = None
 ) -> dict[str, Any]:
-    """One design: objectives (dict), events, trajectory and pitch curves (arrays, mm)."""
+    """One design: objectives (dict), events with the picking check, the trajectory's
+    sections, every measure (``{name: {"value", "unit"}}``), trajectory and pitch curves
+    (arrays, mm)."""
+
+def measures() -> dict[str, tuple[str, str]]:
+    """Every measure by name: ``(unit, description)``; goals take ``min:NAME``/``max:NAME``."""
 
 def evaluate_batch(
     scene: Scene,

@@ -52,6 +52,13 @@ pub enum Error {
         rho_max_mm: f64,
         centre_distance_mm: f64,
     },
+    /// A name (of a measure, a goal, a parameter) that does not exist.
+    #[error("unknown {what} '{name}': the nearest are {}", nearest.join(", "))]
+    UnknownName {
+        what: &'static str,
+        name: String,
+        nearest: Vec<String>,
+    },
     /// A design that cannot be manufactured (e.g. a module of zero).
     #[error("{0}")]
     Infeasible(String),

@@ -1,10 +1,12 @@
 //! Staged evaluation: pitch curve → closure → kinematics → each objective (and the moving
 //! box apart). A scene runs only the stages its outputs need; counters prove it.
 
+use crate::anatomy::{anatomy, Anatomy};
 use crate::error::{Error, Result};
 use crate::gear::{perimeter, GearPair, ModuleReport};
 use crate::moving_box::{evaluate_box_with, BoxReport};
-use crate::objectives::{events, module, objective_value, Events, ObjectiveKind, ObjectiveValue};
+use crate::events::{events, Events};
+use crate::objectives::{module, objective_value, Agronomy, ObjectiveKind, ObjectiveValue};
 use crate::planetary::Kinematics;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
@@ -19,7 +21,7 @@ pub struct StageCounts {
     pub kinematics: u64,
     pub events: u64,
     /// Per objective, in `ObjectiveKind::ALL` order.
-    pub objectives: [u64; 8],
+    pub objectives: [u64; 9],
     pub moving_box: u64,
 }
 
@@ -49,6 +51,12 @@ impl Evaluation {
     /// Sum of the objectives' violations (0: every requested objective is met).
     pub fn total_violation(&self) -> f64 {
         self.objectives.iter().map(|o| o.violation).sum()
+    }
+
+    /// The trajectory's sections and their measures (computed on demand: searches that do
+    /// not ask for them do not pay for them), for a three-arm evaluation.
+    pub fn anatomy(&self, agro: &Agronomy) -> Option<Anatomy> {
+        Some(anatomy(self.kinematics.as_ref()?, agro, self.events.as_ref()?))
     }
 
     /// The value of one objective, if it was evaluated.

@@ -1,7 +1,7 @@
 //! Non-circular gear pairs of average ratio 1: closure, conjugate curve, ratio, module.
 
 use crate::curve::{parabola_vertex, PitchCurve, Polar, TAU};
-use crate::error::{Error, Result};
+use crate::error::{positive, Error, Result};
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use serde::{Deserialize, Serialize};
@@ -163,10 +163,27 @@ pub fn conjugate_polar(p: Polar, a: f64) -> Polar {
     }
 }
 
+/// Which reading of the module objective: the spec's undercut rule, or the perimeter alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum ModuleReading {
+    /// The largest module whose teeth the curvature allows without undercut (spec §1.4).
+    #[default]
+    Undercut,
+    /// `m = L/(πz)` for the given tooth count, with no undercut check: how the three-arm
+    /// paper most likely computed its 2.5 mm (docs/replication.md).
+    Perimeter,
+}
+
 /// How teeth may be cut: the rules that bound the module (spec §1.4).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ModuleRule {
+    /// Which reading: `undercut` (the default) or `perimeter`.
+    pub rule: ModuleReading,
+    /// Tooth count of the `perimeter` reading (shared by meshing gears).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub teeth: Option<u32>,
     /// Fewest teeth of a rack that cut a convex arc without undercut (17 for a 20° rack).
     pub z_min: f64,
     /// Teeth of the shaper cutter for concave arcs; `None` forbids concave arcs.
@@ -176,8 +193,33 @@ pub struct ModuleRule {
 impl Default for ModuleRule {
     fn default() -> Self {
         Self {
+            rule: ModuleReading::Undercut,
+            teeth: None,
             z_min: 17.0,
             cutter_teeth: Some(12.0),
+        }
+    }
+}
+
+impl ModuleRule {
+    /// Checks the rule, naming the bad value: the `perimeter` reading needs a tooth count.
+    pub fn validate(&self) -> Result<()> {
+        positive("gear.module.z_min", self.z_min)?;
+        if let Some(z) = self.cutter_teeth {
+            positive("gear.module.cutter_teeth", z)?;
+        }
+        match (self.rule, self.teeth) {
+            (ModuleReading::Perimeter, None) => Err(Error::OutOfRange {
+                name: "gear.module.teeth".into(),
+                value: f64::NAN,
+                expected: "a tooth count of at least 1 with gear.module.rule = \"perimeter\"".into(),
+            }),
+            (_, Some(0)) => Err(Error::OutOfRange {
+                name: "gear.module.teeth".into(),
+                value: 0.0,
+                expected: "at least 1".into(),
+            }),
+            _ => Ok(()),
         }
     }
 }
@@ -212,7 +254,9 @@ pub fn module_max(
         None => 0.0,
     };
     let limit = convex_limit.min(concave_limit);
-    let (teeth, module) = if limit > 0.0 {
+    let (teeth, module) = if let (ModuleReading::Perimeter, Some(z)) = (rule.rule, rule.teeth) {
+        (z, perimeter / (std::f64::consts::PI * f64::from(z)))
+    } else if limit > 0.0 {
         let z = (perimeter / (std::f64::consts::PI * limit) - 1e-9)
             .ceil()
             .max(1.0);

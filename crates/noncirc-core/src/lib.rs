@@ -3,11 +3,14 @@
 //! Units: millimetres and radians inside; degrees only where a person reads or writes.
 
 pub mod accuracy;
+pub mod anatomy;
 pub mod angle;
 pub mod curve;
 pub mod error;
 pub mod evaluation;
+pub mod events;
 pub mod gear;
+pub mod measures;
 pub mod moving_box;
 pub mod objectives;
 pub mod params;

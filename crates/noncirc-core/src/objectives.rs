@@ -1,11 +1,11 @@
-//! The eight agronomic objectives of the three-arm paper (spec §3), with value, bounds,
-//! unit and violation, plus the events (picking, planting) they are measured at.
+//! The eight agronomic objectives of the three-arm paper (spec §3) and a ninth, that a
+//! machine can pick at the picking point, with value, bounds, unit and violation.
 
-use crate::angle::unit;
 use crate::curve::{parabola_vertex, TAU};
 use crate::error::{finite, length, Result};
+use crate::events::{events, housing_radius, Events};
 use crate::gear::{curvature_extremes, module_max, perimeter, ModuleReport, ModuleRule};
-use crate::planetary::{ArmState, Kinematics};
+use crate::planetary::Kinematics;
 use serde::{Deserialize, Serialize};
 
 /// Which way the machine travels over the field.
@@ -24,11 +24,19 @@ pub enum Travel {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Agronomy {
-    /// Direction of the tray's inward normal (deg from +x, counter-clockwise): the picking
-    /// point is the trajectory's extreme point along it. 135: a tray inclined at 45°.
+    /// Direction of the tray's inward normal, pointing from the machine into the tray (deg
+    /// from +x, counter-clockwise): the picking point is the trajectory's extreme point
+    /// along it. −10: a tray to the right of the mechanism whose surface is inclined 80° to
+    /// the horizontal, the middle of the directions under which the paper's design picks
+    /// and meets its angle objectives (docs/replication.md).
     pub tray_normal_deg: f64,
-    /// How far the tip reaches past the tray surface (mm): places the tray, sets the window.
+    /// Depth of the tray's pots (mm): how far the tip reaches past the tray surface.
     pub tray_depth_mm: f64,
+    /// Distance of the tray surface from the carrier axis along the inward normal (mm).
+    /// Omitted: the tray is placed by the trajectory, so that the tip reaches exactly
+    /// `tray_depth_mm` past its surface.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tray_distance_mm: Option<f64>,
     /// Plant spacing along the row (mm); the machine advances three spacings per turn.
     pub plant_spacing_mm: f64,
     /// Height of the planted seedling above the planting point (mm).
@@ -46,8 +54,9 @@ pub struct Agronomy {
 impl Default for Agronomy {
     fn default() -> Self {
         Self {
-            tray_normal_deg: 135.0,
+            tray_normal_deg: -10.0,
             tray_depth_mm: 15.0,
+            tray_distance_mm: None,
             plant_spacing_mm: 140.0,
             seedling_height_mm: 120.0,
             planting_depth_mm: 25.0,
@@ -71,6 +80,9 @@ impl Agronomy {
             ("agronomy.housing_margin_mm", self.housing_margin_mm),
         ] {
             length(name, v)?;
+        }
+        if let Some(d) = self.tray_distance_mm {
+            length("agronomy.tray_distance_mm", d)?;
         }
         Ok(())
     }
@@ -96,6 +108,8 @@ pub struct Bounds {
     pub trajectory_height_min_mm: f64,
     /// Least admissible module (mm).
     pub module_min_mm: f64,
+    /// Least margin of the picking conditions (mm): how far the worst of them holds.
+    pub picking_admissible_min_mm: f64,
 }
 
 impl Default for Bounds {
@@ -109,11 +123,12 @@ impl Default for Bounds {
             ground_clearance_min_mm: 20.0,
             trajectory_height_min_mm: 260.0,
             module_min_mm: 2.5,
+            picking_admissible_min_mm: 0.0,
         }
     }
 }
 
-/// The eight objectives, in the paper's order.
+/// The paper's eight objectives in its order, then whether a machine can pick at all.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, PartialOrd, Ord)]
 #[serde(rename_all = "snake_case")]
 pub enum ObjectiveKind {
@@ -125,11 +140,12 @@ pub enum ObjectiveKind {
     GroundClearance,
     TrajectoryHeight,
     Module,
+    PickingAdmissible,
 }
 
 impl ObjectiveKind {
-    /// All eight, in order.
-    pub const ALL: [ObjectiveKind; 8] = [
+    /// All nine, in order.
+    pub const ALL: [ObjectiveKind; 9] = [
         ObjectiveKind::Interference,
         ObjectiveKind::PickingAngle,
         ObjectiveKind::PushingAngle,
@@ -138,6 +154,7 @@ impl ObjectiveKind {
         ObjectiveKind::GroundClearance,
         ObjectiveKind::TrajectoryHeight,
         ObjectiveKind::Module,
+        ObjectiveKind::PickingAdmissible,
     ];
 
     /// Stable snake-case name.
@@ -151,6 +168,7 @@ impl ObjectiveKind {
             ObjectiveKind::GroundClearance => "ground_clearance",
             ObjectiveKind::TrajectoryHeight => "trajectory_height",
             ObjectiveKind::Module => "module",
+            ObjectiveKind::PickingAdmissible => "picking_admissible",
         }
     }
 
@@ -165,6 +183,7 @@ impl ObjectiveKind {
             ObjectiveKind::GroundClearance => "gearbox ground clearance",
             ObjectiveKind::TrajectoryHeight => "trajectory height",
             ObjectiveKind::Module => "gear module",
+            ObjectiveKind::PickingAdmissible => "a machine can pick there",
         }
     }
 
@@ -196,6 +215,7 @@ impl ObjectiveKind {
             ObjectiveKind::GroundClearance => (Some(b.ground_clearance_min_mm), None),
             ObjectiveKind::TrajectoryHeight => (Some(b.trajectory_height_min_mm), None),
             ObjectiveKind::Module => (Some(b.module_min_mm), None),
+            ObjectiveKind::PickingAdmissible => (Some(b.picking_admissible_min_mm), None),
         }
     }
 }
@@ -233,137 +253,6 @@ impl ObjectiveValue {
             violation,
             margin,
         }
-    }
-}
-
-/// A located event: carrier angle (rad) and the tip there.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Event {
-    pub carrier_rad: f64,
-    pub tip_mm: [f64; 2],
-    /// Arm attitude: the pusher direction's dip below the horizontal (deg).
-    pub attitude_deg: f64,
-}
-
-/// Picking and planting events, the picking window and the tip speed at picking.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Events {
-    pub picking: Event,
-    pub planting: Event,
-    /// Carrier-angle span (rad, start < end, possibly past 2π) with the tip inside the tray.
-    pub picking_window_rad: [f64; 2],
-    /// Tip speed relative to the (machine-fixed) seedling at picking (m/s).
-    pub picking_tip_speed_m_s: f64,
-    /// Lowest and highest tip heights (mm).
-    pub y_min_mm: f64,
-    pub y_max_mm: f64,
-}
-
-/// Arm attitude (deg): the pusher direction's dip below the horizontal, in [−90°, 90°].
-pub fn attitude_deg(pusher_angle: f64) -> f64 {
-    (-pusher_angle.sin()).clamp(-1.0, 1.0).asin().to_degrees()
-}
-
-/// Refines the extreme of `t ↦ D(t)·dir` near node `j` by Newton on the derivative,
-/// using the exact tip derivatives; `max` chooses maximum or minimum. Returns the arm's
-/// state there (`state.theta` is the carrier angle) and the extreme value.
-fn refine_extreme(kin: &Kinematics, dir: [f64; 2], j: usize, max: bool) -> (ArmState, f64) {
-    let h = TAU / kin.len() as f64;
-    let dot = |v: [f64; 2]| v[0] * dir[0] + v[1] * dir[1];
-    let start = kin.theta(j);
-    let mut t = start;
-    let at_node = kin.state_at(t);
-    let mut state = at_node;
-    for _ in 0..20 {
-        let (d1, d2) = (dot(state.tip_d1), dot(state.tip_d2));
-        if (max && d2 >= 0.0) || (!max && d2 <= 0.0) {
-            break;
-        }
-        let step = (d1 / d2).clamp(-h, h);
-        t -= step;
-        state = kin.state_at(t);
-        // Newton converges quadratically: after a step below 1e-7 rad the next one is
-        // below 1e-13 rad, and the extreme value's error is second order in it.
-        if step.abs() < 1e-7 {
-            break;
-        }
-    }
-    let node_value = dot(kin.tips()[j]);
-    let refined = dot(state.tip);
-    let better = if max {
-        refined >= node_value
-    } else {
-        refined <= node_value
-    };
-    if better && (t - start).abs() <= 1.5 * h {
-        (state, refined)
-    } else {
-        (at_node, node_value)
-    }
-}
-
-/// Index of the node extreme along `dir`.
-fn extreme_node(tips: &[[f64; 2]], dir: [f64; 2], max: bool) -> usize {
-    let sign = if max { 1.0 } else { -1.0 };
-    let mut best = 0;
-    let mut best_v = f64::NEG_INFINITY;
-    for (j, p) in tips.iter().enumerate() {
-        let v = sign * (p[0] * dir[0] + p[1] * dir[1]);
-        if v > best_v {
-            best_v = v;
-            best = j;
-        }
-    }
-    best
-}
-
-/// Locates picking, planting, the window and the extremes of height.
-pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
-    let tips = kin.tips();
-    let normal = unit(agro.tray_normal_deg.to_radians());
-    let jp = extreme_node(tips, normal, true);
-    let (picked, depth) = refine_extreme(kin, normal, jp, true);
-    let down = [0.0, -1.0];
-    let jl = extreme_node(tips, down, true);
-    let (planted, neg_low) = refine_extreme(kin, down, jl, true);
-    let jh = extreme_node(tips, [0.0, 1.0], true);
-    let (_, y_max) = refine_extreme(kin, [0.0, 1.0], jh, true);
-    let event = |s: &ArmState| Event {
-        carrier_rad: s.theta.rem_euclid(TAU),
-        tip_mm: s.tip,
-        attitude_deg: attitude_deg(s.pusher_angle),
-    };
-    let picking = event(&picked);
-    let speed = picked.tip_d1[0].hypot(picked.tip_d1[1]) * kin.carrier_speed() / 1000.0;
-    // Window: walk both ways from the picking node while the tip is beyond the tray surface,
-    // then interpolate the crossing linearly between nodes.
-    let n = kin.len();
-    let surface = depth - agro.tray_depth_mm;
-    let inside = |j: usize| tips[j % n][0] * normal[0] + tips[j % n][1] * normal[1] - surface;
-    let h = TAU / n as f64;
-    let mut end = jp + n;
-    while end < jp + 2 * n - 1 && inside(end + 1) > 0.0 {
-        end += 1;
-    }
-    let mut start = jp + n;
-    while start > jp + 1 && inside(start - 1) > 0.0 {
-        start -= 1;
-    }
-    let cross = |a: usize, b: usize| {
-        let (fa, fb) = (inside(a), inside(b));
-        let frac = if fa != fb { fa / (fa - fb) } else { 0.0 };
-        (a as f64 + frac * (b as f64 - a as f64)) * h
-    };
-    let w0 = cross(start, start - 1) - TAU;
-    let w1 = cross(end, end + 1) - TAU;
-    let shift = (w0 / TAU).floor() * TAU;
-    Events {
-        picking,
-        planting: event(&planted),
-        picking_window_rad: [w0 - shift, w1 - shift],
-        picking_tip_speed_m_s: speed,
-        y_min_mm: -neg_low,
-        y_max_mm: y_max,
     }
 }
 
@@ -490,25 +379,35 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     parabola_vertex(clearance(wrap(j + n - 1)), least, clearance(wrap(j + 1)))
 }
 
+/// The machine's travel direction along x (+1 or −1), resolving [`Travel::Auto`].
+pub fn travel_sign(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
+    match agro.travel {
+        Travel::PlusX => 1.0,
+        Travel::MinusX => -1.0,
+        Travel::Auto => {
+            if kin.state_at(ev.planting.carrier_rad).tip_d1[0] > 0.0 {
+                -1.0
+            } else {
+                1.0
+            }
+        }
+    }
+}
+
+/// The machine's advance per radian of carrier (mm/rad): three plant spacings per turn.
+pub fn advance_per_rad(agro: &Agronomy) -> f64 {
+    3.0 * agro.plant_spacing_mm / TAU
+}
+
 /// Objective 5: worst forward excursion of the tip past the planted seedling in the ground
 /// frame, from the planting instant (excursion 0) until the tip rises above the seedling
 /// (mm; 0 when the tip never comes forward past it, which meets the bound `≤ 0`).
 pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     let n = kin.len();
     let h = TAU / n as f64;
-    let advance = 3.0 * agro.plant_spacing_mm / TAU;
+    let advance = advance_per_rad(agro);
     let tp = ev.planting.carrier_rad;
-    let forward = match agro.travel {
-        Travel::PlusX => 1.0,
-        Travel::MinusX => -1.0,
-        Travel::Auto => {
-            if kin.state_at(tp).tip_d1[0] > 0.0 {
-                -1.0
-            } else {
-                1.0
-            }
-        }
-    };
+    let forward = travel_sign(kin, agro, ev);
     let top = ev.planting.tip_mm[1] + agro.seedling_height_mm;
     let ahead = |x: f64, t: f64| forward * (x - ev.planting.tip_mm[0]) + advance * (t - tp);
     let first = (tp / h).floor() as usize + 1;
@@ -539,10 +438,7 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
 /// Objective 6: clearance between the gearbox housing (the gears' envelope around the
 /// carrier axis plus the wall margin) and the ground (mm).
 pub fn ground_clearance(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
-    let a = kin.centre_distance();
-    let (rmin, rmax) = kin.radius_range();
-    let planet_radius = 2.0 * a * (kin.spec().gamma0_deg.to_radians() / 2.0).cos().abs();
-    let housing = rmax.max(a + (a - rmin)).max(planet_radius + rmax) + agro.housing_margin_mm;
+    let housing = housing_radius(kin, agro);
     let ground = ev.y_min_mm + agro.planting_depth_mm;
     -housing - ground
 }
@@ -585,6 +481,7 @@ pub fn objective_value(
         ObjectiveKind::SeedlingPush => seedling_push(kin, agro, ev()),
         ObjectiveKind::GroundClearance => ground_clearance(kin, agro, ev()),
         ObjectiveKind::TrajectoryHeight => ev().y_max_mm - ev().y_min_mm,
+        ObjectiveKind::PickingAdmissible => ev().check.margin_mm(),
         ObjectiveKind::Module => {
             gear_module
                 .expect("the module is computed before the objective that needs it")
@@ -694,12 +591,5 @@ mod tests {
         }
         // Some of these designs interfere: the pruning is tested on both signs.
         assert!(checked > 0);
-    }
-
-    #[test]
-    fn attitude_is_the_dip_below_horizontal() {
-        assert!((attitude_deg(-std::f64::consts::FRAC_PI_2) - 90.0).abs() < 1e-12);
-        assert!(attitude_deg(std::f64::consts::PI).abs() < 1e-12);
-        assert!((attitude_deg(std::f64::consts::PI + 0.5) - 0.5f64.to_degrees()).abs() < 1e-9);
     }
 }

@@ -155,6 +155,7 @@ impl Scene {
     /// The objectives this scene evaluates, checked against its kind.
     pub fn validate(&self) -> Result<()> {
         self.resolution.validate()?;
+        self.gear.module.validate()?;
         let mechanism = matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
         for o in &self.objectives {
             let allowed =

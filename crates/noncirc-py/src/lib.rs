@@ -1,6 +1,7 @@
 //! The `noncirc._noncirc` extension: a thin layer over the `noncirc` facade. Every error
 //! becomes `noncirc.NoncircError` (a `ValueError`), and heavy work runs with the GIL released.
 
+use noncirc::core::measures::Measure;
 use noncirc::core::search::problem::SceneProblem;
 use noncirc::core::search::Algorithm;
 use noncirc::core::{Evaluator, GearPair, Resolution};
@@ -205,8 +206,40 @@ fn evaluate<'py>(
         )?;
         d.set_item("picking_tip_speed_m_s", e.picking_tip_speed_m_s)?;
         d.set_item("trajectory_height_mm", e.y_max_mm - e.y_min_mm)?;
+        d.set_item("picking_branch_gap_mm", e.picking_branch_gap_mm)?;
+        d.set_item("planting_branch_gap_mm", e.planting_branch_gap_mm)?;
+        let check = PyDict::new(py);
+        for (name, value) in e.check.conditions() {
+            check.set_item(name, value)?;
+        }
+        d.set_item("picking_check_mm", check)?;
+        d.set_item("picking_refused", e.check.failures())?;
         out.set_item("events", d)?;
     }
+    let anatomy = eval.anatomy(&s.agronomy);
+    if let Some(a) = &anatomy {
+        let sections = PyDict::new(py);
+        for m in &a.sections {
+            let d = PyDict::new(py);
+            d.set_item("carrier_deg", (m.carrier_deg[0], m.carrier_deg[1]))?;
+            d.set_item("span_deg", m.span_deg)?;
+            d.set_item("length_mm", m.length_mm)?;
+            d.set_item("y_min_mm", m.y_min_mm)?;
+            d.set_item("y_max_mm", m.y_max_mm)?;
+            sections.set_item(m.section.name(), d)?;
+        }
+        out.set_item("sections", sections)?;
+    }
+    let measures = PyDict::new(py);
+    for m in Measure::all() {
+        if let Some(v) = m.value(&eval, anatomy.as_ref()) {
+            let d = PyDict::new(py);
+            d.set_item("value", v)?;
+            d.set_item("unit", m.unit())?;
+            measures.set_item(m.name(), d)?;
+        }
+    }
+    out.set_item("measures", measures)?;
     if let Some(kin) = &eval.kinematics {
         let theta = Array1::from_iter((0..kin.len()).map(|j| kin.theta(j).to_degrees()));
         out.set_item("carrier_deg", theta.into_pyarray(py))?;
@@ -225,6 +258,17 @@ fn evaluate<'py>(
     }
     if let Some(b) = &eval.moving_box {
         out.set_item("moving_box", serde_json::to_string(b).map_err(err)?)?;
+    }
+    Ok(out)
+}
+
+/// Every measure `evaluate` reports and the goals `min:NAME`/`max:NAME` take:
+/// `{name: (unit, description)}`.
+#[pyfunction]
+fn measures(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let out = PyDict::new(py);
+    for m in Measure::all() {
+        out.set_item(m.name(), (m.unit(), m.description()))?;
     }
     Ok(out)
 }
@@ -461,6 +505,7 @@ fn optimise<'py>(
 fn _noncirc(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(evaluate, m)?)?;
+    m.add_function(wrap_pyfunction!(measures, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(optimise, m)?)?;
     m.add("NoncircError", m.py().get_type::<NoncircError>())?;

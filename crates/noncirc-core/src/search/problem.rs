@@ -4,6 +4,7 @@
 use super::Fitness;
 use crate::error::{Error, Result};
 use crate::evaluation::{Evaluation, Evaluator};
+use crate::measures::Measure;
 use crate::objectives::{Bounds, ObjectiveKind, ObjectiveValue};
 use crate::params::Param;
 use crate::resolution::Resolution;
@@ -33,6 +34,8 @@ pub enum Goal {
     PickingTipSpeed,
     /// Minimise the box travel while picking (transplanter scenes; mm).
     BoxTravel,
+    /// Minimise (`min:NAME`) or maximise (`max:NAME`) any measure (`noncirc measures`).
+    Measure { measure: Measure, maximise: bool },
 }
 
 impl Goal {
@@ -41,6 +44,10 @@ impl Goal {
             "least_margin" => Ok(Goal::LeastMargin),
             "picking_tip_speed" => Ok(Goal::PickingTipSpeed),
             "box_travel" => Ok(Goal::BoxTravel),
+            other if other.starts_with("min:") || other.starts_with("max:") => Ok(Goal::Measure {
+                measure: Measure::parse(&other[4..])?,
+                maximise: other.starts_with("max:"),
+            }),
             other => ObjectiveKind::ALL
                 .iter()
                 .find(|k| k.name() == other)
@@ -48,13 +55,15 @@ impl Goal {
                 .ok_or_else(|| Error::OutOfRange {
                     name: format!("search goal '{other}'"),
                     value: f64::NAN,
-                    expected: "least_margin, picking_tip_speed, box_travel or an objective name"
+                    expected: "least_margin, picking_tip_speed, box_travel, an objective name, \
+                               or min:NAME / max:NAME of a measure (noncirc measures)"
                         .into(),
                 }),
         }
     }
 
-    fn value(self, eval: &Evaluation, bounds: &Bounds) -> f64 {
+    fn value(self, eval: &Evaluation, scene: &Scene) -> f64 {
+        let bounds = &scene.bounds;
         let norm = |o: &ObjectiveValue| o.margin / scale(o.kind, bounds);
         let v = match self {
             // The seedling-push margin is 0 whenever it is met: it cannot rank designs.
@@ -73,6 +82,19 @@ impl Goal {
                 .moving_box
                 .as_ref()
                 .map_or(f64::INFINITY, |b| b.elliptic_delta_h_mm),
+            Goal::Measure { measure, maximise } => {
+                let anatomy = if measure.needs_anatomy() {
+                    eval.anatomy(&scene.agronomy)
+                } else {
+                    None
+                };
+                let v = measure.value(eval, anatomy.as_ref()).unwrap_or(f64::NAN);
+                if maximise {
+                    -v
+                } else {
+                    v
+                }
+            }
         };
         if v.is_finite() {
             v
@@ -203,6 +225,12 @@ impl SceneProblem {
                 Goal::Margin(k) => format!("−({} normalised margin)", k.name()),
                 Goal::PickingTipSpeed => "picking tip speed (m/s)".to_string(),
                 Goal::BoxTravel => "box travel while picking (mm)".to_string(),
+                Goal::Measure { measure, maximise } => format!(
+                    "{}{} ({})",
+                    if *maximise { "−" } else { "" },
+                    measure.name(),
+                    measure.unit()
+                ),
             })
             .collect()
     }
@@ -303,7 +331,7 @@ impl SceneProblem {
                 } else {
                     INVALID_CV
                 };
-                let f = self.goals.iter().map(|g| g.value(&eval, bounds)).collect();
+                let f = self.goals.iter().map(|g| g.value(&eval, scratch)).collect();
                 (Fitness { cv, f }, Ok(eval))
             }
             Err(e) => (

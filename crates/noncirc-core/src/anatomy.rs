@@ -1,0 +1,223 @@
+//! The trajectory's anatomy in the three-arm paper's terms (§4.2): each arm's static
+//! trajectory in four sections, in the order of motion, with the measures the paper's
+//! parameter analysis speaks of.
+//!
+//! - **Seedling removal** (the picking loop): the run around picking where the tip is
+//!   within one tray depth of the tray surface, from one pot depth before entering the
+//!   tray until the pulled pot has cleared it.
+//! - **Conveying**: from the end of removal to the start of planting.
+//! - **Planting**: the run around the lowest point where the tip is in the soil (below the
+//!   ground line, `planting_depth_mm` above the lowest point).
+//! - **Return**: from the end of planting back to the start of removal.
+//!
+//! Sections overlap only on degenerate designs (a removal zone that reaches the soil);
+//! the later section is then cut where the earlier one ends.
+
+use crate::angle::unit;
+use crate::curve::{parabola_vertex, TAU};
+use crate::events::{span_where, Events};
+use crate::objectives::{advance_per_rad, travel_sign, Agronomy};
+use crate::planetary::Kinematics;
+use serde::Serialize;
+
+/// The four sections, in the order of motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Section {
+    Removal,
+    Conveying,
+    Planting,
+    Return,
+}
+
+impl Section {
+    /// All four, in the order of motion.
+    pub const ALL: [Section; 4] = [
+        Section::Removal,
+        Section::Conveying,
+        Section::Planting,
+        Section::Return,
+    ];
+
+    /// Stable snake-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Section::Removal => "removal",
+            Section::Conveying => "conveying",
+            Section::Planting => "planting",
+            Section::Return => "return",
+        }
+    }
+
+    /// What a person reads.
+    pub fn label(self) -> &'static str {
+        match self {
+            Section::Removal => "seedling removal",
+            Section::Conveying => "conveying",
+            Section::Planting => "planting",
+            Section::Return => "return",
+        }
+    }
+}
+
+/// One section's measures.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SectionMeasures {
+    pub section: Section,
+    /// Carrier angles where arm I enters and leaves the section (deg; start in [0, 360),
+    /// end ≥ start, possibly past 360).
+    pub carrier_deg: [f64; 2],
+    /// Carrier span (deg).
+    pub span_deg: f64,
+    /// Path length of the tip (mm).
+    pub length_mm: f64,
+    /// Lowest and highest tip heights in the section (mm).
+    pub y_min_mm: f64,
+    pub y_max_mm: f64,
+    /// Least and largest tip x in the section (mm).
+    pub x_min_mm: f64,
+    pub x_max_mm: f64,
+}
+
+/// The trajectory's sections and the measures of paper §4.2 (mm, m/s).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Anatomy {
+    /// In the order of motion: removal, conveying, planting, return.
+    pub sections: [SectionMeasures; 4],
+    /// Horizontal and vertical extent of the seedling-removal section (the loop).
+    pub loop_width_mm: f64,
+    pub loop_height_mm: f64,
+    /// Heights of the picking and planting points, and of the return section's highest
+    /// point (the return point).
+    pub picking_height_mm: f64,
+    pub planting_height_mm: f64,
+    pub return_height_mm: f64,
+    /// Vertical distance from the planting point up to the picking point.
+    pub picking_to_planting_height_mm: f64,
+    /// Tip speed in the ground frame at planting, with the machine's advance (m/s).
+    pub planting_ground_speed_m_s: f64,
+}
+
+impl Anatomy {
+    /// One section's measures.
+    pub fn section(&self, s: Section) -> &SectionMeasures {
+        &self.sections[s as usize]
+    }
+
+    /// The section arm I is in at carrier angle `theta_deg`.
+    pub fn section_at(&self, theta_deg: f64) -> Section {
+        let start = self.sections[0].carrier_deg[0];
+        let t = start + (theta_deg - start).rem_euclid(360.0);
+        (self.sections.iter())
+            .find(|s| t < s.carrier_deg[1] || s.section == Section::Return)
+            .map_or(Section::Return, |s| s.section)
+    }
+}
+
+/// Measures the sections of arm I's trajectory.
+pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
+    let n = kin.len();
+    let h = TAU / n as f64;
+    let tips = kin.tips();
+    let node = |t: f64| ((t / h).round() as usize) % n;
+    let normal = unit(agro.tray_normal_deg.to_radians());
+    let dot = |p: [f64; 2]| p[0] * normal[0] + p[1] * normal[1];
+    let zone = ev.check.tray_surface_mm - agro.tray_depth_mm;
+    let ground = ev.y_min_mm + agro.planting_depth_mm;
+    let tp = ev.picking.carrier_rad;
+    let tl = ev.planting.carrier_rad;
+    // Each zone contains its own event's node (an extreme lies within it by construction);
+    // a tray the tip does not reach leaves a removal section of the picking instant alone.
+    let [r0, r1] = span_where(n, node(tp), |j| dot(tips[j]) - zone).unwrap_or([tp, tp]);
+    let [p0, p1] = span_where(n, node(tl), |j| ground - tips[j][1]).unwrap_or([tl, tl]);
+    // Planting after removal, within one turn of its start.
+    let turns = ((p0 - r0) / TAU).floor() * TAU;
+    let (p0, p1) = (p0 - turns, p1 - turns);
+    let end = r0 + TAU;
+    let plant = [p0.max(r1).min(end), p1.max(r1).min(end)];
+    let spans = [[r0, r1], [r1, plant[0]], plant, [plant[1], end]];
+    let speeds: Vec<f64> = (0..n)
+        .map(|j| {
+            let d = kin.state_at(kin.theta(j)).tip_d1;
+            d[0].hypot(d[1])
+        })
+        .collect();
+    let sections = std::array::from_fn(|i| {
+        let [t0, t1] = spans[i];
+        measure_section(kin, &speeds, Section::ALL[i], t0, t1)
+    });
+    let removal: &SectionMeasures = &sections[0];
+    let planted = kin.state_at(tl);
+    let ground_velocity = [
+        travel_sign(kin, agro, ev) * planted.tip_d1[0] + advance_per_rad(agro),
+        planted.tip_d1[1],
+    ];
+    Anatomy {
+        loop_width_mm: removal.x_max_mm - removal.x_min_mm,
+        loop_height_mm: removal.y_max_mm - removal.y_min_mm,
+        picking_height_mm: ev.picking.tip_mm[1],
+        planting_height_mm: ev.planting.tip_mm[1],
+        return_height_mm: sections[3].y_max_mm,
+        picking_to_planting_height_mm: ev.picking.tip_mm[1] - ev.planting.tip_mm[1],
+        planting_ground_speed_m_s: ground_velocity[0].hypot(ground_velocity[1])
+            * kin.carrier_speed()
+            / 1000.0,
+        sections,
+    }
+}
+
+/// The measures of one section `[t0, t1]` (rad, unwrapped): the path length by the
+/// trapezoid rule of the tip speed `speeds` (mm/rad at the nodes) on the nodes inside plus
+/// the two partial cells, the extremes of x and y at the nodes inside (refined by the
+/// parabola through the neighbours) and at the ends.
+fn measure_section(
+    kin: &Kinematics,
+    speeds: &[f64],
+    section: Section,
+    t0: f64,
+    t1: f64,
+) -> SectionMeasures {
+    let n = kin.len();
+    let h = TAU / n as f64;
+    let tips = kin.tips();
+    let at = |k: i64| k.rem_euclid(n as i64) as usize;
+    let (a, b) = (kin.state_at(t0), kin.state_at(t1));
+    let speed = |s: &crate::planetary::ArmState| s.tip_d1[0].hypot(s.tip_d1[1]);
+    // Nodes strictly inside (t0, t1).
+    let (first, last) = ((t0 / h).floor() as i64 + 1, (t1 / h).ceil() as i64 - 1);
+    let mut length = 0.0;
+    let mut extent = [a.tip[0].min(b.tip[0]), a.tip[0].max(b.tip[0])];
+    let mut heights = [a.tip[1].min(b.tip[1]), a.tip[1].max(b.tip[1])];
+    if first > last {
+        length = 0.5 * (speed(&a) + speed(&b)) * (t1 - t0);
+    } else {
+        length += 0.5 * (speed(&a) + speeds[at(first)]) * (first as f64 * h - t0);
+        length += 0.5 * (speed(&b) + speeds[at(last)]) * (t1 - last as f64 * h);
+        for k in first..last {
+            length += 0.5 * (speeds[at(k)] + speeds[at(k + 1)]) * h;
+        }
+        for k in first..=last {
+            let (m, c, p) = (tips[at(k - 1)], tips[at(k)], tips[at(k + 1)]);
+            for (axis, range) in [(0, &mut extent), (1, &mut heights)] {
+                let (m, c, p) = (m[axis], c[axis], p[axis]);
+                // The parabola refines a node only where it is a local extreme.
+                let low = if c <= m && c <= p { parabola_vertex(m, c, p) } else { c };
+                let high = if c >= m && c >= p { -parabola_vertex(-m, -c, -p) } else { c };
+                range[0] = range[0].min(low);
+                range[1] = range[1].max(high);
+            }
+        }
+    }
+    let start = t0.to_degrees().rem_euclid(360.0);
+    let span = (t1 - t0).to_degrees();
+    SectionMeasures {
+        section,
+        carrier_deg: [start, start + span],
+        span_deg: span,
+        length_mm: length,
+        y_min_mm: heights[0],
+        y_max_mm: heights[1],
+        x_min_mm: extent[0],
+        x_max_mm: extent[1],
+    }
+}

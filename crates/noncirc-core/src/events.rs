@@ -1,0 +1,327 @@
+//! Picking and planting (spec §3): where each happens on the trajectory, whether a machine
+//! can pick there, and how far the next candidate extreme is.
+//!
+//! Picking is the tip's extreme point along the tray's inward normal `n`; planting is its
+//! lowest point. Both are located between samples. An extreme point is only a picking
+//! instant if a machine can pick there ([`PickingCheck`]): the tip is in the tray, the
+//! pusher points into it, the planet centre, the gearbox housing and the other two arms
+//! stay on the machine's side of the tray surface, and no other branch of the trajectory
+//! enters the tray (a second entry per turn would strike the seedlings). The last
+//! condition is also what makes the event trustworthy: when a small change of the design
+//! moves the extreme to another branch, the runner-up branch is by then nearly as deep,
+//! so the design fails the check before and after the switch instead of jumping silently.
+
+use crate::angle::unit;
+use crate::curve::{parabola_vertex, TAU};
+use crate::objectives::Agronomy;
+use crate::planetary::{ArmState, Kinematics};
+use serde::Serialize;
+
+/// A located event: carrier angle (rad) and the tip there.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Event {
+    pub carrier_rad: f64,
+    pub tip_mm: [f64; 2],
+    /// Arm attitude: the pusher direction's dip below the horizontal (deg).
+    pub attitude_deg: f64,
+}
+
+/// Whether a machine can pick at the picking point: each condition as a signed distance
+/// (mm), positive when it holds. The picking objective's value is their least.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PickingCheck {
+    /// Distance of the tray surface from the carrier axis along the inward normal (mm).
+    pub tray_surface_mm: f64,
+    /// How far the tip reaches past the tray surface (mm).
+    pub tip_depth_mm: f64,
+    /// With a tray at a given distance: `min(depth, tray depth − depth)`, the tip reaches
+    /// into the pots without striking the tray's floor (mm). `None` for a tray placed by
+    /// the trajectory, where the depth is the tray depth by construction.
+    pub reach_mm: Option<f64>,
+    /// How far the planet centre `O3` stays behind the tray surface (mm).
+    pub planet_behind_mm: f64,
+    /// How far the gearbox housing, the disc it sweeps about the carrier axis, stays
+    /// behind the tray surface (mm).
+    pub housing_behind_mm: f64,
+    /// `S · (pusher direction · n)`: how far the pusher axis advances into the tray over
+    /// the arm's length (mm); negative when the pusher points back at the machine.
+    pub pusher_into_tray_mm: f64,
+    /// `S · (arm direction · n)`, the same for the arm line `O3 → D` (mm).
+    pub arm_into_tray_mm: f64,
+    /// How far arms II and III (capsules of the arm half-width) stay behind the tray
+    /// surface at the picking instant (mm).
+    pub other_arms_behind_mm: f64,
+    /// How far the next candidate extreme along `n` (another branch of the trajectory)
+    /// stays behind the tray surface (mm); `None` when the trajectory has one extreme.
+    pub second_entry_behind_mm: Option<f64>,
+}
+
+impl PickingCheck {
+    /// The conditions by name, with their signed distances (mm).
+    pub fn conditions(&self) -> Vec<(&'static str, f64)> {
+        let mut out = vec![
+            ("planet centre behind the tray surface", self.planet_behind_mm),
+            ("gearbox housing behind the tray surface", self.housing_behind_mm),
+            ("pusher points into the tray", self.pusher_into_tray_mm),
+            ("arm points into the tray", self.arm_into_tray_mm),
+            (
+                "arms II and III behind the tray surface",
+                self.other_arms_behind_mm,
+            ),
+        ];
+        if let Some(r) = self.reach_mm {
+            out.push(("tip within the tray depth", r));
+        }
+        if let Some(s) = self.second_entry_behind_mm {
+            out.push(("no other branch enters the tray", s));
+        }
+        out
+    }
+
+    /// The least of the conditions (mm): ≥ 0 when a machine can pick there.
+    pub fn margin_mm(&self) -> f64 {
+        self.conditions()
+            .iter()
+            .map(|c| c.1)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The conditions that fail, each with how far (mm), or `None` when all hold.
+    pub fn failures(&self) -> Option<String> {
+        let failed: Vec<String> = (self.conditions().iter())
+            .filter(|c| c.1 < 0.0)
+            .map(|(name, v)| format!("{name} fails by {:.2} mm", -v))
+            .collect();
+        (!failed.is_empty()).then(|| failed.join("; "))
+    }
+}
+
+/// Picking and planting events, the picking window and the tip speed at picking.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Events {
+    pub picking: Event,
+    pub planting: Event,
+    /// Carrier-angle span (rad, start < end, possibly past 2π) with the tip inside the tray.
+    pub picking_window_rad: [f64; 2],
+    /// Tip speed relative to the (machine-fixed) seedling at picking (m/s).
+    pub picking_tip_speed_m_s: f64,
+    /// Lowest and highest tip heights (mm).
+    pub y_min_mm: f64,
+    pub y_max_mm: f64,
+    /// Whether a machine can pick at the picking point.
+    pub check: PickingCheck,
+    /// How far the runner-up extreme along the tray normal falls short of the picking
+    /// point (mm): the margin before the picking event moves to another branch. `None`
+    /// when the trajectory has a single extreme along the normal.
+    pub picking_branch_gap_mm: Option<f64>,
+    /// The same for planting: how much higher the runner-up low point is (mm).
+    pub planting_branch_gap_mm: Option<f64>,
+}
+
+/// Arm attitude (deg): the pusher direction's dip below the horizontal, in [−90°, 90°].
+pub fn attitude_deg(pusher_angle: f64) -> f64 {
+    (-pusher_angle.sin()).clamp(-1.0, 1.0).asin().to_degrees()
+}
+
+/// Refines the extreme of `t ↦ D(t)·dir` near node `j` by Newton on the derivative,
+/// using the exact tip derivatives; `max` chooses maximum or minimum. Returns the arm's
+/// state there (`state.theta` is the carrier angle) and the extreme value.
+fn refine_extreme(kin: &Kinematics, dir: [f64; 2], j: usize, max: bool) -> (ArmState, f64) {
+    let h = TAU / kin.len() as f64;
+    let dot = |v: [f64; 2]| v[0] * dir[0] + v[1] * dir[1];
+    let start = kin.theta(j);
+    let mut t = start;
+    let at_node = kin.state_at(t);
+    let mut state = at_node;
+    for _ in 0..20 {
+        let (d1, d2) = (dot(state.tip_d1), dot(state.tip_d2));
+        if (max && d2 >= 0.0) || (!max && d2 <= 0.0) {
+            break;
+        }
+        let step = (d1 / d2).clamp(-h, h);
+        t -= step;
+        state = kin.state_at(t);
+        // Newton converges quadratically: after a step below 1e-7 rad the next one is
+        // below 1e-13 rad, and the extreme value's error is second order in it.
+        if step.abs() < 1e-7 {
+            break;
+        }
+    }
+    let node_value = dot(kin.tips()[j]);
+    let refined = dot(state.tip);
+    let better = if max {
+        refined >= node_value
+    } else {
+        refined <= node_value
+    };
+    if better && (t - start).abs() <= 1.5 * h {
+        (state, refined)
+    } else {
+        (at_node, node_value)
+    }
+}
+
+/// The node of the largest `D·dir`, and the sub-sample value of the largest other local
+/// maximum (another branch), if the trajectory has one.
+fn extreme_and_runner_up(tips: &[[f64; 2]], dir: [f64; 2]) -> (usize, Option<f64>) {
+    let n = tips.len();
+    let v = |j: usize| {
+        let p = tips[j % n];
+        p[0] * dir[0] + p[1] * dir[1]
+    };
+    let mut best = 0;
+    for j in 1..n {
+        if v(j) > v(best) {
+            best = j;
+        }
+    }
+    let mut runner_up: Option<f64> = None;
+    for j in n..2 * n {
+        let (m, c, p) = (v(j - 1), v(j), v(j + 1));
+        // A local maximum (strict on the left, so a flat top counts once) that is not the
+        // best node's own peak.
+        let near_best = (j - best) % n <= 1 || (best + n - j % n) % n <= 1;
+        if c > m && c >= p && !near_best {
+            let value = -parabola_vertex(-m, -c, -p);
+            runner_up = Some(runner_up.map_or(value, |r: f64| r.max(value)));
+        }
+    }
+    (best, runner_up)
+}
+
+/// The housing's radius about the carrier axis (mm): the disc the gearbox sweeps (the
+/// envelope of the sun, the intermediates and the planets) plus the wall margin.
+pub fn housing_radius(kin: &Kinematics, agro: &Agronomy) -> f64 {
+    let a = kin.centre_distance();
+    let (rmin, rmax) = kin.radius_range();
+    let planet_radius = 2.0 * a * (kin.spec().gamma0_deg.to_radians() / 2.0).cos().abs();
+    rmax.max(a + (a - rmin)).max(planet_radius + rmax) + agro.housing_margin_mm
+}
+
+/// Locates picking and planting, checks the picking, and finds the window and the
+/// extremes of height.
+pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
+    let tips = kin.tips();
+    let normal = unit(agro.tray_normal_deg.to_radians());
+    let dot = |p: [f64; 2]| p[0] * normal[0] + p[1] * normal[1];
+    let (jp, picking_runner_up) = extreme_and_runner_up(tips, normal);
+    let (picked, depth) = refine_extreme(kin, normal, jp, true);
+    let down = [0.0, -1.0];
+    let (jl, planting_runner_up) = extreme_and_runner_up(tips, down);
+    let (planted, neg_low) = refine_extreme(kin, down, jl, true);
+    let (jh, _) = extreme_and_runner_up(tips, [0.0, 1.0]);
+    let (_, y_max) = refine_extreme(kin, [0.0, 1.0], jh, true);
+    let event = |s: &ArmState| Event {
+        carrier_rad: s.theta.rem_euclid(TAU),
+        tip_mm: s.tip,
+        attitude_deg: attitude_deg(s.pusher_angle),
+    };
+    let picking = event(&picked);
+    let speed = picked.tip_d1[0].hypot(picked.tip_d1[1]) * kin.carrier_speed() / 1000.0;
+    let surface = agro.tray_distance_mm.unwrap_or(depth - agro.tray_depth_mm);
+    let check = picking_check(kin, agro, &picked, surface, picking_runner_up);
+    // Window: the run of nodes around the picking node with the tip beyond the surface.
+    let n = kin.len();
+    let [w0, w1] = span_where(n, jp, |j| dot(tips[j]) - surface)
+        // A tray the tip does not reach (placed by distance): an empty window at picking.
+        .unwrap_or([picking.carrier_rad; 2]);
+    let shift = (w0 / TAU).floor() * TAU;
+    Events {
+        picking,
+        planting: event(&planted),
+        picking_window_rad: [w0 - shift, w1 - shift],
+        picking_tip_speed_m_s: speed,
+        y_min_mm: -neg_low,
+        y_max_mm: y_max,
+        check,
+        picking_branch_gap_mm: picking_runner_up.map(|r| depth - r),
+        planting_branch_gap_mm: planting_runner_up.map(|r| neg_low - r),
+    }
+}
+
+/// The carrier span (rad, `start ≤ end`, `start` in `[-2π, 2π)`) of the run of nodes around
+/// node `j0` where `f(j) > 0`, its ends interpolated linearly between nodes; `None` when
+/// `f(j0) ≤ 0`. `f` takes node indices in `0..n`.
+pub(crate) fn span_where(n: usize, j0: usize, f: impl Fn(usize) -> f64) -> Option<[f64; 2]> {
+    let g = |j: usize| f(j % n);
+    if g(j0) <= 0.0 {
+        return None;
+    }
+    let (mut start, mut end) = (j0 + n, j0 + n);
+    while end < j0 + 2 * n - 1 && g(end + 1) > 0.0 {
+        end += 1;
+    }
+    while start > j0 + 1 && g(start - 1) > 0.0 {
+        start -= 1;
+    }
+    let h = TAU / n as f64;
+    let cross = |a: usize, b: usize| {
+        let (fa, fb) = (g(a), g(b));
+        let frac = if fa != fb { (fa / (fa - fb)).clamp(0.0, 1.0) } else { 0.0 };
+        (a as f64 + frac * (b as f64 - a as f64)) * h - TAU
+    };
+    Some([cross(start, start - 1), cross(end, end + 1)])
+}
+
+/// The picking conditions at the picked state, for a tray surface at `surface` (mm along
+/// the normal) and the runner-up extreme along the normal.
+fn picking_check(
+    kin: &Kinematics,
+    agro: &Agronomy,
+    picked: &ArmState,
+    surface: f64,
+    runner_up: Option<f64>,
+) -> PickingCheck {
+    let normal = unit(agro.tray_normal_deg.to_radians());
+    let dot = |p: [f64; 2]| p[0] * normal[0] + p[1] * normal[1];
+    let s = kin.spec().arm_length_mm;
+    let tip_depth = dot(picked.tip) - surface;
+    let arm = [picked.tip[0] - picked.o3[0], picked.tip[1] - picked.o3[1]];
+    // Arms II and III lag arm I by 120° and 240°: their states are arm I's at θ − 120°, θ − 240°.
+    let other_arms_behind = [1.0, 2.0]
+        .iter()
+        .map(|k| {
+            let other = kin.state_at(picked.theta - k * TAU / 3.0);
+            surface - dot(other.o3).max(dot(other.tip)) - agro.arm_half_width_mm
+        })
+        .fold(f64::INFINITY, f64::min);
+    PickingCheck {
+        tray_surface_mm: surface,
+        tip_depth_mm: tip_depth,
+        reach_mm: agro
+            .tray_distance_mm
+            .map(|_| tip_depth.min(agro.tray_depth_mm - tip_depth)),
+        planet_behind_mm: surface - dot(picked.o3),
+        housing_behind_mm: surface - housing_radius(kin, agro),
+        pusher_into_tray_mm: s * dot(unit(picked.pusher_angle)),
+        arm_into_tray_mm: dot(arm),
+        other_arms_behind_mm: other_arms_behind,
+        second_entry_behind_mm: runner_up.map(|r| surface - r),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn attitude_is_the_dip_below_horizontal() {
+        assert!((attitude_deg(-std::f64::consts::FRAC_PI_2) - 90.0).abs() < 1e-12);
+        assert!(attitude_deg(std::f64::consts::PI).abs() < 1e-12);
+        assert!((attitude_deg(std::f64::consts::PI + 0.5) - 0.5f64.to_degrees()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn runner_up_is_another_local_maximum() {
+        // Two bumps along x: the larger at node 2, the smaller (a branch) at node 7.
+        let xs = [0.0, 2.0, 5.0, 2.0, 0.0, 0.0, 1.0, 3.0, 2.0, 0.0];
+        let tips: Vec<[f64; 2]> = xs.iter().map(|&x| [x, 0.0]).collect();
+        let (best, runner) = extreme_and_runner_up(&tips, [1.0, 0.0]);
+        assert_eq!(best, 2);
+        assert_eq!(runner, Some(-parabola_vertex(-1.0, -3.0, -2.0)));
+        assert!(runner.unwrap() > 3.0);
+        // One bump: no runner-up.
+        let tips: Vec<[f64; 2]> = [0.0, 1.0, 2.0, 1.0].iter().map(|&x| [x, 0.0]).collect();
+        assert_eq!(extreme_and_runner_up(&tips, [1.0, 0.0]), (2, None));
+    }
+}

@@ -1,0 +1,278 @@
+//! Measures: every named number noncirc reports about a design, with its unit. The
+//! objectives' values, the events, the trajectory's sections (crate::anatomy) and the
+//! moving box's travel. `sweep --measure`, the search goals `min:NAME`/`max:NAME` and
+//! Python read them by name.
+
+use crate::anatomy::{Anatomy, Section};
+use crate::error::{Error, Result};
+use crate::evaluation::Evaluation;
+use crate::objectives::ObjectiveKind;
+
+/// A quantity measured on each trajectory section.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SectionQuantity {
+    /// Carrier span (deg).
+    Span,
+    /// Tip path length (mm).
+    Length,
+    /// Lowest tip height (mm).
+    YMin,
+    /// Highest tip height (mm).
+    YMax,
+}
+
+impl SectionQuantity {
+    const ALL: [SectionQuantity; 4] = [
+        SectionQuantity::Span,
+        SectionQuantity::Length,
+        SectionQuantity::YMin,
+        SectionQuantity::YMax,
+    ];
+}
+
+/// A measure that is neither an objective nor a section's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scalar {
+    PickingCarrier,
+    PlantingCarrier,
+    PickingWindow,
+    PickingTipSpeed,
+    PlantingGroundSpeed,
+    PickingBranchGap,
+    PlantingBranchGap,
+    PickingHeight,
+    PlantingHeight,
+    ReturnHeight,
+    PickingToPlantingHeight,
+    LoopWidth,
+    LoopHeight,
+    BoxTravel,
+}
+
+impl Scalar {
+    const ALL: [Scalar; 14] = [
+        Scalar::PickingCarrier,
+        Scalar::PlantingCarrier,
+        Scalar::PickingWindow,
+        Scalar::PickingTipSpeed,
+        Scalar::PlantingGroundSpeed,
+        Scalar::PickingBranchGap,
+        Scalar::PlantingBranchGap,
+        Scalar::PickingHeight,
+        Scalar::PlantingHeight,
+        Scalar::ReturnHeight,
+        Scalar::PickingToPlantingHeight,
+        Scalar::LoopWidth,
+        Scalar::LoopHeight,
+        Scalar::BoxTravel,
+    ];
+
+    /// Name (with its unit) and description.
+    fn describe(self) -> (&'static str, &'static str) {
+        match self {
+            Scalar::PickingCarrier => ("picking_carrier_deg", "carrier angle of arm I's picking"),
+            Scalar::PlantingCarrier => ("planting_carrier_deg", "carrier angle of arm I's planting"),
+            Scalar::PickingWindow => ("picking_window_deg", "carrier span with the tip inside the tray"),
+            Scalar::PickingTipSpeed => ("picking_tip_speed_m_s", "tip speed relative to the seedling at picking"),
+            Scalar::PlantingGroundSpeed => ("planting_ground_speed_m_s", "tip speed in the ground frame at planting"),
+            Scalar::PickingBranchGap => ("picking_branch_gap_mm", "how far the next extreme along the tray normal falls short of picking"),
+            Scalar::PlantingBranchGap => ("planting_branch_gap_mm", "how much higher the next low point is than planting"),
+            Scalar::PickingHeight => ("picking_height_mm", "height of the picking point"),
+            Scalar::PlantingHeight => ("planting_height_mm", "height of the planting point"),
+            Scalar::ReturnHeight => ("return_height_mm", "height of the return section's highest point"),
+            Scalar::PickingToPlantingHeight => ("picking_to_planting_height_mm", "vertical distance from planting up to picking"),
+            Scalar::LoopWidth => ("loop_width_mm", "horizontal extent of the seedling-removal loop"),
+            Scalar::LoopHeight => ("loop_height_mm", "vertical extent of the seedling-removal loop"),
+            Scalar::BoxTravel => ("box_travel_mm", "moving-box travel while picking (transplanter scenes)"),
+        }
+    }
+}
+
+/// A named measure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Measure {
+    Objective(ObjectiveKind),
+    Section(Section, SectionQuantity),
+    Scalar(Scalar),
+}
+
+impl Measure {
+    /// Every measure, objectives first, then the events and shape, then the sections.
+    pub fn all() -> Vec<Measure> {
+        let objectives = ObjectiveKind::ALL.iter().map(|&k| Measure::Objective(k));
+        let scalars = Scalar::ALL.iter().map(|&s| Measure::Scalar(s));
+        let sections = Section::ALL.iter().flat_map(|&s| {
+            SectionQuantity::ALL
+                .iter()
+                .map(move |&q| Measure::Section(s, q))
+        });
+        objectives.chain(scalars).chain(sections).collect()
+    }
+
+    /// Stable name, ending in its unit (`loop_height_mm`); an objective's is its own name.
+    pub fn name(self) -> String {
+        match self {
+            Measure::Objective(k) => k.name().to_string(),
+            Measure::Scalar(s) => s.describe().0.to_string(),
+            Measure::Section(s, q) => format!(
+                "{}_{}",
+                s.name(),
+                match q {
+                    SectionQuantity::Span => "span_deg",
+                    SectionQuantity::Length => "length_mm",
+                    SectionQuantity::YMin => "y_min_mm",
+                    SectionQuantity::YMax => "y_max_mm",
+                }
+            ),
+        }
+    }
+
+    /// Unit: `mm`, `deg` or `m/s`.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Measure::Objective(k) => k.unit(),
+            Measure::Section(_, SectionQuantity::Span) => "deg",
+            Measure::Section(..) => "mm",
+            Measure::Scalar(Scalar::PickingTipSpeed | Scalar::PlantingGroundSpeed) => "m/s",
+            Measure::Scalar(
+                Scalar::PickingCarrier | Scalar::PlantingCarrier | Scalar::PickingWindow,
+            ) => "deg",
+            Measure::Scalar(_) => "mm",
+        }
+    }
+
+    /// What it is, for a person.
+    pub fn description(self) -> String {
+        match self {
+            Measure::Objective(k) => format!("objective: {}", k.label()),
+            Measure::Scalar(s) => s.describe().1.to_string(),
+            Measure::Section(s, q) => format!(
+                "{} section: {}",
+                s.label(),
+                match q {
+                    SectionQuantity::Span => "carrier span",
+                    SectionQuantity::Length => "tip path length",
+                    SectionQuantity::YMin => "lowest tip height",
+                    SectionQuantity::YMax => "highest tip height",
+                }
+            ),
+        }
+    }
+
+    /// The measure called `name`, or an error naming the nearest ones.
+    pub fn parse(name: &str) -> Result<Measure> {
+        let all = Measure::all();
+        if let Some(m) = all.iter().find(|m| m.name() == name) {
+            return Ok(*m);
+        }
+        let names: Vec<String> = all.iter().map(|m| m.name()).collect();
+        Err(Error::UnknownName {
+            what: "measure",
+            name: name.to_string(),
+            nearest: nearest(name, &names),
+        })
+    }
+
+    /// Whether the value needs the trajectory's sections ([`Evaluation::anatomy`]).
+    pub fn needs_anatomy(self) -> bool {
+        matches!(
+            self,
+            Measure::Section(..)
+                | Measure::Scalar(
+                    Scalar::PlantingGroundSpeed
+                        | Scalar::ReturnHeight
+                        | Scalar::LoopWidth
+                        | Scalar::LoopHeight
+                )
+        )
+    }
+
+    /// The value for an evaluation (and its anatomy when [`Measure::needs_anatomy`]);
+    /// `None` where the scene does not compute it (no events, no moving box, no
+    /// runner-up extreme).
+    pub fn value(self, eval: &Evaluation, anatomy: Option<&Anatomy>) -> Option<f64> {
+        let ev = eval.events.as_ref();
+        match self {
+            Measure::Objective(k) => eval.objective(k).map(|o| o.value),
+            Measure::Section(s, q) => anatomy.map(|a| {
+                let m = a.section(s);
+                match q {
+                    SectionQuantity::Span => m.span_deg,
+                    SectionQuantity::Length => m.length_mm,
+                    SectionQuantity::YMin => m.y_min_mm,
+                    SectionQuantity::YMax => m.y_max_mm,
+                }
+            }),
+            Measure::Scalar(s) => match s {
+                Scalar::PickingCarrier => ev.map(|e| e.picking.carrier_rad.to_degrees()),
+                Scalar::PlantingCarrier => ev.map(|e| e.planting.carrier_rad.to_degrees()),
+                Scalar::PickingWindow => ev.map(|e| {
+                    (e.picking_window_rad[1] - e.picking_window_rad[0]).to_degrees()
+                }),
+                Scalar::PickingTipSpeed => ev.map(|e| e.picking_tip_speed_m_s),
+                Scalar::PickingBranchGap => ev.and_then(|e| e.picking_branch_gap_mm),
+                Scalar::PlantingBranchGap => ev.and_then(|e| e.planting_branch_gap_mm),
+                Scalar::PickingHeight => ev.map(|e| e.picking.tip_mm[1]),
+                Scalar::PlantingHeight => ev.map(|e| e.planting.tip_mm[1]),
+                Scalar::PickingToPlantingHeight => {
+                    ev.map(|e| e.picking.tip_mm[1] - e.planting.tip_mm[1])
+                }
+                Scalar::PlantingGroundSpeed => anatomy.map(|a| a.planting_ground_speed_m_s),
+                Scalar::ReturnHeight => anatomy.map(|a| a.return_height_mm),
+                Scalar::LoopWidth => anatomy.map(|a| a.loop_width_mm),
+                Scalar::LoopHeight => anatomy.map(|a| a.loop_height_mm),
+                Scalar::BoxTravel => eval.moving_box.as_ref().map(|b| b.elliptic_delta_h_mm),
+            },
+        }
+    }
+}
+
+/// Up to three of `names` nearest to `name` by edit distance (for "did you mean").
+pub fn nearest(name: &str, names: &[String]) -> Vec<String> {
+    let distance = |a: &str, b: &str| {
+        let b: Vec<char> = b.chars().collect();
+        let mut row: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.chars().enumerate() {
+            let mut diagonal = row[0];
+            row[0] = i + 1;
+            for (j, &cb) in b.iter().enumerate() {
+                let next = (diagonal + usize::from(ca != cb))
+                    .min(row[j] + 1)
+                    .min(row[j + 1] + 1);
+                diagonal = row[j + 1];
+                row[j + 1] = next;
+            }
+        }
+        row[b.len()]
+    };
+    let mut ranked: Vec<(usize, &String)> = names.iter().map(|n| (distance(name, n), n)).collect();
+    ranked.sort();
+    ranked.into_iter().take(3).map(|(_, n)| n.clone()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_parse_back() {
+        let all = Measure::all();
+        for m in &all {
+            assert_eq!(Measure::parse(&m.name()).unwrap(), *m);
+        }
+        let mut names: Vec<String> = all.iter().map(|m| m.name()).collect();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), all.len());
+    }
+
+    #[test]
+    fn unknown_name_suggests_the_nearest() {
+        let err = Measure::parse("loop_hieght_mm").unwrap_err();
+        match &err {
+            Error::UnknownName { nearest, .. } => assert_eq!(nearest[0], "loop_height_mm"),
+            other => panic!("{other:?}"),
+        }
+        assert!(err.to_string().contains("loop_height_mm"));
+    }
+}
