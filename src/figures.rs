@@ -3,8 +3,8 @@
 
 use noncirc_core::angle::unit;
 use noncirc_core::curve::PitchCurve;
-use noncirc_core::moving_box::{box_curves, BoxReport, BoxSpec};
 use noncirc_core::events::Events;
+use noncirc_core::moving_box::{box_curves, BoxReport, BoxSpec};
 use noncirc_core::objectives::Travel;
 use noncirc_core::planetary::Kinematics;
 use noncirc_core::{Evaluation, GearPair, ObjectiveValue, Scene};
@@ -444,9 +444,7 @@ impl Figure for GearsFigure<'_> {
             .map(|j| {
                 (
                     kin.theta(j).to_degrees(),
-                    noncirc_core::events::attitude_deg(
-                        kin.pusher_angle(kin.planet_angles()[j]),
-                    ),
+                    noncirc_core::events::attitude_deg(kin.pusher_angle(kin.planet_angles()[j])),
                 )
             })
             .collect();

@@ -1,10 +1,10 @@
 //! Reports: what the CLI prints, as serialisable structs and readable tables.
 
-use noncirc_core::evaluation::GearSummary;
-use noncirc_core::moving_box::BoxReport;
 use noncirc_core::anatomy::{Anatomy, SectionMeasures};
+use noncirc_core::evaluation::GearSummary;
 use noncirc_core::events::{Events, PickingCheck};
 use noncirc_core::measures::Measure;
+use noncirc_core::moving_box::BoxReport;
 use noncirc_core::{Evaluation, Evaluator, GearPair, ObjectiveValue, Result, Scene, SceneKind};
 use serde::Serialize;
 
@@ -321,10 +321,12 @@ impl EvaluationReport {
                 e.planting_tip_mm[0],
                 e.planting_tip_mm[1],
                 e.planting_attitude_deg
-            );            if let Some(why) = &e.picking_refused {
+            );
+            if let Some(why) = &e.picking_refused {
                 out += &format!("  a machine cannot pick there: {why}\n");
             }
-            let gap = |g: Option<f64>| g.map_or("none (one extreme)".into(), |g| format!("{g:.2} mm"));
+            let gap =
+                |g: Option<f64>| g.map_or("none (one extreme)".into(), |g| format!("{g:.2} mm"));
             out += &format!(
                 "branch margins: picking {}, planting {}\n",
                 gap(e.picking_branch_gap_mm),
@@ -353,7 +355,11 @@ impl EvaluationReport {
                 );
             }
             out += "\n";
-            for m in self.measures.iter().filter(|m| SHAPE.contains(&m.name.as_str())) {
+            for m in self
+                .measures
+                .iter()
+                .filter(|m| SHAPE.contains(&m.name.as_str()))
+            {
                 out += &format!("{:<32} {:9.3} {}\n", m.description, m.value, m.unit);
             }
         }

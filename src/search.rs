@@ -1,10 +1,10 @@
 //! Running searches: parallel batch evaluation, progress, checkpoints, Ctrl-C, outputs.
 
+use noncirc_core::measures::Measure;
 use noncirc_core::search::problem::SceneProblem;
 use noncirc_core::search::{
     non_dominated_fronts, Algorithm, BatchEvaluator, Candidate, Fitness, SearchState,
 };
-use noncirc_core::measures::Measure;
 use noncirc_core::{Evaluator, Resolution, Scene};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};

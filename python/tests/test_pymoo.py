@@ -11,7 +11,7 @@ from noncirc.pymoo import SceneProblem
 def test_adapter_shapes_and_constraints_match_the_core():
     scene = Scene.builtin("paper-search")
     problem = SceneProblem(scene)
-    assert problem.n_var == 17 and problem.n_obj == 1 and problem.n_ieq_constr == 8
+    assert problem.n_var == 17 and problem.n_obj == 1 and problem.n_ieq_constr == 9
     x = problem.xl + np.random.default_rng(0).random((5, 17)) * (problem.xu - problem.xl)
     out = problem.evaluate(x, return_as_dictionary=True)
     core = evaluate_batch(scene, x)

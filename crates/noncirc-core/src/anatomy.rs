@@ -201,8 +201,16 @@ fn measure_section(
             for (axis, range) in [(0, &mut extent), (1, &mut heights)] {
                 let (m, c, p) = (m[axis], c[axis], p[axis]);
                 // The parabola refines a node only where it is a local extreme.
-                let low = if c <= m && c <= p { parabola_vertex(m, c, p) } else { c };
-                let high = if c >= m && c >= p { -parabola_vertex(-m, -c, -p) } else { c };
+                let low = if c <= m && c <= p {
+                    parabola_vertex(m, c, p)
+                } else {
+                    c
+                };
+                let high = if c >= m && c >= p {
+                    -parabola_vertex(-m, -c, -p)
+                } else {
+                    c
+                };
                 range[0] = range[0].min(low);
                 range[1] = range[1].max(high);
             }

@@ -3,9 +3,9 @@
 
 use crate::anatomy::{anatomy, Anatomy};
 use crate::error::{Error, Result};
+use crate::events::{events, Events};
 use crate::gear::{perimeter, GearPair, ModuleReport};
 use crate::moving_box::{evaluate_box_with, BoxReport};
-use crate::events::{events, Events};
 use crate::objectives::{module, objective_value, Agronomy, ObjectiveKind, ObjectiveValue};
 use crate::planetary::Kinematics;
 use crate::quadrature::SpectralIntegrator;
@@ -56,7 +56,11 @@ impl Evaluation {
     /// The trajectory's sections and their measures (computed on demand: searches that do
     /// not ask for them do not pay for them), for a three-arm evaluation.
     pub fn anatomy(&self, agro: &Agronomy) -> Option<Anatomy> {
-        Some(anatomy(self.kinematics.as_ref()?, agro, self.events.as_ref()?))
+        Some(anatomy(
+            self.kinematics.as_ref()?,
+            agro,
+            self.events.as_ref()?,
+        ))
     }
 
     /// The value of one objective, if it was evaluated.

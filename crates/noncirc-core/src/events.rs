@@ -60,8 +60,14 @@ impl PickingCheck {
     /// The conditions by name, with their signed distances (mm).
     pub fn conditions(&self) -> Vec<(&'static str, f64)> {
         let mut out = vec![
-            ("planet centre behind the tray surface", self.planet_behind_mm),
-            ("gearbox housing behind the tray surface", self.housing_behind_mm),
+            (
+                "planet centre behind the tray surface",
+                self.planet_behind_mm,
+            ),
+            (
+                "gearbox housing behind the tray surface",
+                self.housing_behind_mm,
+            ),
             ("pusher points into the tray", self.pusher_into_tray_mm),
             ("arm points into the tray", self.arm_into_tray_mm),
             (
@@ -257,7 +263,11 @@ pub(crate) fn span_where(n: usize, j0: usize, f: impl Fn(usize) -> f64) -> Optio
     let h = TAU / n as f64;
     let cross = |a: usize, b: usize| {
         let (fa, fb) = (g(a), g(b));
-        let frac = if fa != fb { (fa / (fa - fb)).clamp(0.0, 1.0) } else { 0.0 };
+        let frac = if fa != fb {
+            (fa / (fa - fb)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         (a as f64 + frac * (b as f64 - a as f64)) * h - TAU
     };
     Some([cross(start, start - 1), cross(end, end + 1)])

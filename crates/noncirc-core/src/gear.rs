@@ -182,7 +182,6 @@ pub struct ModuleRule {
     /// Which reading: `undercut` (the default) or `perimeter`.
     pub rule: ModuleReading,
     /// Tooth count of the `perimeter` reading (shared by meshing gears).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub teeth: Option<u32>,
     /// Fewest teeth of a rack that cut a convex arc without undercut (17 for a 20° rack).
     pub z_min: f64,
@@ -212,7 +211,8 @@ impl ModuleRule {
             (ModuleReading::Perimeter, None) => Err(Error::OutOfRange {
                 name: "gear.module.teeth".into(),
                 value: f64::NAN,
-                expected: "a tooth count of at least 1 with gear.module.rule = \"perimeter\"".into(),
+                expected: "a tooth count of at least 1 with gear.module.rule = \"perimeter\""
+                    .into(),
             }),
             (_, Some(0)) => Err(Error::OutOfRange {
                 name: "gear.module.teeth".into(),

@@ -71,19 +71,51 @@ impl Scalar {
     fn describe(self) -> (&'static str, &'static str) {
         match self {
             Scalar::PickingCarrier => ("picking_carrier_deg", "carrier angle of arm I's picking"),
-            Scalar::PlantingCarrier => ("planting_carrier_deg", "carrier angle of arm I's planting"),
-            Scalar::PickingWindow => ("picking_window_deg", "carrier span with the tip inside the tray"),
-            Scalar::PickingTipSpeed => ("picking_tip_speed_m_s", "tip speed relative to the seedling at picking"),
-            Scalar::PlantingGroundSpeed => ("planting_ground_speed_m_s", "tip speed in the ground frame at planting"),
-            Scalar::PickingBranchGap => ("picking_branch_gap_mm", "how far the next extreme along the tray normal falls short of picking"),
-            Scalar::PlantingBranchGap => ("planting_branch_gap_mm", "how much higher the next low point is than planting"),
+            Scalar::PlantingCarrier => {
+                ("planting_carrier_deg", "carrier angle of arm I's planting")
+            }
+            Scalar::PickingWindow => (
+                "picking_window_deg",
+                "carrier span with the tip inside the tray",
+            ),
+            Scalar::PickingTipSpeed => (
+                "picking_tip_speed_m_s",
+                "tip speed relative to the seedling at picking",
+            ),
+            Scalar::PlantingGroundSpeed => (
+                "planting_ground_speed_m_s",
+                "tip speed in the ground frame at planting",
+            ),
+            Scalar::PickingBranchGap => (
+                "picking_branch_gap_mm",
+                "how far the next extreme along the tray normal falls short of picking",
+            ),
+            Scalar::PlantingBranchGap => (
+                "planting_branch_gap_mm",
+                "how much higher the next low point is than planting",
+            ),
             Scalar::PickingHeight => ("picking_height_mm", "height of the picking point"),
             Scalar::PlantingHeight => ("planting_height_mm", "height of the planting point"),
-            Scalar::ReturnHeight => ("return_height_mm", "height of the return section's highest point"),
-            Scalar::PickingToPlantingHeight => ("picking_to_planting_height_mm", "vertical distance from planting up to picking"),
-            Scalar::LoopWidth => ("loop_width_mm", "horizontal extent of the seedling-removal loop"),
-            Scalar::LoopHeight => ("loop_height_mm", "vertical extent of the seedling-removal loop"),
-            Scalar::BoxTravel => ("box_travel_mm", "moving-box travel while picking (transplanter scenes)"),
+            Scalar::ReturnHeight => (
+                "return_height_mm",
+                "height of the return section's highest point",
+            ),
+            Scalar::PickingToPlantingHeight => (
+                "picking_to_planting_height_mm",
+                "vertical distance from planting up to picking",
+            ),
+            Scalar::LoopWidth => (
+                "loop_width_mm",
+                "horizontal extent of the seedling-removal loop",
+            ),
+            Scalar::LoopHeight => (
+                "loop_height_mm",
+                "vertical extent of the seedling-removal loop",
+            ),
+            Scalar::BoxTravel => (
+                "box_travel_mm",
+                "moving-box travel while picking (transplanter scenes)",
+            ),
         }
     }
 }
@@ -206,9 +238,9 @@ impl Measure {
             Measure::Scalar(s) => match s {
                 Scalar::PickingCarrier => ev.map(|e| e.picking.carrier_rad.to_degrees()),
                 Scalar::PlantingCarrier => ev.map(|e| e.planting.carrier_rad.to_degrees()),
-                Scalar::PickingWindow => ev.map(|e| {
-                    (e.picking_window_rad[1] - e.picking_window_rad[0]).to_degrees()
-                }),
+                Scalar::PickingWindow => {
+                    ev.map(|e| (e.picking_window_rad[1] - e.picking_window_rad[0]).to_degrees())
+                }
                 Scalar::PickingTipSpeed => ev.map(|e| e.picking_tip_speed_m_s),
                 Scalar::PickingBranchGap => ev.and_then(|e| e.picking_branch_gap_mm),
                 Scalar::PlantingBranchGap => ev.and_then(|e| e.planting_branch_gap_mm),

@@ -35,7 +35,6 @@ pub struct Agronomy {
     /// Distance of the tray surface from the carrier axis along the inward normal (mm).
     /// Omitted: the tray is placed by the trajectory, so that the tip reaches exactly
     /// `tray_depth_mm` past its surface.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub tray_distance_mm: Option<f64>,
     /// Plant spacing along the row (mm); the machine advances three spacings per turn.
     pub plant_spacing_mm: f64,
