@@ -1,6 +1,7 @@
 //! Figures (SVG and PNG, plotters) and the animation (GIF). Text uses DejaVu Sans, embedded
 //! in the binary, so rendering needs no system font or package.
 
+use noncirc_core::anatomy::{anatomy, Section};
 use noncirc_core::angle::unit;
 use noncirc_core::curve::PitchCurve;
 use noncirc_core::events::Events;
@@ -10,6 +11,7 @@ use noncirc_core::planetary::Kinematics;
 use noncirc_core::{Evaluation, GearPair, ObjectiveValue, Scene};
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -94,6 +96,27 @@ const ARM_COLOURS: [RGBColor; 3] = [
     RGBColor(40, 150, 60),
 ];
 
+/// Colours of the trajectory's sections, in `Section::ALL` order.
+const SECTION_COLOURS: [RGBColor; 4] = [
+    RGBColor(0, 160, 170),
+    RGBColor(230, 140, 0),
+    RGBColor(130, 50, 180),
+    RGBColor(40, 40, 40),
+];
+
+/// Tip positions over a carrier span (degrees, end may exceed 360°), one point per degree
+/// plus both ends, so section boundaries meet exactly.
+fn section_points(kin: &Kinematics, span_deg: [f64; 2]) -> Vec<(f64, f64)> {
+    let steps = (span_deg[1] - span_deg[0]).abs().ceil().max(1.0) as usize;
+    (0..=steps)
+        .map(|i| {
+            let deg = span_deg[0] + (span_deg[1] - span_deg[0]) * i as f64 / steps as f64;
+            let tip = kin.state_at(deg.to_radians()).tip;
+            (tip[0], tip[1])
+        })
+        .collect()
+}
+
 /// Figure: the trajectory relative to the machine with arm poses, events, tray and ground.
 pub struct TrajectoryFigure<'a> {
     pub kin: &'a Kinematics,
@@ -161,17 +184,25 @@ impl Figure for TrajectoryFigure<'_> {
             .map_err(err)?
             .label(format!("tray surface (normal {}°)", agro.tray_normal_deg))
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(90, 90, 90)));
-        // Trajectory, and all three arms at five carrier angles 24° apart (0°..96°).
-        let closed: Vec<(f64, f64)> = tips
-            .iter()
-            .chain(tips.first())
-            .map(|p| (p[0], p[1]))
-            .collect();
-        chart
-            .draw_series(LineSeries::new(closed, BLACK.stroke_width(2)))
-            .map_err(err)?
-            .label("tip trajectory")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
+        // Trajectory coloured by section, and all three arms at five carrier angles 24° apart.
+        let anatomy = anatomy(kin, agro, ev);
+        for (section, colour) in Section::ALL.into_iter().zip(SECTION_COLOURS) {
+            let m = anatomy.section(section);
+            let points = section_points(kin, m.carrier_deg);
+            chart
+                .draw_series(LineSeries::new(points, colour.stroke_width(3)))
+                .map_err(err)?
+                .label(format!(
+                    "{} ({:.0} mm, θ {:.0}°..{:.0}°)",
+                    section.label(),
+                    m.length_mm,
+                    m.carrier_deg[0],
+                    m.carrier_deg[1]
+                ))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3))
+                });
+        }
         for (k, colour) in ARM_COLOURS.iter().enumerate() {
             for step in 0..5 {
                 let theta = step as f64 * TAU / 15.0 - k as f64 * TAU / 3.0;
@@ -212,8 +243,13 @@ impl Figure for TrajectoryFigure<'_> {
                         e.carrier_rad.to_degrees(),
                         e.attitude_deg
                     ),
-                    (x + 8.0, y + 8.0),
-                    (FONT, 15),
+                    (x, y),
+                    // Text on the side of the point with more room, so it stays in the plot.
+                    TextStyle::from((FONT, 15)).pos(if x > 0.5 * (x0 + x1) {
+                        Pos::new(HPos::Right, VPos::Bottom)
+                    } else {
+                        Pos::new(HPos::Left, VPos::Bottom)
+                    }),
                 )))
                 .map_err(err)?;
         }

@@ -35,11 +35,8 @@ impl GearReport {
         let pair = GearPair::solve(curve, scene.resolution)?;
         let module = pair.module(&scene.gear.module);
         let a = pair.centre_distance();
-        let (mut rmin, mut rmax) = (f64::INFINITY, 0.0f64);
-        for p in pair.samples() {
-            rmin = rmin.min(p.rho);
-            rmax = rmax.max(p.rho);
-        }
+        // The curve's own extremes (exact for the spline), not the sample extremes.
+        let (rmin, rmax) = pair.curve().radius_range(pair.samples());
         let kind = serde_json::to_value(&scene.gear.curve)
             .ok()
             .and_then(|v| v.get("kind").and_then(|k| k.as_str().map(String::from)))

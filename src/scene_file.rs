@@ -87,6 +87,16 @@ pub fn load_scene(spec: Option<&str>) -> Result<Scene, SceneError> {
     parse_scene(&text, name)
 }
 
+/// The first NaN or infinite float in a TOML value, if any.
+fn first_non_finite(v: &toml::Value) -> Option<f64> {
+    match v {
+        toml::Value::Float(x) if !x.is_finite() => Some(*x),
+        toml::Value::Array(a) => a.iter().find_map(first_non_finite),
+        toml::Value::Table(t) => t.values().find_map(first_non_finite),
+        _ => None,
+    }
+}
+
 /// Applies `key.path=value` overrides (value read as TOML, else as a string).
 pub fn apply_overrides(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError> {
     if assignments.is_empty() {
@@ -102,8 +112,16 @@ pub fn apply_overrides(scene: Scene, assignments: &[String]) -> Result<Scene, Sc
             .split_once('=')
             .ok_or_else(|| err("expected key=value".into()))?;
         let value: serde_json::Value = match toml::from_str::<toml::Table>(&format!("v = {raw}")) {
-            Ok(mut t) => serde_json::to_value(t.remove("v").expect("parsed key"))
-                .map_err(|e| err(e.to_string()))?,
+            Ok(mut t) => {
+                let v = t.remove("v").expect("parsed key");
+                // JSON has no NaN or infinity: they would arrive as null and be misreported.
+                if let Some(x) = first_non_finite(&v) {
+                    return Err(err(format!(
+                        "{x} is not a finite number: every number in a scene must be finite"
+                    )));
+                }
+                serde_json::to_value(v).map_err(|e| err(e.to_string()))?
+            }
             Err(_) => serde_json::Value::String(raw.to_string()),
         };
         // Walk `a.b.c` and `a.b[i]` segments down to the slot, then replace it.
@@ -189,6 +207,24 @@ mod tests {
                 .get(&s),
             33.5
         );
-        assert!(apply_overrides(scene, &["gear.curve.radii_mm[12]=1".into()]).is_err());
+        assert!(apply_overrides(scene.clone(), &["gear.curve.radii_mm[12]=1".into()]).is_err());
+    }
+
+    #[test]
+    fn non_finite_overrides_say_so() {
+        let scene = load_scene(None).unwrap();
+        for (assignment, shown) in [
+            ("train.arm_length_mm=nan", "NaN"),
+            ("agronomy.tray_depth_mm=-inf", "-inf"),
+            ("gear.curve.radii_mm=[1, 2, inf]", "inf"),
+        ] {
+            let e = apply_overrides(scene.clone(), &[assignment.into()])
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains(shown) && e.contains("finite"),
+                "{assignment}: {e}"
+            );
+        }
     }
 }

@@ -368,3 +368,51 @@ proptest! {
         prop_assert!(n == 1440);
     }
 }
+
+/// Nearly equal control angles make the spline overshoot below zero; the error names the
+/// angle within one turn. The paper's points with angle 1 moved to 0.01° after angle 0 (20°)
+/// overshoot before the first knot, at 6.83°, which the knot walk sees as 366.83°.
+#[test]
+fn overshoot_errors_name_an_angle_within_one_turn() {
+    let (radii_mm, mut angles_deg) = noncirc::core::curve::paper_control_points();
+    for gap in [0.01, 0.1, 0.5] {
+        angles_deg[1] = angles_deg[0] + gap;
+        let spec = CurveSpec::Spline {
+            radii_mm: radii_mm.clone(),
+            angles_deg: angles_deg.clone(),
+        };
+        match spec.build() {
+            Err(Error::NonPositiveRadius { psi_deg, rho_mm }) => {
+                assert!((0.0..20.0).contains(&psi_deg), "gap {gap}: {psi_deg}°");
+                assert!(rho_mm < 0.0);
+            }
+            other => panic!("gap {gap}: expected an overshoot, got {other:?}"),
+        }
+    }
+}
+
+/// `noncirc gear` reports the curve's true radius extremes, not the sample extremes: the
+/// paper spline's are found by dense sampling to 1e-6 mm, and the ratio follows from them.
+#[test]
+fn gear_report_ranges_are_the_curve_extremes() {
+    let scene = noncirc::scene_file::load_scene(Some("paper")).unwrap();
+    let (report, pair) = noncirc::report::GearReport::from_scene(&scene).unwrap();
+    let curve = pair.curve();
+    let dense: Vec<f64> = (0..2_000_000)
+        .map(|j| curve.eval(TAU * j as f64 / 2e6).rho)
+        .collect();
+    let (lo, hi) = dense
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &r| (a.min(r), b.max(r)));
+    assert!(report.rho_min_mm <= lo + 1e-12 && lo - report.rho_min_mm < 1e-6);
+    assert!(report.rho_max_mm >= hi - 1e-12 && report.rho_max_mm - hi < 1e-6);
+    let a = report.centre_distance_mm;
+    assert!((report.ratio_max - (a - report.rho_min_mm) / report.rho_min_mm).abs() < 1e-12);
+    // The sampled extremes at the scene's resolution are measurably inside.
+    let sampled_min = pair
+        .samples()
+        .iter()
+        .map(|p| p.rho)
+        .fold(f64::INFINITY, f64::min);
+    assert!(sampled_min > report.rho_min_mm);
+}

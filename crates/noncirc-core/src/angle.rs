@@ -32,6 +32,17 @@ fn table() -> &'static [[f64; 2]; STEPS] {
     })
 }
 
+/// An angle (rad) in degrees within one turn, `[0°, 360°)`: how angles are shown to users.
+pub fn degrees_in_turn(x: f64) -> f64 {
+    let d = x.to_degrees().rem_euclid(360.0);
+    // A tiny negative angle rounds up to 360.0 exactly.
+    if d >= 360.0 {
+        0.0
+    } else {
+        d
+    }
+}
+
 /// Beyond this |x| (rad) the table's reduction would lose digits: libm takes over.
 const REDUCTION_LIMIT: f64 = 1e9;
 

@@ -261,7 +261,7 @@ impl Fourier {
         let (psi, rho) = f.refine(false);
         if rho <= 0.0 {
             return Err(Error::NonPositiveRadius {
-                psi_deg: psi.to_degrees(),
+                psi_deg: crate::angle::degrees_in_turn(psi),
                 rho_mm: rho,
             });
         }

@@ -34,7 +34,7 @@ impl PeriodicSpline {
             }
             if r <= 0.0 {
                 return Err(Error::NonPositiveRadius {
-                    psi_deg: p.to_degrees(),
+                    psi_deg: crate::angle::degrees_in_turn(p),
                     rho_mm: r,
                 });
             }
@@ -82,7 +82,7 @@ impl PeriodicSpline {
         let [(psi_min, rho_min), (_, rho_max)] = spline.extremes();
         if rho_min <= 0.0 {
             return Err(Error::NonPositiveRadius {
-                psi_deg: psi_min.to_degrees(),
+                psi_deg: crate::angle::degrees_in_turn(psi_min),
                 rho_mm: rho_min,
             });
         }
