@@ -104,25 +104,71 @@ fn main() -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
                 series.push((format!("{name} = {v:.1}"), pts));
             }
         }
-        print!("| `{name}` | {lo:.1} .. {hi:.1} |");
+        print!("| {} `{name}` | {lo:.1} .. {hi:.1} |", symbol(&name));
         for k in 0..measures.len() {
             let column: Vec<f64> = rows.iter().map(|r| r[k]).collect();
             print!(" {} |", trend(&column));
         }
         println!();
         let file = name.replace(['.', '[', ']'], "_");
+        let file = file.trim_end_matches('_');
+        // The section measures in millimetres against the parameter (angles left to the table).
+        let values: Vec<f64> = (0..steps)
+            .map(|i| lo + (hi - lo) * i as f64 / (steps - 1) as f64)
+            .collect();
+        let measure_series = (0..measures.len())
+            .filter(|&k| measures[k].unit() == "mm")
+            .map(|k| {
+                // Change from the paper's design, the middle of the sweep.
+                let base = rows[steps / 2][k];
+                let pts = (values.iter().zip(&rows))
+                    .map(|(&v, r)| (v, r[k] - base))
+                    .collect();
+                (MEASURES[k].to_string(), pts)
+            })
+            .collect();
         save(
             &LinesFigure {
-                title: format!("tip trajectory against {name}"),
+                title: format!("section measures against {} ({name})", symbol(&name)),
+                x_desc: name.clone(),
+                y_desc: "change from the paper's design (mm)".into(),
+                series: measure_series,
+                points_only: false,
+            },
+            &dir.join(format!("{file}_measures")),
+        )?;
+        save(
+            &LinesFigure {
+                title: format!("tip trajectory against {} ({name})", symbol(&name)),
                 x_desc: "x (mm)".into(),
                 y_desc: "y (mm)".into(),
                 series,
                 points_only: false,
             },
-            &dir.join(file.trim_end_matches('_')),
+            &dir.join(file),
         )?;
     }
     Ok(())
+}
+
+/// The paper's symbol for a parameter path: r1..r12, Φ0, β0, S, H1, γ0.
+fn symbol(name: &str) -> String {
+    if let Some(i) = name
+        .strip_prefix("gear.curve.radii_mm[")
+        .and_then(|r| r.strip_suffix(']'))
+        .and_then(|i| i.parse::<usize>().ok())
+    {
+        return format!("r{}", i + 1);
+    }
+    match name {
+        "train.phi0_deg" => "Φ0",
+        "train.beta0_deg" => "β0",
+        "train.arm_length_mm" => "S",
+        "train.pusher_offset_mm" => "H1",
+        "train.gamma0_deg" => "γ0",
+        other => other,
+    }
+    .to_string()
 }
 
 /// `a → b (↑)`: first and last values and the direction, `↑`/`↓` when monotone over the

@@ -54,6 +54,33 @@ fn main() -> Result<(), String> {
         }
     }
     println!();
+    println!("Module under both readings (spline/bspline/bezier, installed, left, tray -10°):");
+    println!();
+    println!(
+        "| construction | perimeter L (mm) | undercut rule (default) | perimeter rule, z = 40 |"
+    );
+    println!("|---|---|---|---|");
+    for construction in ["spline", "bspline", "bezier"] {
+        let kind = format!("gear.curve.kind=\"{construction}\"");
+        let verdict = |eval: &noncirc::core::Evaluation| {
+            eval.objective(ObjectiveKind::Module)
+                .map_or(("-".to_string(), f64::NAN), |o| {
+                    let word = if o.violation == 0.0 { "met" } else { "missed" };
+                    (format!("{:.2} mm, {word}", o.value), o.value)
+                })
+        };
+        let (undercut, _) = verdict(&evaluate(std::slice::from_ref(&kind))?);
+        let (perimeter, m) = verdict(&evaluate(&[
+            kind,
+            "gear.module.rule=\"perimeter\"".into(),
+            "gear.module.teeth=40".into(),
+        ])?);
+        println!(
+            "| {construction} | {:.1} | {undercut} | {perimeter} |",
+            m * std::f64::consts::PI * 40.0
+        );
+    }
+    println!();
     println!("Tray directions (every 1°) under which each reading picks where a machine can and meets the three angle objectives:");
     println!();
     for construction in ["spline", "bspline", "bezier"] {

@@ -295,3 +295,30 @@ proptest! {
         prop_assert_eq!(met, check.failures().is_none());
     }
 }
+
+/// The transplanter couples the corrected picking window to the box: the box's window is
+/// three times the carrier window about its centre, and the travel over it is the
+/// elliptical law's. Pinned: 43.8° of carrier, 131.3° of box input, 4.54 mm of travel.
+#[test]
+fn the_transplanter_box_window_is_the_picking_window() {
+    let set = ["resolution.samples_per_turn=360"].map(String::from);
+    let three_arm = evaluate(&scene(&set.each_ref().map(|s| s.as_str())));
+    let transplanter = apply_overrides(load_scene(Some("transplanter")).unwrap(), &set).unwrap();
+    let eval = evaluate(&transplanter);
+    let [w0, w1] = three_arm
+        .events
+        .unwrap()
+        .picking_window_rad
+        .map(f64::to_degrees);
+    let report = eval.moving_box.unwrap();
+    let [b0, b1] = report.window_deg;
+    assert!(
+        ((b1 - b0) - 3.0 * (w1 - w0)).abs() < 1e-9,
+        "{b0}..{b1} vs {w0}..{w1}"
+    );
+    assert!((0.5 * (b0 + b1) - 180.0).abs() < 1e-9);
+    assert!((w1 - w0 - 43.77).abs() < 0.01, "{}", w1 - w0);
+    assert!((report.elliptic_delta_h_mm - 4.540).abs() < 0.001);
+    assert!((report.elliptic_delta_h_mm - report.elliptic_delta_h_numeric_mm).abs() < 1e-6);
+    assert!(!report.within_limit);
+}

@@ -21,6 +21,7 @@ BOUNDS = {
     "ground_clearance": (20.0, None, 2.0),
     "trajectory_height": (260.0, None, 26.0),
     "module": (2.5, None, 0.25),
+    "picking_admissible": (0.0, None, 10.0),
 }
 
 
