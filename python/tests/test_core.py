@@ -40,8 +40,17 @@ def test_evaluate_matches_the_pinned_paper_design():
     assert r["samples_per_turn"] == 360
     assert abs(r["centre_distance_mm"] - 85.01753) < 1e-4
     o = r["objectives"]
-    assert abs(o["picking_angle"]["value"] - (-0.3620)) < 1e-3
+    assert abs(o["picking_angle"]["value"] - 0.2970) < 1e-3
     assert abs(o["pushing_angle"]["value"] - 53.9909) < 1e-3
+    # The picking instant is one a machine can have (the same pins as tests/picking.rs).
+    assert abs(o["picking_admissible"]["value"] - 51.9908) < 1e-3
+    assert o["picking_admissible"]["violation"] == 0.0
+    ev = r["events"]
+    assert ev["picking_refused"] is None and ev["picking_branch_gap_mm"] > 100.0
+    m = r["measures"]
+    assert m["picking_carrier_deg"]["unit"] == "deg"
+    assert abs(m["picking_carrier_deg"]["value"] - 71.879) < 1e-2
+    assert abs(m["planting_carrier_deg"]["value"] - 157.179) < 1e-2
     assert o["module"]["violation"] > 2.0 and o["trajectory_height"]["violation"] == 0.0
     assert r["trajectory"].shape == (360, 2) and r["trajectory"].dtype == np.float64
     assert r["driver_curve"].shape == (360, 2) and r["driven_curve"].shape == (360, 2)

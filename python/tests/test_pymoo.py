@@ -26,7 +26,7 @@ def test_pymoo_nsga2_runs_on_the_default_scene():
     assert res.algorithm.evaluator.n_eval >= 600
     pop = res.pop.get("G")
     # The population's summed violation fell from the random start.
-    assert pop.shape == (40, 8)
+    assert pop.shape == (40, len(scene.objective_names()))
     cv = np.maximum(pop, 0).sum(axis=1)
     first = np.maximum(problem.evaluate(problem.xl + 0.5 * (problem.xu - problem.xl)[None, :], return_as_dictionary=True)["G"], 0).sum()
     assert cv.min() < max(first, 1.0)
