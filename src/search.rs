@@ -473,7 +473,7 @@ pub fn sweep(
                         .map(|o| (o.kind.name().to_string(), o.value))
                         .collect(),
                     measures: {
-                        let anatomy = e.anatomy(&s.agronomy).filter(|_| anatomy_needed);
+                        let anatomy = anatomy_needed.then(|| e.anatomy(&s.agronomy)).flatten();
                         (measures.iter())
                             .filter_map(|m| Some((m.name(), m.value(&e, anatomy.as_ref())?)))
                             .collect()

@@ -293,3 +293,84 @@ fn reported_designs_meet_the_objectives_at_the_default_resolution() {
         assert!(!summary.feasible);
     }
 }
+
+/// Any measure is a search goal: `max:NAME` ranks designs by the measure, negated, and a
+/// misspelt name is refused with the nearest names.
+#[test]
+fn measures_are_search_goals() {
+    use noncirc::core::anatomy::Section;
+    use noncirc::core::search::problem::{Goal, SceneProblem};
+    use noncirc::core::{Evaluator, Scene};
+    use noncirc::scene_file::apply_overrides;
+    let scene: Scene = apply_overrides(
+        load_scene(Some("paper-search")).unwrap(),
+        &[r#"search.goals=["max:removal_length_mm", "min:picking_branch_gap_mm"]"#.into()],
+    )
+    .unwrap();
+    let problem = SceneProblem::new(&scene).unwrap();
+    assert_eq!(problem.goals(), 2);
+    // The paper's design, encoded: its goals are its measures.
+    let x: Vec<f64> = problem
+        .names()
+        .iter()
+        .map(|n| noncirc::core::Param::parse(n, &scene).unwrap().get(&scene))
+        .collect();
+    let u = problem.encode(&x);
+    let mut scratch = scene.clone();
+    let (fitness, eval) =
+        problem.fitness(&u, &mut Evaluator::new(), &mut scratch, &scene.resolution);
+    let eval = eval.unwrap();
+    let anatomy = eval.anatomy(&scene.agronomy).unwrap();
+    let removal = anatomy.section(Section::Removal).length_mm;
+    let gap = eval.events.as_ref().unwrap().picking_branch_gap_mm.unwrap();
+    assert!(
+        (fitness.f[0] + removal).abs() < 1e-9,
+        "{:?} vs {removal}",
+        fitness.f
+    );
+    assert!(
+        (fitness.f[1] - gap).abs() < 1e-9,
+        "{:?} vs {gap}",
+        fitness.f
+    );
+    let e = Goal::parse("max:removal_lenght_mm")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("removal_length_mm"), "{e}");
+}
+
+/// `sweep --measure` gives each design's measures, the same values `evaluate` reports.
+#[test]
+fn sweeps_report_any_measure() {
+    use noncirc::core::measures::Measure;
+    use noncirc::core::{Evaluator, Param};
+    let scene = load_scene(Some("paper")).unwrap();
+    let measures = [
+        Measure::parse("loop_height_mm").unwrap(),
+        Measure::parse("picking_branch_gap_mm").unwrap(),
+    ];
+    let rows =
+        noncirc::search::sweep(&scene, "train.gamma0_deg", -63.0, -43.0, 3, &measures).unwrap();
+    assert_eq!(rows.len(), 3);
+    for row in &rows {
+        let mut s = scene.clone();
+        Param::parse("train.gamma0_deg", &s)
+            .unwrap()
+            .set(&mut s, row.value);
+        let eval = Evaluator::new().evaluate(&s).unwrap();
+        let anatomy = eval.anatomy(&s.agronomy);
+        for m in measures {
+            // A measure the design lacks (no runner-up extreme) is absent in both.
+            let expected = m.value(&eval, anatomy.as_ref());
+            assert_eq!(
+                row.measures.get(&m.name()).copied(),
+                expected,
+                "{}",
+                m.name()
+            );
+        }
+    }
+    // γ0 raises the removal loop (docs/parameter-response.md).
+    let h: Vec<f64> = rows.iter().map(|r| r.measures["loop_height_mm"]).collect();
+    assert!(h[0] < h[1] && h[1] < h[2], "{h:?}");
+}

@@ -171,22 +171,26 @@ fn refine_extreme(kin: &Kinematics, dir: [f64; 2], j: usize, max: bool) -> (ArmS
 /// maximum (another branch), if the trajectory has one.
 fn extreme_and_runner_up(tips: &[[f64; 2]], dir: [f64; 2]) -> (usize, Option<f64>) {
     let n = tips.len();
-    let v = |j: usize| {
-        let p = tips[j % n];
-        p[0] * dir[0] + p[1] * dir[1]
-    };
+    let v = |j: usize| tips[j][0] * dir[0] + tips[j][1] * dir[1];
     let mut best = 0;
     for j in 1..n {
         if v(j) > v(best) {
             best = j;
         }
     }
+    // Neighbours by comparison, not `%`: an integer division per node cost more than the
+    // rest of the walk (this runs three times per evaluation).
     let mut runner_up: Option<f64> = None;
-    for j in n..2 * n {
-        let (m, c, p) = (v(j - 1), v(j), v(j + 1));
+    for j in 0..n {
+        let (m, c, p) = (
+            v(if j == 0 { n - 1 } else { j - 1 }),
+            v(j),
+            v(if j + 1 == n { 0 } else { j + 1 }),
+        );
         // A local maximum (strict on the left, so a flat top counts once) that is not the
-        // best node's own peak.
-        let near_best = (j - best) % n <= 1 || (best + n - j % n) % n <= 1;
+        // best node's own peak (within one node of it, around the turn).
+        let d = j.abs_diff(best);
+        let near_best = d <= 1 || d + 1 >= n;
         if c > m && c >= p && !near_best {
             let value = -parabola_vertex(-m, -c, -p);
             runner_up = Some(runner_up.map_or(value, |r: f64| r.max(value)));
@@ -215,7 +219,10 @@ pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
     let down = [0.0, -1.0];
     let (jl, planting_runner_up) = extreme_and_runner_up(tips, down);
     let (planted, neg_low) = refine_extreme(kin, down, jl, true);
-    let (jh, _) = extreme_and_runner_up(tips, [0.0, 1.0]);
+    // The highest node (no runner-up needed: no event hangs on it).
+    let jh = (0..tips.len())
+        .max_by(|&a, &b| tips[a][1].total_cmp(&tips[b][1]))
+        .unwrap_or(0);
     let (_, y_max) = refine_extreme(kin, [0.0, 1.0], jh, true);
     let event = |s: &ArmState| Event {
         carrier_rad: s.theta.rem_euclid(TAU),
