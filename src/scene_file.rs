@@ -19,6 +19,13 @@ pub enum SceneError {
     UnknownBuiltin(String),
     #[error("--set {assignment}: {message}")]
     Override { assignment: String, message: String },
+    /// A `--set` key the scene does not have, with the nearest keys it does have.
+    #[error("--set {assignment}: unknown key '{key}': the nearest are {}", nearest.join(", "))]
+    UnknownKey {
+        assignment: String,
+        key: String,
+        nearest: Vec<String>,
+    },
 }
 
 /// Built-in scenes: `(name, file contents)`; the same files live under `scenes/`.
@@ -87,6 +94,35 @@ pub fn load_scene(spec: Option<&str>) -> Result<Scene, SceneError> {
     parse_scene(&text, name)
 }
 
+/// Every key path of a scene's tree (`train.phi0_deg`, `gear.curve.radii_mm[0]`, and the
+/// tables themselves), for "the nearest are" suggestions.
+fn key_paths(tree: &serde_json::Value) -> Vec<String> {
+    fn walk(v: &serde_json::Value, path: String, out: &mut Vec<String>) {
+        match v {
+            serde_json::Value::Object(m) => {
+                for (k, x) in m {
+                    let p = if path.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{path}.{k}")
+                    };
+                    walk(x, p.clone(), out);
+                    out.push(p);
+                }
+            }
+            serde_json::Value::Array(a) => {
+                for (i, x) in a.iter().enumerate() {
+                    walk(x, format!("{path}[{i}]"), out);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    walk(tree, String::new(), &mut out);
+    out
+}
+
 /// The first NaN or infinite float in a TOML value, if any.
 fn first_non_finite(v: &toml::Value) -> Option<f64> {
     match v {
@@ -103,6 +139,7 @@ pub fn apply_overrides(scene: Scene, assignments: &[String]) -> Result<Scene, Sc
         return Ok(scene);
     }
     let mut tree = serde_json::to_value(&scene).expect("a scene always serialises");
+    let scene_tree = tree.clone();
     for assignment in assignments {
         let err = |message: String| SceneError::Override {
             assignment: assignment.clone(),
@@ -140,7 +177,11 @@ pub fn apply_overrides(scene: Scene, assignments: &[String]) -> Result<Scene, Sc
             node = node
                 .as_object_mut()
                 .and_then(|obj| obj.get_mut(name))
-                .ok_or_else(|| err(format!("unknown key '{key}'")))?;
+                .ok_or_else(|| SceneError::UnknownKey {
+                    assignment: assignment.clone(),
+                    key: key.trim().to_string(),
+                    nearest: noncirc_core::measures::nearest(key.trim(), &key_paths(&scene_tree)),
+                })?;
             if let Some(i) = index {
                 node = node
                     .as_array_mut()
@@ -205,7 +246,7 @@ mod tests {
             noncirc_core::Param::parse("gear.curve.radii_mm[3]", &s)
                 .unwrap()
                 .get(&s),
-            33.5
+            Some(33.5)
         );
         assert!(apply_overrides(scene.clone(), &["gear.curve.radii_mm[12]=1".into()]).is_err());
     }

@@ -313,7 +313,12 @@ fn measures_are_search_goals() {
     let x: Vec<f64> = problem
         .names()
         .iter()
-        .map(|n| noncirc::core::Param::parse(n, &scene).unwrap().get(&scene))
+        .map(|n| {
+            noncirc::core::Param::parse(n, &scene)
+                .unwrap()
+                .get(&scene)
+                .unwrap()
+        })
         .collect();
     let u = problem.encode(&x);
     let mut scratch = scene.clone();

@@ -9,6 +9,6 @@ Load a scene, evaluate one design or a whole NumPy batch in parallel, run a sear
 85.018
 """
 
-from ._noncirc import NoncircError, Scene, __version__, evaluate, evaluate_batch, measures, optimise
+from ._noncirc import NoncircError, Scene, UnknownNameError, __version__, evaluate, evaluate_batch, measures, optimise
 
-__all__ = ["NoncircError", "Scene", "evaluate", "evaluate_batch", "measures", "optimise", "__version__"]
+__all__ = ["NoncircError", "Scene", "UnknownNameError", "evaluate", "evaluate_batch", "measures", "optimise", "__version__"]

@@ -10,6 +10,10 @@ __version__: str
 class NoncircError(ValueError):
     """A noncirc input or model error; the message names the bad value."""
 
+class UnknownNameError(NoncircError):
+    """A scene key, parameter, measure or goal noncirc does not know; the message lists
+    the nearest names it does know."""
+
 class Scene:
     """A scene: what is designed and asked, and at which resolution. Immutable; pickles."""
 

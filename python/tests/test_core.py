@@ -149,3 +149,20 @@ def test_keyword_knobs_are_validated():
     with pytest.raises(NoncircError, match="algorithm"):
         optimise(Scene.builtin("paper-search"), algorithm="simplex", budget=10)
     assert noncirc.__version__
+
+
+def test_unknown_names_are_typed_errors_with_suggestions():
+    import pytest
+
+    from noncirc import NoncircError, UnknownNameError
+
+    scene = Scene.builtin("paper-search")
+    with pytest.raises(UnknownNameError, match="train.gamma0_deg"):
+        scene.with_set("train.gama0_deg", "-50")
+    # Any number of the scene is a free parameter, by the same path as --set.
+    free = scene.with_set("search.free", '[{name = "bounds.module_min_mm", lower = 1, upper = 3}]')
+    assert free.free_parameters() == [("bounds.module_min_mm", 1.0, 3.0)]
+    bad = scene.with_set("search.free", '[{name = "bounds.modul_min_mm", lower = 1, upper = 3}]')
+    with pytest.raises(UnknownNameError, match="bounds.module_min_mm"):
+        bad.free_parameters()
+    assert issubclass(UnknownNameError, NoncircError)

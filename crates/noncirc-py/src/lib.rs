@@ -22,8 +22,34 @@ create_exception!(
     "A noncirc input or model error (a ValueError)."
 );
 
+create_exception!(
+    _noncirc,
+    UnknownNameError,
+    NoncircError,
+    "A name noncirc does not know (a scene key, a parameter, a measure, a goal); the \
+     message lists the nearest names it does know."
+);
+
 fn err(e: impl std::fmt::Display) -> PyErr {
     NoncircError::new_err(e.to_string())
+}
+
+/// A core error: unknown names become `UnknownNameError`.
+fn core_err(e: noncirc::core::Error) -> PyErr {
+    match e {
+        noncirc::core::Error::UnknownName { .. } => UnknownNameError::new_err(e.to_string()),
+        other => err(other),
+    }
+}
+
+/// A scene-file or `--set` error: unknown keys become `UnknownNameError`.
+fn scene_err(e: noncirc::scene_file::SceneError) -> PyErr {
+    match e {
+        noncirc::scene_file::SceneError::UnknownKey { .. } => {
+            UnknownNameError::new_err(e.to_string())
+        }
+        other => err(other),
+    }
 }
 
 /// A scene: what is designed and asked. Immutable: `with_set` returns a new scene.
@@ -75,7 +101,7 @@ impl Scene {
     /// A copy with `key.path = value` set (value as TOML text, e.g. "720" or '"ccw"').
     fn with_set(&self, key: &str, value: &str) -> PyResult<Self> {
         let inner =
-            apply_overrides(self.inner.clone(), &[format!("{key}={value}")]).map_err(err)?;
+            apply_overrides(self.inner.clone(), &[format!("{key}={value}")]).map_err(scene_err)?;
         Ok(Self { inner })
     }
 
@@ -102,7 +128,7 @@ impl Scene {
 
     /// The search space: `[(name, lower, upper), ...]` (the default space if none is given).
     fn free_parameters(&self) -> PyResult<Vec<(String, f64, f64)>> {
-        let p = SceneProblem::new(&self.inner).map_err(err)?;
+        let p = SceneProblem::new(&self.inner).map_err(core_err)?;
         let lower = p.decode(&vec![0.0; p.dim()]);
         let upper = p.decode(&vec![1.0; p.dim()]);
         Ok(p.names()
@@ -509,6 +535,7 @@ fn _noncirc(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(evaluate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(optimise, m)?)?;
     m.add("NoncircError", m.py().get_type::<NoncircError>())?;
+    m.add("UnknownNameError", m.py().get_type::<UnknownNameError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
