@@ -5,7 +5,7 @@ use noncirc_core::{GearPair, Kinematics};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-type BoxError = Box<dyn std::error::Error + Send + Sync>;
+use crate::BoxError;
 
 /// A named closed polyline in mm.
 pub struct Outline {

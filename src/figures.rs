@@ -16,7 +16,7 @@ use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-type BoxError = Box<dyn std::error::Error + Send + Sync>;
+use crate::BoxError;
 const FONT: &str = "sans-serif";
 
 /// Registers the embedded font once per process.

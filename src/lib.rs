@@ -11,3 +11,6 @@ pub mod scene_file;
 pub mod search;
 
 pub use noncirc_core as core;
+
+/// The library's error at its edges (files, figures, searches): any error, with its message.
+pub type BoxError = Box<dyn std::error::Error + Send + Sync>;

@@ -2,7 +2,9 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use noncirc::core::measures::Measure;
+use noncirc::core::search::executor::{Control, Observer};
 use noncirc::core::search::Algorithm;
+use noncirc::core::search::SearchState;
 use noncirc::core::SceneKind;
 use noncirc::report::{EvaluationReport, GearReport};
 use noncirc::scene_file::{apply_overrides, load_scene, BUILTIN};
@@ -148,6 +150,39 @@ enum Command {
     Measures,
 }
 
+/// The search's progress bar (indicatif), an observer of the core's executor.
+struct ProgressBar {
+    bar: Option<indicatif::ProgressBar>,
+    show: bool,
+}
+
+impl Observer for ProgressBar {
+    fn poll(&mut self, state: &SearchState, budget: u64) -> Control {
+        if !self.show {
+            return Control::Continue;
+        }
+        let bar = self.bar.get_or_insert_with(|| {
+            let bar = indicatif::ProgressBar::new(budget);
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{bar:30} {pos}/{len} evals  {per_sec}  eta {eta}  {msg}",
+                )
+                .expect("valid template"),
+            );
+            bar
+        });
+        bar.set_position(state.evaluations.min(budget));
+        let best = state.best.as_ref().map_or(f64::INFINITY, |b| b.fitness.cv);
+        let feasible = if state.best_confirmed.is_some() {
+            "yes"
+        } else {
+            "not yet"
+        };
+        bar.set_message(format!("best violation {best:.4}  feasible {feasible}"));
+        Control::Continue
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
@@ -195,11 +230,18 @@ fn optimise(args: OptimiseArgs) -> Result<(), Box<dyn std::error::Error>> {
         checkpoint: args.checkpoint,
         checkpoint_every: Duration::from_secs_f64(args.checkpoint_every.max(0.0)),
         resume: args.resume,
-        progress: !args.quiet && args.scene.format == Format::Table,
         stop,
         max_generations: None,
     };
-    let outcome = noncirc::search::run(&scene, &opts).map_err(|e| e.to_string())?;
+    let mut progress = ProgressBar {
+        bar: None,
+        show: !args.quiet && args.scene.format == Format::Table,
+    };
+    let outcome =
+        noncirc::search::run(&scene, &opts, &mut [&mut progress]).map_err(|e| e.to_string())?;
+    if let Some(bar) = progress.bar {
+        bar.finish_and_clear();
+    }
     if let Some(dir) = &args.out {
         outcome.write(dir).map_err(|e| e.to_string())?;
     }

@@ -6,7 +6,7 @@ use crate::search::{Outcome, SweepRow};
 use noncirc_core::{Evaluation, GearPair, Param, Scene};
 use std::path::{Path, PathBuf};
 
-type BoxError = Box<dyn std::error::Error + Send + Sync>;
+use crate::BoxError;
 
 /// Figures of an evaluation, the trajectory CSV and the pitch-curve exports.
 pub fn evaluation_outputs(

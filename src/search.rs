@@ -1,6 +1,7 @@
 //! Running searches: parallel batch evaluation, progress, checkpoints, Ctrl-C, outputs.
 
 use noncirc_core::measures::Measure;
+use noncirc_core::search::executor::{execute, stop_after_generations, Control, Ending, Observer};
 use noncirc_core::search::problem::SceneProblem;
 use noncirc_core::search::{
     non_dominated_fronts, Algorithm, BatchEvaluator, Candidate, Fitness, SearchState,
@@ -14,7 +15,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-type BoxError = Box<dyn std::error::Error + Send + Sync>;
+use crate::BoxError;
 
 /// Most designs per parallel piece of a batch of `len` on `threads` ([`map_batch`] passes
 /// it to rayon's `with_max_len`): about 32 pieces per thread. Uncapped, rayon splits a
@@ -132,7 +133,6 @@ pub struct RunOptions {
     pub checkpoint: Option<PathBuf>,
     pub checkpoint_every: Duration,
     pub resume: Option<PathBuf>,
-    pub progress: bool,
     /// Set by Ctrl-C: the run stops cleanly after the current generation.
     pub stop: Arc<AtomicBool>,
     /// Stop after this many generations (for tests of interrupted runs).
@@ -150,8 +150,14 @@ pub struct Outcome {
     pub stopped_early: bool,
 }
 
-/// Runs (or resumes) a search on `scene`.
-pub fn run(scene: &Scene, opts: &RunOptions) -> Result<Outcome, BoxError> {
+/// Runs (or resumes) a search on `scene` with the core's executor: the stop flag, the
+/// generation limit, the timed checkpoints and the caller's `observers` (a progress bar, a
+/// signal check) are its observers.
+pub fn run(
+    scene: &Scene,
+    opts: &RunOptions,
+    observers: &mut [&mut dyn Observer],
+) -> Result<Outcome, BoxError> {
     let (scene, budget, mut state) = match &opts.resume {
         Some(path) => {
             let cp: Checkpoint = serde_json::from_slice(
@@ -174,59 +180,49 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<Outcome, BoxError> {
     };
     let problem = SceneProblem::new(&scene)?;
     let mut evaluator = ParallelEvaluator::new(&problem, opts.threads)?;
-    let bar = opts.progress.then(|| {
-        let bar = indicatif::ProgressBar::new(budget);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{bar:30} {pos}/{len} evals  {per_sec}  eta {eta}  {msg}",
-            )
-            .expect("valid template"),
-        );
-        bar.set_position(state.evaluations);
-        bar
-    });
     let start = Instant::now();
-    let mut last_checkpoint = Instant::now();
     let mut seconds_to_first = None;
-    let mut generations = 0u64;
-    let mut stopped_early = false;
-    while state.evaluations < budget {
-        if opts.stop.load(Ordering::SeqCst)
-            || opts.max_generations.is_some_and(|m| generations >= m)
-        {
-            stopped_early = true;
-            break;
-        }
-        state.step(&mut evaluator);
-        generations += 1;
+    let mut first_feasible = |state: &SearchState, _: u64| {
         if seconds_to_first.is_none() && state.first_feasible_at.is_some() {
             seconds_to_first = Some(start.elapsed().as_secs_f64());
         }
-        if let Some(bar) = &bar {
-            bar.set_position(state.evaluations.min(budget));
-            let best = state
-                .best
-                .as_ref()
-                .map(|b| b.fitness.cv)
-                .unwrap_or(f64::INFINITY);
-            bar.set_message(format!(
-                "best violation {best:.4}  feasible {}",
-                if state.best_confirmed.is_some() {
-                    "yes"
-                } else {
-                    "not yet"
-                }
-            ));
+        Control::Continue
+    };
+    let stop = &opts.stop;
+    let mut interrupted = |_: &SearchState, _: u64| {
+        if stop.load(Ordering::SeqCst) {
+            Control::Stop
+        } else {
+            Control::Continue
         }
-        if let Some(path) = &opts.checkpoint {
-            if last_checkpoint.elapsed() >= opts.checkpoint_every {
-                save_checkpoint(path, &scene, budget, &state)?;
-                last_checkpoint = Instant::now();
+    };
+    let mut generation_limit = stop_after_generations(opts.max_generations.unwrap_or(u64::MAX));
+    let mut last_checkpoint = Instant::now();
+    let mut checkpoint_error: Option<BoxError> = None;
+    let mut checkpoints = |state: &SearchState, budget: u64| match &opts.checkpoint {
+        Some(path) if last_checkpoint.elapsed() >= opts.checkpoint_every => {
+            last_checkpoint = Instant::now();
+            match save_checkpoint(path, &scene, budget, state) {
+                Ok(()) => Control::Continue,
+                Err(e) => {
+                    checkpoint_error = Some(e);
+                    Control::Stop
+                }
             }
         }
-    }
-    if let Some(bar) = bar {
-        bar.finish_and_clear();
+        _ => Control::Continue,
+    };
+    let mut all: Vec<&mut dyn Observer> = vec![
+        &mut first_feasible,
+        &mut interrupted,
+        &mut generation_limit,
+        &mut checkpoints,
+    ];
+    all.extend(observers.iter_mut().map(|o| &mut **o as &mut dyn Observer));
+    let ending = execute(&mut state, &mut evaluator, budget, &mut all);
+    drop(all);
+    if let Some(e) = checkpoint_error {
+        return Err(e);
     }
     if let Some(path) = &opts.checkpoint {
         save_checkpoint(path, &scene, budget, &state)?;
@@ -238,7 +234,7 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<Outcome, BoxError> {
         seconds: start.elapsed().as_secs_f64(),
         seconds_to_first_feasible: seconds_to_first,
         threads: opts.threads,
-        stopped_early,
+        stopped_early: ending == Ending::Stopped,
     })
 }
 

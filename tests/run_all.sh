@@ -7,6 +7,9 @@ echo "== cargo fmt --check"
 cargo fmt --all -- --check
 echo "== cargo clippy --all-targets -- -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
+echo "== the core builds for the browser (wasm32-unknown-unknown)"
+if command -v rustup >/dev/null; then rustup target add wasm32-unknown-unknown >/dev/null 2>&1 || true; fi
+cargo build -p noncirc-core --target wasm32-unknown-unknown
 echo "== cargo test"
 cargo test --release          # default members: the core and the CLI (maturin builds the extension)
 # Benches compile and run once as tests (no timing).

@@ -2,7 +2,12 @@
 
 use noncirc::core::search::{das_dennis, Algorithm, BatchEvaluator, Fitness, SearchState};
 use noncirc::scene_file::load_scene;
-use noncirc::search::{run, RunOptions};
+use noncirc::search::{Outcome, RunOptions};
+
+/// A search with no observers of the caller's own.
+fn run(scene: &noncirc::core::Scene, opts: &RunOptions) -> Result<Outcome, noncirc::BoxError> {
+    noncirc::search::run(scene, opts, &mut [])
+}
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 use std::time::Duration;
@@ -184,7 +189,6 @@ fn options(
         checkpoint,
         checkpoint_every: Duration::from_secs(3600),
         resume,
-        progress: false,
         stop: Arc::new(AtomicBool::new(false)),
         max_generations,
     }

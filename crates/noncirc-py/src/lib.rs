@@ -489,12 +489,11 @@ fn optimise<'py>(
         checkpoint: None,
         checkpoint_every: std::time::Duration::from_secs(3600),
         resume: None,
-        progress: false,
         stop: Arc::new(std::sync::atomic::AtomicBool::new(false)),
         max_generations: None,
     };
     let outcome = py
-        .allow_threads(|| noncirc::search::run(&s, &opts))
+        .allow_threads(|| noncirc::search::run(&s, &opts, &mut []))
         .map_err(err)?;
     let (summary, pareto) = py.allow_threads(|| (outcome.summary(), outcome.pareto()));
     let json = serde_json::to_string(&summary).map_err(err)?;

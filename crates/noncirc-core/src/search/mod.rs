@@ -6,6 +6,7 @@
 
 mod cmaes;
 mod de;
+pub mod executor;
 mod guided;
 mod nsga;
 pub mod problem;

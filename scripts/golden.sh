@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Writes every JSON output of the CLI over the built-in scenes and a fixed set of designs
+# into DIR, so that a refactoring can be checked byte for byte:
+#   scripts/golden.sh BIN DIR   (BIN: a noncirc binary; then `diff -r DIR_BEFORE DIR_AFTER`)
+set -euo pipefail
+bin=$1
+out=$2
+mkdir -p "$out"
+run() { # name, then the command's arguments
+  local name=$1
+  shift
+  "$bin" "$@" --format json >"$out/$name.json" 2>"$out/$name.err" || echo "exit $?" >>"$out/$name.err"
+}
+for scene in paper paper-search transplanter moving-box ellipse-gear; do
+  run "evaluate-$scene" evaluate "$scene"
+  run "gear-$scene" gear "$scene"
+done
+run box-default box
+run box-transplanter box transplanter
+run sweep-r7 sweep paper --param 'gear.curve.radii_mm[6]' --from 10 --to 30 --steps 5 \
+  --measure removal_length_mm --measure picking_branch_gap_mm
+run sweep-gamma0 sweep paper --param train.gamma0_deg --from -80 --to -20 --steps 7
+# Designs around the paper's, one parameter at a time and several at once (fixed values).
+i=0
+for set in "train.beta0_deg=-47" "train.phi0_deg=70" "train.arm_length_mm=160" \
+  "gear.curve.radii_mm[4]=40" "gear.curve.radii_mm[9]=70" "agronomy.tray_normal_deg=135" \
+  "gear.curve.kind=\"bspline\"" "train.sun_frame=\"ground\"" "train.pusher_side=\"right\"" \
+  "resolution.samples_per_turn=360"; do
+  i=$((i + 1))
+  run "design-$i" evaluate paper --set "$set" --set train.gamma0_deg=-50
+done
+run optimise-de optimise --budget 3000 --seed 3 --threads 2
+# Wall-clock times are the one thing allowed to differ.
+python3 - "$out/optimise-de.json" <<'PY'
+import json, sys
+path = sys.argv[1]
+def strip(v):
+    if isinstance(v, dict):
+        return {k: strip(x) for k, x in v.items() if "seconds" not in k}
+    if isinstance(v, list):
+        return [strip(x) for x in v]
+    return v
+with open(path) as f:
+    data = json.load(f)
+with open(path, "w") as f:
+    json.dump(strip(data), f, indent=1, sort_keys=True)
+PY
