@@ -7,7 +7,7 @@ use noncirc::core::search::Algorithm;
 use noncirc::core::search::SearchState;
 use noncirc::core::SceneKind;
 use noncirc::report::{EvaluationReport, GearReport};
-use noncirc::scene_file::{apply_overrides, load_scene, BUILTIN};
+use noncirc::scene_file::{load_scene_with, BUILTIN};
 use noncirc::search::RunOptions;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -196,7 +196,7 @@ fn main() -> ExitCode {
 
 fn optimise(args: OptimiseArgs) -> Result<(), Box<dyn std::error::Error>> {
     let name = args.scene.scene.as_deref().unwrap_or("paper-search");
-    let mut scene = apply_overrides(load_scene(Some(name))?, &args.scene.set)?;
+    let mut scene = load_scene_with(Some(name), &args.scene.set)?;
     if let Some(a) = &args.algorithm {
         scene.search.algorithm = a.clone();
     }
@@ -272,7 +272,7 @@ fn plot_evaluation(
 fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
     match cli.command {
         Command::Gear(args) => {
-            let scene = apply_overrides(load_scene(args.scene.scene.as_deref())?, &args.scene.set)?;
+            let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
             let (report, pair) = GearReport::from_scene(&scene)?;
             for dir in [&args.export, &args.scene.plot].into_iter().flatten() {
                 for f in noncirc::export::export_gears(&pair, dir).map_err(|e| e.to_string())? {
@@ -285,7 +285,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             }
         }
         Command::Animate(args) => {
-            let scene = apply_overrides(load_scene(args.scene.scene.as_deref())?, &args.scene.set)?;
+            let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
             let kin = noncirc::core::Kinematics::solve(
                 &scene.gear.curve.build()?,
                 &scene.train,
@@ -296,7 +296,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             eprintln!("wrote {}", args.out.display());
         }
         Command::Evaluate(args) => {
-            let scene = apply_overrides(load_scene(args.scene.as_deref())?, &args.set)?;
+            let scene = load_scene_with(args.scene.as_deref(), &args.set)?;
             let (report, eval) = EvaluationReport::from_scene(&scene)?;
             if let Some(dir) = &args.plot {
                 plot_evaluation(&scene, &eval, dir)?;
@@ -307,8 +307,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             }
         }
         Command::Box(args) => {
-            let scene = apply_overrides(
-                load_scene(Some(args.scene.as_deref().unwrap_or("moving-box")))?,
+            let scene = load_scene_with(
+                Some(args.scene.as_deref().unwrap_or("moving-box")),
                 &args.set,
             )?;
             let mut box_scene = scene.clone();
@@ -336,7 +336,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             }
         }
         Command::Accuracy(args) => {
-            let scene = apply_overrides(load_scene(args.scene.as_deref())?, &args.set)?;
+            let scene = load_scene_with(args.scene.as_deref(), &args.set)?;
             let report = noncirc::accuracy::measure(&scene, 720)?;
             match args.format {
                 Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
@@ -345,7 +345,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
         }
         Command::Optimise(args) => optimise(args)?,
         Command::Sweep(args) => {
-            let scene = apply_overrides(load_scene(args.scene.scene.as_deref())?, &args.scene.set)?;
+            let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
             let measures = (args.measures.iter())
                 .map(|m| Measure::parse(m))
                 .collect::<Result<Vec<_>, _>>()?;

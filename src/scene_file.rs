@@ -26,6 +26,26 @@ pub enum SceneError {
         key: String,
         nearest: Vec<String>,
     },
+    /// A scene that reads but cannot be evaluated or searched as written.
+    #[error("{origin}: {source}")]
+    Invalid {
+        origin: String,
+        #[source]
+        source: noncirc_core::Error,
+    },
+}
+
+/// The scene if every value in it can be evaluated and searched, else why not.
+fn checked(scene: Scene, origin: &str) -> Result<Scene, SceneError> {
+    scene
+        .validate()
+        .and_then(|()| scene.validate_search())
+        .and_then(|()| scene.gear.curve.build().map(drop))
+        .map_err(|source| SceneError::Invalid {
+            origin: origin.to_string(),
+            source,
+        })?;
+    Ok(scene)
 }
 
 /// Built-in scenes: `(name, file contents)`; the same files live under `scenes/`.
@@ -40,15 +60,21 @@ pub const BUILTIN: &[(&str, &str)] = &[
 /// The default scene's name: the three-arm paper's design.
 pub const DEFAULT_SCENE: &str = "paper";
 
-/// Parses scene text. `origin` names it in errors; JSON if it starts with `{`, else TOML.
+/// Parses and checks scene text. `origin` names it in errors; JSON if it starts with `{`,
+/// else TOML.
 pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
+    checked(read_scene(text, origin)?, origin)
+}
+
+/// Parses scene text without checking its values (they may still be set by `--set`).
+fn read_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
     let parse_err = |message: String| SceneError::Parse {
         origin: origin.to_string(),
         message,
     };
     if text.trim_start().starts_with('{') {
         let mut de = serde_json::Deserializer::from_str(text);
-        serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let scene: Scene = serde_path_to_error::deserialize(&mut de).map_err(|e| {
             let inner = e.inner();
             parse_err(format!(
                 "line {}, column {}: key '{}': {}",
@@ -57,7 +83,16 @@ pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
                 e.path(),
                 inner
             ))
-        })
+        })?;
+        // Text after the scene's closing brace is a damaged file, not a comment.
+        de.end().map_err(|e| {
+            parse_err(format!(
+                "line {}, column {}: text after the scene: {e}",
+                e.line(),
+                e.column()
+            ))
+        })?;
+        Ok(scene)
     } else {
         let de = toml::Deserializer::new(text);
         serde_path_to_error::deserialize(de).map_err(|e| {
@@ -75,23 +110,40 @@ pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
     }
 }
 
-/// Loads a scene from a path, or a built-in by name when no such file exists.
+/// Loads and checks a scene from a path, or a built-in by name when no such file exists.
 pub fn load_scene(spec: Option<&str>) -> Result<Scene, SceneError> {
+    load_scene_with(spec, &[])
+}
+
+/// [`load_scene`] with `key.path=value` overrides, checked once they are all applied (so
+/// `--set` can repair a bad value in a file).
+pub fn load_scene_with(spec: Option<&str>, assignments: &[String]) -> Result<Scene, SceneError> {
     let name = spec.unwrap_or(DEFAULT_SCENE);
-    if let Some((_, text)) = BUILTIN.iter().find(|(n, _)| *n == name) {
-        if !Path::new(name).exists() {
-            return parse_scene(text, &format!("built-in scene '{name}'"));
+    let builtin = BUILTIN.iter().find(|(n, _)| *n == name);
+    let scene = match builtin {
+        Some((_, text)) if !Path::new(name).exists() => {
+            read_scene(text, &format!("built-in scene '{name}'"))?
         }
+        _ => {
+            let path = Path::new(name);
+            if !path.exists() && path.extension().is_none() {
+                return Err(SceneError::UnknownBuiltin(name.to_string()));
+            }
+            let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+                path: name.to_string(),
+                source,
+            })?;
+            read_scene(&text, name)?
+        }
+    };
+    if assignments.is_empty() {
+        checked(scene, name)
+    } else {
+        checked(
+            set_values(scene, assignments)?,
+            &format!("{name} with --set {}", assignments.join(" ")),
+        )
     }
-    let path = Path::new(name);
-    if !path.exists() && path.extension().is_none() {
-        return Err(SceneError::UnknownBuiltin(name.to_string()));
-    }
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-        path: name.to_string(),
-        source,
-    })?;
-    parse_scene(&text, name)
 }
 
 /// Every key path of a scene's tree (`train.phi0_deg`, `gear.curve.radii_mm[0]`, and the
@@ -133,11 +185,20 @@ fn first_non_finite(v: &toml::Value) -> Option<f64> {
     }
 }
 
-/// Applies `key.path=value` overrides (value read as TOML, else as a string).
+/// Applies `key.path=value` overrides (value read as TOML, else as a string) and checks
+/// the result.
 pub fn apply_overrides(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError> {
     if assignments.is_empty() {
         return Ok(scene);
     }
+    checked(
+        set_values(scene, assignments)?,
+        &format!("--set {}", assignments.join(" ")),
+    )
+}
+
+/// Writes `key.path=value` assignments into the scene's tree and reads it back.
+fn set_values(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError> {
     let mut tree = serde_json::to_value(&scene).expect("a scene always serialises");
     let scene_tree = tree.clone();
     for assignment in assignments {

@@ -226,12 +226,13 @@ fn the_perimeter_reading_gives_the_papers_module() {
         (g.module.module_max_mm - g.perimeter_mm / (40.0 * std::f64::consts::PI)).abs() < 1e-12
     );
     assert!(eval.objective(ObjectiveKind::Module).unwrap().violation == 0.0);
-    let no_teeth = scene(&["gear.module.rule=\"perimeter\""]);
-    let err = Evaluator::new()
-        .evaluate(&no_teeth)
-        .unwrap_err()
-        .to_string();
-    assert!(err.contains("gear.module.teeth"), "{err}");
+    let err = apply_overrides(
+        load_scene(Some("paper")).unwrap(),
+        &["gear.module.rule=\"perimeter\"".into()],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("gear.module.teeth is not set"), "{err}");
 }
 
 /// The tip's ground-frame speed at planting, against finite differences of its

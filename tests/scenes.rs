@@ -1,7 +1,7 @@
 //! Scenes evaluate only what they ask for; loading never panics, whatever the file.
 
 use noncirc::core::{Evaluator, ObjectiveKind, Scene, SceneKind};
-use noncirc::scene_file::{load_scene, parse_scene, BUILTIN};
+use noncirc::scene_file::{load_scene, parse_scene, SceneError, BUILTIN};
 use proptest::prelude::*;
 
 #[test]
@@ -140,6 +140,12 @@ proptest! {
                 if let Ok(out) = Evaluator::new().evaluate(&scene) {
                     for o in &out.objectives {
                         prop_assert!(!o.value.is_nan(), "{} is NaN", o.kind.name());
+                        // A NaN or infinite bound would count as met or give no violation.
+                        prop_assert!(o.violation.is_finite() && o.violation >= 0.0,
+                            "{}: violation {}", o.kind.name(), o.violation);
+                        for b in [o.lower, o.upper].into_iter().flatten() {
+                            prop_assert!(b.is_finite(), "{}: bound {b}", o.kind.name());
+                        }
                     }
                 }
             }
@@ -205,9 +211,18 @@ fn every_number_of_a_scene_is_a_parameter() {
             assert_eq!(p.get(scene), Some(*value), "{}: {path}", scene.name);
             let mut by_param = scene.clone();
             p.set(&mut by_param, value + 1.0);
-            let by_set =
-                apply_overrides(scene.clone(), &[format!("{path}={}", value + 1.0)]).unwrap();
-            assert_eq!(by_param, by_set, "{}: {path}", scene.name);
+            match apply_overrides(scene.clone(), &[format!("{path}={}", value + 1.0)]) {
+                Ok(by_set) => assert_eq!(by_param, by_set, "{}: {path}", scene.name),
+                // A value the checks refuse is refused the same whichever way it is written.
+                Err(SceneError::Invalid { .. }) => assert!(
+                    by_param.validate().is_err()
+                        || by_param.validate_search().is_err()
+                        || by_param.gear.curve.build().is_err(),
+                    "{}: {path}",
+                    scene.name
+                ),
+                Err(e) => panic!("{}: {path}: {e}", scene.name),
+            }
         }
         // Unset optional fields are parameters too (they can be set) but not numbers yet.
         paths.retain(|p| !numbers.iter().any(|(n, _)| n == p));

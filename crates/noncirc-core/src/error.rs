@@ -59,6 +59,13 @@ pub enum Error {
         name: String,
         nearest: Vec<String>,
     },
+    /// An optional setting that another setting needs.
+    #[error("{name} is not set: {needed_by}")]
+    Missing { name: String, needed_by: String },
+    /// A list of the scene (objectives, goals, free parameters) with an entry that cannot
+    /// stand there, or empty where it must not be; `problem` names the entry.
+    #[error("{list}: {problem}")]
+    BadList { list: &'static str, problem: String },
     /// A design that cannot be manufactured (e.g. a module of zero).
     #[error("{0}")]
     Infeasible(String),
@@ -102,16 +109,27 @@ pub fn finite_with(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
     }
 }
 
-/// A positive length (mm) up to [`MAX_LENGTH_MM`], naming the value only when it is bad.
+/// A positive length (mm) from [`MIN_LENGTH_MM`] to [`MAX_LENGTH_MM`], naming the value
+/// only when it is bad.
 pub fn positive_with(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
-    if value.is_finite() && value > 0.0 && value <= MAX_LENGTH_MM {
+    if value.is_finite() && (MIN_LENGTH_MM..=MAX_LENGTH_MM).contains(&value) {
         Ok(value)
     } else {
         let name = name();
-        positive(&name, value)?;
-        length(&name, value)
+        finite(&name, value)?;
+        Err(Error::OutOfRange {
+            name,
+            value,
+            expected: format!("a length from {MIN_LENGTH_MM:e} to {MAX_LENGTH_MM:e} mm"),
+        })
     }
 }
+
+/// Smallest accepted pitch-curve length (mm), the mirror of [`MAX_LENGTH_MM`]: results
+/// scale exactly over the 18 decades between them (a test holds it), while far smaller
+/// lengths reach subnormal numbers (a 5e-324 mm ellipse gave a centre distance of
+/// 0 ± NaN).
+pub const MIN_LENGTH_MM: f64 = 1e-9;
 
 /// Largest accepted length (mm): a thousand kilometres. Larger inputs overflow the
 /// geometry (squares of lengths) and are refused by name instead.

@@ -208,10 +208,9 @@ impl ModuleRule {
             positive("gear.module.cutter_teeth", z)?;
         }
         match (self.rule, self.teeth) {
-            (ModuleReading::Perimeter, None) => Err(Error::OutOfRange {
+            (ModuleReading::Perimeter, None) => Err(Error::Missing {
                 name: "gear.module.teeth".into(),
-                value: f64::NAN,
-                expected: "a tooth count of at least 1 with gear.module.rule = \"perimeter\""
+                needed_by: "gear.module.rule = \"perimeter\" reads the module from a tooth count"
                     .into(),
             }),
             (_, Some(0)) => Err(Error::OutOfRange {

@@ -2,7 +2,7 @@
 //! shaft, the sinusoidal spiral shaft, slider forces, and the box travel while picking.
 
 use crate::curve::{Ellipse, PitchCurve, TAU};
-use crate::error::{finite, positive, Error, Result};
+use crate::error::{finite, length, positive, Error, Result};
 use crate::gear::GearPair;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
@@ -102,14 +102,35 @@ impl BoxSpec {
             ("moving_box.pot_pitch_mm", self.pot_pitch_mm),
             ("moving_box.pot_width_mm", self.pot_width_mm),
             ("moving_box.module_mm", self.module_mm),
-            ("moving_box.input_speed_rpm", self.input_speed_rpm),
-            ("moving_box.box_mass_kg", self.box_mass_kg),
+        ] {
+            positive(name, v)?;
+            length(name, v)?;
+        }
+        for (name, v, max) in [
+            (
+                "moving_box.input_speed_rpm",
+                self.input_speed_rpm,
+                Self::MAX_INPUT_SPEED_RPM,
+            ),
+            (
+                "moving_box.box_mass_kg",
+                self.box_mass_kg,
+                Self::MAX_MASS_KG,
+            ),
             (
                 "moving_box.input_turns_per_carrier_turn",
                 self.input_turns_per_carrier_turn,
+                1e3,
             ),
         ] {
             positive(name, v)?;
+            if v > max {
+                return Err(Error::OutOfRange {
+                    name: name.into(),
+                    value: v,
+                    expected: format!("at most {max:e}"),
+                });
+            }
         }
         for (name, v) in [
             ("moving_box.window_deg", self.window_deg),
@@ -137,6 +158,41 @@ impl BoxSpec {
                 expected: "0..=360".into(),
             });
         }
+        // The groove development needs 0 < φs < 90°; the slider forces divide by
+        // cos(α + φ); every angle of the slider is in [0°, 90°).
+        if !(self.spiral_angle_deg > 0.0 && self.spiral_angle_deg < 90.0) {
+            return Err(Error::OutOfRange {
+                name: "moving_box.spiral_angle_deg".into(),
+                value: self.spiral_angle_deg,
+                expected: "between 0° and 90° (exclusive)".into(),
+            });
+        }
+        for (name, v) in [
+            (
+                "moving_box.groove_wall_angle_deg",
+                self.groove_wall_angle_deg,
+            ),
+            (
+                "moving_box.groove_friction_angle_deg",
+                self.groove_friction_angle_deg,
+            ),
+            (
+                "moving_box.groove_wall_angle_deg + groove_friction_angle_deg",
+                self.groove_wall_angle_deg + self.groove_friction_angle_deg,
+            ),
+            (
+                "moving_box.slide_friction_angle_deg",
+                self.slide_friction_angle_deg,
+            ),
+        ] {
+            if !(0.0..90.0).contains(&v) {
+                return Err(Error::OutOfRange {
+                    name: name.into(),
+                    value: v,
+                    expected: "at least 0° and below 90°".into(),
+                });
+            }
+        }
         if self.teeth == 0 {
             return Err(Error::OutOfRange {
                 name: "moving_box.teeth".into(),
@@ -146,6 +202,11 @@ impl BoxSpec {
         }
         Ok(())
     }
+
+    /// Largest accepted input speed (r/min): transplanters run at a few hundred.
+    pub const MAX_INPUT_SPEED_RPM: f64 = 1e5;
+    /// Largest accepted box mass (kg).
+    pub const MAX_MASS_KG: f64 = 1e5;
 
     /// Input angular speed (rad/s).
     pub fn omega(&self) -> f64 {
@@ -363,7 +424,7 @@ pub fn evaluate_box_with(
     let scale = spec.pot_pitch_mm / TAU;
     let delta = spec.elliptic_delta_h(a, b);
     let limit = spec.pot_width_mm / 6.0;
-    Ok(BoxReport {
+    BoxReport {
         eccentricity: k,
         speed_ratio: ((1.0 + k) / (1.0 - k)).powi(2),
         semi_major_mm: semi_major,
@@ -379,7 +440,40 @@ pub fn evaluate_box_with(
         speed_min_mm_s: scale * w * (1.0 - k) / (1.0 + k),
         speed_max_mm_s: scale * w * (1.0 + k) / (1.0 - k),
         slider_force_max_n: spec.slider_force_max(),
-    })
+    }
+    .checked()
+}
+
+impl BoxReport {
+    /// The report if every number in it is finite: a last guard against inputs that pass
+    /// each check alone but overflow together.
+    fn checked(self) -> Result<Self> {
+        for (name, v) in [
+            ("moving box: semi-major axis (mm)", self.semi_major_mm),
+            (
+                "moving box: elliptical travel (mm)",
+                self.elliptic_delta_h_mm,
+            ),
+            (
+                "moving box: elliptical travel, numerical (mm)",
+                self.elliptic_delta_h_numeric_mm,
+            ),
+            (
+                "moving box: constant-speed travel (mm)",
+                self.uniform_delta_h_mm,
+            ),
+            (
+                "moving box: sinusoidal-shaft travel (mm)",
+                self.sinusoidal_delta_h_mm,
+            ),
+            ("moving box: least speed (mm/s)", self.speed_min_mm_s),
+            ("moving box: greatest speed (mm/s)", self.speed_max_mm_s),
+            ("moving box: slider force (N)", self.slider_force_max_n),
+        ] {
+            finite(name, v)?;
+        }
+        Ok(self)
+    }
 }
 
 /// Golden-section minimum of a unimodal `f` on `[lo, hi]`.

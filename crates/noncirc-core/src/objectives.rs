@@ -2,7 +2,7 @@
 //! machine can pick at the picking point, with value, bounds, unit and violation.
 
 use crate::curve::{parabola_vertex, TAU};
-use crate::error::{finite, length, Result};
+use crate::error::{finite, finite_with, length, Error, Result};
 use crate::events::{events, housing_radius, Events};
 use crate::gear::{curvature_extremes, module_max, perimeter, ModuleReport, ModuleRule};
 use crate::planetary::Kinematics;
@@ -109,6 +109,47 @@ pub struct Bounds {
     pub module_min_mm: f64,
     /// Least margin of the picking conditions (mm): how far the worst of them holds.
     pub picking_admissible_min_mm: f64,
+}
+
+impl Bounds {
+    /// Every bound finite, every range ordered (a NaN bound would count as met).
+    pub fn validate(&self) -> Result<()> {
+        for (name, v) in [
+            ("bounds.clearance_min_mm", self.clearance_min_mm),
+            ("bounds.seedling_push_max_mm", self.seedling_push_max_mm),
+            (
+                "bounds.ground_clearance_min_mm",
+                self.ground_clearance_min_mm,
+            ),
+            (
+                "bounds.trajectory_height_min_mm",
+                self.trajectory_height_min_mm,
+            ),
+            ("bounds.module_min_mm", self.module_min_mm),
+            (
+                "bounds.picking_admissible_min_mm",
+                self.picking_admissible_min_mm,
+            ),
+        ] {
+            finite(name, v)?;
+        }
+        for (name, [lower, upper]) in [
+            ("bounds.picking_angle_deg", self.picking_angle_deg),
+            ("bounds.pushing_angle_deg", self.pushing_angle_deg),
+            ("bounds.angle_difference_deg", self.angle_difference_deg),
+        ] {
+            finite_with(|| format!("{name}[0]"), lower)?;
+            finite_with(|| format!("{name}[1]"), upper)?;
+            if lower > upper {
+                return Err(Error::OutOfRange {
+                    name: format!("{name}[1]"),
+                    value: upper,
+                    expected: format!("at least the lower bound {lower}"),
+                });
+            }
+        }
+        Ok(())
+    }
 }
 
 impl Default for Bounds {

@@ -13,9 +13,11 @@ pub struct Resolution {
     pub samples_per_turn: usize,
     /// Largest accepted relative uncertainty of the centre distance, estimated from the
     /// half grid; above it the closure is reported as under-resolved. Default 1e-5
-    /// (about 1 µm on the paper's 85 mm pair).
+    /// (about 1 µm on the paper's 85 mm pair); at most 1e-2.
     pub closure_rel_tol: f64,
-    /// Relative step below which the closure iteration stops. Default 1e-14.
+    /// Relative step below which the closure iteration stops. Default 1e-14; at most a
+    /// tenth of `closure_rel_tol` (a looser stop would move the centre distance by more
+    /// than the closure test can see).
     pub newton_rel_tol: f64,
 }
 
@@ -40,6 +42,9 @@ impl Resolution {
         newton_rel_tol: 1e-12,
     };
 
+    /// Largest accepted closure tolerance: 1 % of the centre distance.
+    pub const MAX_CLOSURE_REL_TOL: f64 = 1e-2;
+
     /// Largest accepted samples per turn (memory stays below ~200 MB).
     pub const MAX_SAMPLES: usize = 6 << 20;
 
@@ -61,17 +66,26 @@ impl Resolution {
                 expected: format!("a multiple of 6 from 12 to {}", Self::MAX_SAMPLES),
             });
         }
-        for (name, v) in [
-            ("resolution.closure_rel_tol", self.closure_rel_tol),
-            ("resolution.newton_rel_tol", self.newton_rel_tol),
-        ] {
-            if !(v.is_finite() && v > 0.0 && v < 1.0) {
-                return Err(Error::OutOfRange {
-                    name: name.into(),
-                    value: v,
-                    expected: "0 < tol < 1".into(),
-                });
-            }
+        let c = self.closure_rel_tol;
+        if !(c.is_finite() && c > 0.0 && c <= Self::MAX_CLOSURE_REL_TOL) {
+            return Err(Error::OutOfRange {
+                name: "resolution.closure_rel_tol".into(),
+                value: c,
+                expected: format!("0 < tol <= {:e}", Self::MAX_CLOSURE_REL_TOL),
+            });
+        }
+        // The iteration stops within `newton_rel_tol` of the root; the acceptance test only
+        // sees the quadrature's error, so the stopping error must stay well below it.
+        let t = self.newton_rel_tol;
+        if !(t.is_finite() && t > 0.0 && t <= 0.1 * c) {
+            return Err(Error::OutOfRange {
+                name: "resolution.newton_rel_tol".into(),
+                value: t,
+                expected: format!(
+                    "0 < tol <= a tenth of resolution.closure_rel_tol ({c:e}), so the \
+                     iteration's stopping error stays below the accepted closure uncertainty"
+                ),
+            });
         }
         Ok(())
     }

@@ -1,7 +1,7 @@
 //! Scenes: what is being designed and asked, as plain serialisable data (no I/O here).
 
 use crate::curve::CurveSpec;
-use crate::error::{Error, Result};
+use crate::error::{finite, Error, Result};
 use crate::gear::ModuleRule;
 use crate::moving_box::BoxSpec;
 use crate::objectives::{Agronomy, Bounds, ObjectiveKind};
@@ -156,7 +156,30 @@ impl Scene {
     pub fn validate(&self) -> Result<()> {
         self.resolution.validate()?;
         self.gear.module.validate()?;
+        self.bounds.validate()?;
+        if matches!(self.kind, SceneKind::MovingBox | SceneKind::Transplanter) {
+            self.moving_box.validate()?;
+        }
         let mechanism = matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
+        if mechanism && self.objectives.is_empty() {
+            return Err(Error::BadList {
+                list: "objectives",
+                problem: "empty: a mechanism scene needs at least one objective (with none, \
+                          every design would report feasible)"
+                    .into(),
+            });
+        }
+        for (i, o) in self.objectives.iter().enumerate() {
+            if self.objectives[..i].contains(o) {
+                return Err(Error::BadList {
+                    list: "objectives",
+                    problem: format!(
+                        "'{}' is listed twice (its violation would count twice)",
+                        o.name()
+                    ),
+                });
+            }
+        }
         for o in &self.objectives {
             let allowed =
                 mechanism || (self.kind == SceneKind::Gear && *o == ObjectiveKind::Module);
@@ -167,6 +190,50 @@ impl Scene {
                     expected: format!("an objective a {:?} scene can evaluate", self.kind),
                 });
             }
+        }
+        Ok(())
+    }
+
+    /// The search settings: goals this scene can compute, each once; free parameters that
+    /// exist, each once, with finite ordered bounds a finite width apart. Checked when a
+    /// scene is read and when a search starts (not per design: [`Scene::validate`] is).
+    pub fn validate_search(&self) -> Result<()> {
+        use crate::search::problem::Goal;
+        for (i, name) in self.search.goals.iter().enumerate() {
+            let goal = Goal::parse(name)?;
+            let needs_box = matches!(goal, Goal::BoxTravel)
+                || matches!(goal, Goal::Measure { measure, .. } if measure.name() == "box_travel_mm");
+            let problem = if self.search.goals[..i].contains(name) {
+                format!("'{name}' is listed twice")
+            } else if needs_box && self.kind != SceneKind::Transplanter {
+                format!("'{name}' needs a moving box: only a transplanter scene computes it")
+            } else {
+                continue;
+            };
+            return Err(Error::BadList {
+                list: "search.goals",
+                problem,
+            });
+        }
+        for (i, f) in self.search.free.iter().enumerate() {
+            crate::params::Param::parse(&f.name, self)?;
+            finite(&format!("search.free '{}' lower", f.name), f.lower)?;
+            finite(&format!("search.free '{}' upper", f.name), f.upper)?;
+            let problem = if self.search.free[..i].iter().any(|g| g.name == f.name) {
+                format!("'{}' is listed twice", f.name)
+            } else if !(f.lower < f.upper && (f.upper - f.lower).is_finite()) {
+                format!(
+                    "'{}' has bounds [{}, {}]: the lower must be below the upper, a finite \
+                     width apart",
+                    f.name, f.lower, f.upper
+                )
+            } else {
+                continue;
+            };
+            return Err(Error::BadList {
+                list: "search.free",
+                problem,
+            });
         }
         Ok(())
     }

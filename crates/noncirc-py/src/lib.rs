@@ -45,9 +45,11 @@ fn core_err(e: noncirc::core::Error) -> PyErr {
 /// A scene-file or `--set` error: unknown keys become `UnknownNameError`.
 fn scene_err(e: noncirc::scene_file::SceneError) -> PyErr {
     match e {
-        noncirc::scene_file::SceneError::UnknownKey { .. } => {
-            UnknownNameError::new_err(e.to_string())
-        }
+        noncirc::scene_file::SceneError::UnknownKey { .. }
+        | noncirc::scene_file::SceneError::Invalid {
+            source: noncirc::core::Error::UnknownName { .. },
+            ..
+        } => UnknownNameError::new_err(e.to_string()),
         other => err(other),
     }
 }
@@ -68,7 +70,7 @@ impl Scene {
             return Err(err(format!("no such scene file: {path}")));
         }
         Ok(Self {
-            inner: load_scene(Some(path)).map_err(err)?,
+            inner: load_scene(Some(path)).map_err(scene_err)?,
         })
     }
 
@@ -77,7 +79,7 @@ impl Scene {
     #[pyo3(signature = (text, origin = "<string>"))]
     fn from_string(text: &str, origin: &str) -> PyResult<Self> {
         Ok(Self {
-            inner: parse_scene(text, origin).map_err(err)?,
+            inner: parse_scene(text, origin).map_err(scene_err)?,
         })
     }
 

@@ -16,7 +16,10 @@ pub struct Cmaes {
     path_sigma: Vec<f64>,
     path_c: Vec<f64>,
     generation: u64,
-    best_merit: f64,
+    /// The best merit since the last (re)start; `None` before the first generation (an
+    /// infinite start value made `∞ − 1e-12·∞ = NaN`, so stalls were never detected, and
+    /// was written to checkpoints as JSON null).
+    best_merit: Option<f64>,
     stall: u32,
     rng: Rng,
 }
@@ -35,7 +38,7 @@ impl Cmaes {
             path_sigma: vec![0.0; dim],
             path_c: vec![0.0; dim],
             generation: 0,
-            best_merit: f64::INFINITY,
+            best_merit: None,
             stall: 0,
             rng,
         }
@@ -47,7 +50,7 @@ impl Cmaes {
         self.cov = identity(self.dim);
         self.path_sigma = vec![0.0; self.dim];
         self.path_c = vec![0.0; self.dim];
-        self.best_merit = f64::INFINITY;
+        self.best_merit = None;
         self.stall = 0;
     }
 
@@ -137,8 +140,11 @@ impl Cmaes {
         self.sigma *= ((c_sigma / d_sigma) * (ps_norm / chi_n - 1.0)).exp();
         // Stall detection and restart.
         let best = merit(order[0]);
-        if best < self.best_merit - 1e-12 * self.best_merit.abs().max(1.0) {
-            self.best_merit = best;
+        let improved = self
+            .best_merit
+            .is_none_or(|b| best < b - 1e-12 * b.abs().max(1.0));
+        if improved {
+            self.best_merit = Some(best);
             self.stall = 0;
         } else {
             self.stall += 1;
@@ -155,4 +161,70 @@ fn identity(d: usize) -> Vec<f64> {
     (0..d * d)
         .map(|k| if k / d == k % d { 1.0 } else { 0.0 })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::search::Fitness;
+
+    /// A 4-dimensional problem with one goal: the sphere, or a constant.
+    struct Problem {
+        flat: bool,
+    }
+    impl BatchEvaluator for Problem {
+        fn dim(&self) -> usize {
+            4
+        }
+        fn goals(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+            points
+                .iter()
+                .map(|p| Fitness {
+                    cv: 0.0,
+                    f: vec![if self.flat {
+                        1.0
+                    } else {
+                        p.iter().map(|x| (x - 0.3) * (x - 0.3)).sum()
+                    }],
+                })
+                .collect()
+        }
+    }
+
+    /// A search that keeps improving keeps its distribution: no restart in 60 generations.
+    #[test]
+    fn an_improving_search_does_not_restart() {
+        let mut cmaes = Cmaes::new(4, 8, Rng::new(3));
+        let mut problem = Problem { flat: false };
+        let mut previous = f64::INFINITY;
+        for generation in 1..=60 {
+            cmaes.step(&mut problem);
+            let best = cmaes.best_merit.expect("a best merit after a generation");
+            assert!(
+                best.is_finite() && best <= previous,
+                "generation {generation}"
+            );
+            previous = best;
+        }
+    }
+
+    /// Without progress, the search restarts after exactly 21 + 3·dim stalled generations
+    /// (the first generation sets the best merit; 33 more stall in 4 dimensions).
+    #[test]
+    fn a_stalled_search_restarts_after_the_stall_limit() {
+        let mut cmaes = Cmaes::new(4, 8, Rng::new(3));
+        let mut problem = Problem { flat: true };
+        for generation in 1..=34 {
+            cmaes.step(&mut problem);
+            assert_eq!(
+                cmaes.best_merit.is_none(),
+                generation == 34,
+                "generation {generation}: stall count {}",
+                cmaes.stall
+            );
+        }
+    }
 }

@@ -8,6 +8,7 @@ mod cmaes;
 mod de;
 pub mod executor;
 mod guided;
+mod nonfinite;
 mod nsga;
 pub mod problem;
 mod rng;

@@ -25,6 +25,7 @@ pub struct Nsga {
     survival: Survival,
     population: Vec<Candidate>,
     rank: Vec<usize>,
+    #[serde(with = "super::nonfinite::vec")]
     crowding: Vec<f64>,
     rng: Rng,
 }

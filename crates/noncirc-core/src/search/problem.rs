@@ -166,6 +166,7 @@ impl SceneProblem {
     /// Builds the problem from the scene's `[search]` settings (default space if empty).
     pub fn new(scene: &Scene) -> Result<Self> {
         scene.validate()?;
+        scene.validate_search()?;
         let free = if scene.search.free.is_empty() {
             default_space(scene)
         } else {
@@ -175,7 +176,8 @@ impl SceneProblem {
         let (mut lower, mut upper) = (Vec::new(), Vec::new());
         for f in &free {
             params.push(Param::parse(&f.name, scene)?);
-            if !(f.lower.is_finite() && f.upper.is_finite() && f.lower < f.upper) {
+            // The default space is derived from the scene's values: check it as a user's.
+            if !(f.lower < f.upper && (f.upper - f.lower).is_finite()) {
                 return Err(Error::OutOfRange {
                     name: format!("bounds of '{}'", f.name),
                     value: f.lower,

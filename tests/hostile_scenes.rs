@@ -1,0 +1,153 @@
+//! Scenes that would once have given a silent wrong answer are refused when read, with an
+//! error that names the bad value (issue 22's findings, one test each).
+
+use noncirc::core::{evaluation::Evaluator, GearPair, Resolution};
+use noncirc::scene_file::{apply_overrides, load_scene, parse_scene, SceneError};
+
+const PAPER: &str = include_str!("../scenes/paper.toml");
+
+/// The error of `--set` assignments on a built-in scene, as the user reads it.
+fn refused(scene: &str, assignments: &[&str]) -> String {
+    let assignments: Vec<String> = assignments.iter().map(|a| a.to_string()).collect();
+    match apply_overrides(load_scene(Some(scene)).unwrap(), &assignments) {
+        Ok(_) => panic!("{scene} {assignments:?} was accepted"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn a_nan_bound_is_refused_not_counted_as_met() {
+    let text = PAPER.replace("module_min_mm = 2.5", "module_min_mm = nan");
+    assert_ne!(text, PAPER, "the paper scene sets module_min_mm");
+    let e = parse_scene(&text, "nan.toml").unwrap_err();
+    assert!(matches!(e, SceneError::Invalid { .. }), "{e}");
+    assert!(e.to_string().contains("bounds.module_min_mm"), "{e}");
+    let e = parse_scene(
+        &PAPER.replace("module_min_mm = 2.5", "module_min_mm = -inf"),
+        "x",
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("bounds.module_min_mm"), "{e}");
+}
+
+#[test]
+fn reversed_bounds_are_refused() {
+    let e = refused("paper", &["bounds.picking_angle_deg=[15,-5]"]);
+    assert!(e.contains("bounds.picking_angle_deg[1] = -5"), "{e}");
+    // Equal bounds are a legitimate exact requirement.
+    apply_overrides(
+        load_scene(Some("paper")).unwrap(),
+        &["bounds.picking_angle_deg=[5,5]".into()],
+    )
+    .unwrap();
+}
+
+#[test]
+fn objectives_are_listed_once_and_never_empty() {
+    let e = refused("paper", &["objectives=[\"module\",\"module\"]"]);
+    assert!(e.contains("'module' is listed twice"), "{e}");
+    let e = refused("paper", &["objectives=[]"]);
+    assert!(e.contains("objectives: empty"), "{e}");
+    // A moving-box scene has no objectives, and needs none.
+    load_scene(Some("moving-box")).unwrap();
+}
+
+#[test]
+fn goals_must_be_computable_by_the_scene() {
+    let e = refused("paper", &["search.goals=[\"box_travel\"]"]);
+    assert!(e.contains("needs a moving box"), "{e}");
+    let e = refused("paper", &["search.goals=[\"min:box_travel_mm\"]"]);
+    assert!(e.contains("needs a moving box"), "{e}");
+    let e = refused(
+        "paper",
+        &["search.goals=[\"least_margin\",\"least_margin\"]"],
+    );
+    assert!(e.contains("listed twice"), "{e}");
+    let e = refused("paper", &["search.goals=[\"least_margn\"]"]);
+    assert!(
+        e.contains("least_margin"),
+        "the nearest name is suggested: {e}"
+    );
+    apply_overrides(
+        load_scene(Some("transplanter")).unwrap(),
+        &["search.goals=[\"box_travel\",\"least_margin\"]".into()],
+    )
+    .unwrap();
+}
+
+#[test]
+fn free_parameters_exist_once_with_finite_ordered_bounds() {
+    let e = refused(
+        "paper-search",
+        &["search.free[0].lower=-1e308", "search.free[0].upper=1e308"],
+    );
+    assert!(e.contains("a finite width apart"), "{e}");
+    let e = refused("paper-search", &["search.free[0].lower=90"]);
+    assert!(e.contains("lower must be below the upper"), "{e}");
+    let e = refused(
+        "paper-search",
+        &["search.free[1].name=\"gear.curve.radii_mm[0]\""],
+    );
+    assert!(e.contains("listed twice"), "{e}");
+    let e = refused("paper-search", &["search.free[0].name=\"train.phi0_dg\""]);
+    assert!(
+        e.contains("train.phi0_deg"),
+        "the nearest name is suggested: {e}"
+    );
+}
+
+#[test]
+fn text_after_a_json_scene_is_refused() {
+    let json = serde_json::to_string(&load_scene(Some("paper")).unwrap()).unwrap();
+    parse_scene(&json, "ok.json").unwrap();
+    let e = parse_scene(&format!("{json} garbage"), "bad.json").unwrap_err();
+    assert!(e.to_string().contains("text after the scene"), "{e}");
+}
+
+/// The closure's stopping tolerance may not exceed a tenth of its acceptance tolerance;
+/// at that limit the centre distance is within the acceptance tolerance of the default's.
+#[test]
+fn a_loose_stopping_tolerance_is_refused_and_the_limit_is_accurate() {
+    let e = refused("paper", &["resolution.newton_rel_tol=0.9999999"]);
+    assert!(e.contains("resolution.newton_rel_tol = 0.9999999"), "{e}");
+    let scene = load_scene(Some("paper")).unwrap();
+    let loose = Resolution {
+        newton_rel_tol: 0.1 * scene.resolution.closure_rel_tol,
+        ..scene.resolution
+    };
+    let curve = scene.gear.curve.build().unwrap();
+    let a = GearPair::solve(curve.clone(), scene.resolution)
+        .unwrap()
+        .centre_distance();
+    let b = GearPair::solve(curve, loose).unwrap().centre_distance();
+    assert!(
+        (a - b).abs() <= scene.resolution.closure_rel_tol * a,
+        "{a} vs {b}"
+    );
+}
+
+#[test]
+fn the_moving_box_refuses_overflowing_inputs() {
+    let e = refused("moving-box", &["moving_box.input_speed_rpm=1e308"]);
+    assert!(e.contains("moving_box.input_speed_rpm = 1e308"), "{e}");
+    let e = refused("moving-box", &["moving_box.groove_wall_angle_deg=85"]);
+    assert!(
+        e.contains("groove_wall_angle_deg + groove_friction_angle_deg"),
+        "{e}"
+    );
+    // At the largest accepted speed every reported number is finite.
+    let scene = apply_overrides(
+        load_scene(Some("moving-box")).unwrap(),
+        &["moving_box.input_speed_rpm=1e5".into()],
+    )
+    .unwrap();
+    let out = Evaluator::new().evaluate(&scene).unwrap();
+    let report = out.moving_box.expect("a moving-box scene reports the box");
+    assert!(report.speed_max_mm_s.is_finite() && report.slider_force_max_n.is_finite());
+}
+
+#[test]
+fn a_subnormal_gear_is_refused() {
+    let e = refused("ellipse-gear", &["gear.curve.semi_major_mm=5e-324"]);
+    assert!(e.contains("semi_major_mm = 5e-324"), "{e}");
+}
