@@ -5,6 +5,7 @@ use noncirc_core::{GearPair, Kinematics};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use crate::search::write_file;
 use crate::BoxError;
 
 /// A named closed polyline in mm.
@@ -111,7 +112,7 @@ pub fn export_gears(pair: &GearPair, dir: &Path) -> Result<Vec<PathBuf>, BoxErro
     let mut files = Vec::new();
     for o in &outlines {
         let path = dir.join(format!("{}.csv", o.name));
-        std::fs::write(&path, csv(&o.points))?;
+        write_file(&path, csv(&o.points).as_bytes())?;
         files.push(path);
     }
     for (name, text) in [
@@ -119,7 +120,7 @@ pub fn export_gears(pair: &GearPair, dir: &Path) -> Result<Vec<PathBuf>, BoxErro
         ("pitch_curves.dxf", dxf(&outlines)),
     ] {
         let path = dir.join(name);
-        std::fs::write(&path, text)?;
+        write_file(&path, text.as_bytes())?;
         files.push(path);
     }
     Ok(files)
@@ -152,6 +153,6 @@ pub fn export_trajectory(kin: &Kinematics, dir: &Path) -> Result<PathBuf, BoxErr
         );
     }
     let path = dir.join("trajectory.csv");
-    std::fs::write(&path, s)?;
+    write_file(&path, s.as_bytes())?;
     Ok(path)
 }

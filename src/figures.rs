@@ -16,7 +16,7 @@ use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use crate::BoxError;
+use crate::{BoxError, InputError};
 const FONT: &str = "sans-serif";
 
 /// Registers the embedded font once per process.
@@ -915,8 +915,16 @@ pub fn evaluation_figures(
 }
 
 /// `noncirc animate`: the mechanism turning, gears and arms drawn, as a GIF.
+/// Most frames of an animation (a frame per 0.1° of carrier turn).
+pub const MAX_FRAMES: usize = 3600;
+
 pub fn animate(kin: &Kinematics, path: &Path, frames: usize) -> Result<(), BoxError> {
+    if !(2..=MAX_FRAMES).contains(&frames) {
+        return Err(InputError(format!("--frames {frames}: expected 2 to {MAX_FRAMES}")).into());
+    }
     register_font()?;
+    // Open the file first: plotters reports a failure as a debug dump.
+    std::fs::File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
     let root = BitMapBackend::gif(path, (640, 640), 60)
         .map_err(err)?
         .into_drawing_area();

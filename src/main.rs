@@ -9,6 +9,7 @@ use noncirc::core::SceneKind;
 use noncirc::report::{EvaluationReport, GearReport};
 use noncirc::scene_file::{load_scene_with, BUILTIN};
 use noncirc::search::RunOptions;
+use noncirc::InputError;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -183,18 +184,88 @@ impl Observer for ProgressBar {
     }
 }
 
+/// How a command ended, beyond success and error.
+enum Finished {
+    Completed,
+    /// A signal stopped a search; its results so far were written.
+    Interrupted,
+}
+
+/// Exit codes (docs/reliability.md).
+const EXIT_RUNTIME: u8 = 1;
+const EXIT_INPUT: u8 = 2;
+const EXIT_INTERRUPTED: u8 = 130;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(Finished::Completed) => ExitCode::SUCCESS,
+        Ok(Finished::Interrupted) => ExitCode::from(EXIT_INTERRUPTED),
+        // A reader that went away (`| head`) is not an error of ours.
+        Err(e) if is_broken_pipe(e.as_ref()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
-            ExitCode::FAILURE
+            let input = e.is::<InputError>()
+                || e.is::<noncirc::scene_file::SceneError>()
+                || e.is::<noncirc::core::Error>();
+            ExitCode::from(if input { EXIT_INPUT } else { EXIT_RUNTIME })
         }
     }
 }
 
-fn optimise(args: OptimiseArgs) -> Result<(), Box<dyn std::error::Error>> {
+fn is_broken_pipe(e: &(dyn std::error::Error + 'static)) -> bool {
+    e.downcast_ref::<std::io::Error>()
+        .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+}
+
+/// Writes `text` to standard output and flushes, returning write errors (a closed pipe, a
+/// full disk) instead of panicking as `print!` does.
+fn out(text: &str) -> Result<(), Box<dyn std::error::Error>> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+        .map_err(|e| {
+            if e.kind() == std::io::ErrorKind::BrokenPipe {
+                e.into()
+            } else {
+                format!("cannot write to standard output: {e}").into()
+            }
+        })
+}
+
+/// Pretty JSON with a final newline.
+fn json(value: &impl serde::Serialize) -> Result<String, Box<dyn std::error::Error>> {
+    Ok(serde_json::to_string_pretty(value)? + "\n")
+}
+
+/// Largest `--checkpoint-every` (s): a year.
+const MAX_CHECKPOINT_EVERY_S: f64 = 3.2e7;
+
+fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> {
+    if args.resume.is_some() {
+        // The checkpoint carries the scene and the search settings: a flag that would
+        // change them is refused rather than silently ignored.
+        let ignored: Vec<&str> = [
+            ("a scene argument", args.scene.scene.is_some()),
+            ("--set", !args.scene.set.is_empty()),
+            ("--algorithm", args.algorithm.is_some()),
+            ("--population", args.population.is_some()),
+            ("--seed", args.seed.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(name, given)| given.then_some(name))
+        .collect();
+        if !ignored.is_empty() {
+            return Err(InputError(format!(
+                "--resume continues the checkpoint's own scene and search; {} would be \
+                 ignored (only --budget, --threads and the output options apply to a resume)",
+                ignored.join(", ")
+            ))
+            .into());
+        }
+    }
     let name = args.scene.scene.as_deref().unwrap_or("paper-search");
     let mut scene = load_scene_with(Some(name), &args.scene.set)?;
     if let Some(a) = &args.algorithm {
@@ -209,18 +280,26 @@ fn optimise(args: OptimiseArgs) -> Result<(), Box<dyn std::error::Error>> {
     if let Some(s) = args.seed {
         scene.search.seed = s;
     }
-    let algorithm = Algorithm::parse(&scene.search.algorithm).ok_or_else(|| {
-        format!(
-            "unknown algorithm '{}': use guided, de, cmaes, nsga2 or nsga3",
-            scene.search.algorithm
-        )
-    })?;
-    let stop = Arc::new(AtomicBool::new(false));
-    let flag = stop.clone();
-    ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))?;
+    // The flags are scene values too: the same checks.
+    scene.validate_search()?;
+    let algorithm = Algorithm::parse(&scene.search.algorithm).expect("checked above");
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    noncirc::search::check_threads(threads)?;
+    if !(args.checkpoint_every.is_finite()
+        && (0.0..=MAX_CHECKPOINT_EVERY_S).contains(&args.checkpoint_every))
+    {
+        return Err(InputError(format!(
+            "--checkpoint-every {}: expected seconds from 0 to {MAX_CHECKPOINT_EVERY_S:e}",
+            args.checkpoint_every
+        ))
+        .into());
+    }
+    // SIGINT, SIGTERM and SIGHUP all stop the search after the current generation.
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))?;
     let opts = RunOptions {
         algorithm,
         budget: scene.search.budget,
@@ -228,19 +307,23 @@ fn optimise(args: OptimiseArgs) -> Result<(), Box<dyn std::error::Error>> {
         seed: scene.search.seed,
         threads,
         checkpoint: args.checkpoint,
-        checkpoint_every: Duration::from_secs_f64(args.checkpoint_every.max(0.0)),
+        checkpoint_every: Duration::from_secs_f64(args.checkpoint_every),
         resume: args.resume,
-        stop,
+        resume_budget: args.budget,
+        stop: stop.clone(),
         max_generations: None,
     };
     let mut progress = ProgressBar {
         bar: None,
         show: !args.quiet && args.scene.format == Format::Table,
     };
-    let outcome =
-        noncirc::search::run(&scene, &opts, &mut [&mut progress]).map_err(|e| e.to_string())?;
+    let outcome = noncirc::search::run(&scene, &opts, &mut [&mut progress])
+        .map_err(|e| e as Box<dyn std::error::Error>)?;
     if let Some(bar) = progress.bar {
         bar.finish_and_clear();
+    }
+    for failure in &outcome.checkpoint_failures {
+        eprintln!("warning: {failure} (the search went on)");
     }
     if let Some(dir) = &args.out {
         outcome.write(dir).map_err(|e| e.to_string())?;
@@ -252,10 +335,14 @@ fn optimise(args: OptimiseArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let summary = outcome.summary();
     match args.scene.format {
-        Format::Json => println!("{}", serde_json::to_string_pretty(&summary)?),
-        Format::Table => print!("{}", noncirc::report::summary_table(&summary)),
+        Format::Json => out(&json(&summary)?)?,
+        Format::Table => out(&noncirc::report::summary_table(&summary))?,
     }
-    Ok(())
+    if stop.load(Ordering::SeqCst) {
+        eprintln!("interrupted: the results so far are above (and in the checkpoint and --out)");
+        return Ok(Finished::Interrupted);
+    }
+    Ok(Finished::Completed)
 }
 
 fn plot_evaluation(
@@ -269,7 +356,7 @@ fn plot_evaluation(
     Ok(())
 }
 
-fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
+fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
     match cli.command {
         Command::Gear(args) => {
             let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
@@ -280,8 +367,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 }
             }
             match args.scene.format {
-                Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
-                Format::Table => print!("{}", report.table()),
+                Format::Json => out(&json(&report)?)?,
+                Format::Table => out(&report.table())?,
             }
         }
         Command::Animate(args) => {
@@ -291,8 +378,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 &scene.train,
                 &scene.resolution,
             )?;
-            noncirc::figures::animate(&kin, &args.out, args.frames.max(2))
-                .map_err(|e| e.to_string())?;
+            noncirc::figures::animate(&kin, &args.out, args.frames)
+                .map_err(|e| e as Box<dyn std::error::Error>)?;
             eprintln!("wrote {}", args.out.display());
         }
         Command::Evaluate(args) => {
@@ -302,8 +389,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 plot_evaluation(&scene, &eval, dir)?;
             }
             match args.format {
-                Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
-                Format::Table => print!("{}", report.table()),
+                Format::Json => out(&json(&report)?)?,
+                Format::Table => out(&report.table())?,
             }
         }
         Command::Box(args) => {
@@ -331,19 +418,19 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 let _ = eval;
             }
             match args.format {
-                Format::Json => println!("{}", serde_json::to_string_pretty(&b)?),
-                Format::Table => print!("{}", noncirc::report::box_table(&b)),
+                Format::Json => out(&json(&b)?)?,
+                Format::Table => out(&noncirc::report::box_table(&b))?,
             }
         }
         Command::Accuracy(args) => {
             let scene = load_scene_with(args.scene.as_deref(), &args.set)?;
             let report = noncirc::accuracy::measure(&scene, 720)?;
             match args.format {
-                Format::Json => println!("{}", serde_json::to_string_pretty(&report)?),
-                Format::Table => print!("{}", report.table()),
+                Format::Json => out(&json(&report)?)?,
+                Format::Table => out(&report.table())?,
             }
         }
-        Command::Optimise(args) => optimise(args)?,
+        Command::Optimise(args) => return optimise(args),
         Command::Sweep(args) => {
             let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
             let measures = (args.measures.iter())
@@ -357,7 +444,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 args.steps,
                 &measures,
             )
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| e as Box<dyn std::error::Error>)?;
             if let Some(dir) = &args.scene.plot {
                 for f in noncirc::plots::sweep_figures(&scene, &args.param, &rows, dir)
                     .map_err(|e| e.to_string())?
@@ -366,21 +453,25 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 }
             }
             match args.scene.format {
-                Format::Json => println!("{}", serde_json::to_string_pretty(&rows)?),
-                Format::Table => print!("{}", noncirc::report::sweep_table(&args.param, &rows)),
+                Format::Json => out(&json(&rows)?)?,
+                Format::Table => out(&noncirc::report::sweep_table(&args.param, &rows))?,
             }
         }
         Command::Measures => {
-            for m in Measure::all() {
-                println!("{:<32} {:<4} {}", m.name(), m.unit(), m.description());
-            }
+            let lines: String = Measure::all()
+                .iter()
+                .map(|m| format!("{:<32} {:<4} {}\n", m.name(), m.unit(), m.description()))
+                .collect();
+            out(&lines)?;
         }
         Command::Scenes => {
+            let mut lines = String::new();
             for (name, text) in BUILTIN {
                 let scene = noncirc::scene_file::parse_scene(text, name)?;
-                println!("{name:<12} {}", scene.description);
+                lines += &format!("{name:<12} {}\n", scene.description);
             }
+            out(&lines)?;
         }
     }
-    Ok(())
+    Ok(Finished::Completed)
 }

@@ -57,6 +57,9 @@ pub const BUILTIN: &[(&str, &str)] = &[
     ("ellipse-gear", include_str!("../scenes/ellipse-gear.toml")),
 ];
 
+/// Largest scene file read (bytes): the built-in scenes are about 3 kB.
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+
 /// The default scene's name: the three-arm paper's design.
 pub const DEFAULT_SCENE: &str = "paper";
 
@@ -129,10 +132,26 @@ pub fn load_scene_with(spec: Option<&str>, assignments: &[String]) -> Result<Sce
             if !path.exists() && path.extension().is_none() {
                 return Err(SceneError::UnknownBuiltin(name.to_string()));
             }
-            let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            let io = |source| SceneError::Io {
                 path: name.to_string(),
                 source,
-            })?;
+            };
+            let meta = std::fs::metadata(path).map_err(io)?;
+            if !meta.is_file() || meta.len() > MAX_SCENE_BYTES {
+                return Err(SceneError::Parse {
+                    origin: name.to_string(),
+                    message: format!(
+                        "not a scene file: a regular file of at most {MAX_SCENE_BYTES} bytes is \
+                         expected (this is {})",
+                        if meta.is_file() {
+                            format!("{} bytes", meta.len())
+                        } else {
+                            "not a regular file".into()
+                        }
+                    ),
+                });
+            }
+            let text = std::fs::read_to_string(path).map_err(io)?;
             read_scene(&text, name)?
         }
     };

@@ -1,6 +1,7 @@
 //! Running searches: parallel batch evaluation, progress, checkpoints, Ctrl-C, outputs.
 
 use noncirc_core::measures::Measure;
+use noncirc_core::search::checkpoint::{self, Checkpoint};
 use noncirc_core::search::executor::{execute, stop_after_generations, Control, Ending, Observer};
 use noncirc_core::search::problem::SceneProblem;
 use noncirc_core::search::{
@@ -8,14 +9,14 @@ use noncirc_core::search::{
 };
 use noncirc_core::{Evaluator, Resolution, Scene};
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use crate::BoxError;
+use crate::{BoxError, InputError};
 
 /// Most designs per parallel piece of a batch of `len` on `threads` ([`map_batch`] passes
 /// it to rayon's `with_max_len`): about 32 pieces per thread. Uncapped, rayon splits a
@@ -37,8 +38,24 @@ pub struct ParallelEvaluator<'a> {
     planned: [Evaluator; 2],
 }
 
+/// Most worker threads: more cannot help on any machine noncirc runs on, and thousands
+/// exhaust the process's thread limit ("Resource temporarily unavailable").
+pub const MAX_THREADS: usize = 256;
+
+/// Checks a thread count (1 to [`MAX_THREADS`]).
+pub fn check_threads(threads: usize) -> Result<usize, InputError> {
+    if (1..=MAX_THREADS).contains(&threads) {
+        Ok(threads)
+    } else {
+        Err(InputError(format!(
+            "threads = {threads}: expected 1 to {MAX_THREADS}"
+        )))
+    }
+}
+
 impl<'a> ParallelEvaluator<'a> {
     pub fn new(problem: &'a SceneProblem, threads: usize) -> Result<Self, BoxError> {
+        check_threads(threads)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()?;
@@ -103,24 +120,46 @@ impl BatchEvaluator for ParallelEvaluator<'_> {
     }
 }
 
-/// What a checkpoint file holds: enough to resume exactly.
-#[derive(Serialize, Deserialize)]
-pub struct Checkpoint {
-    pub scene: Scene,
-    pub budget: u64,
-    pub state: SearchState,
-}
-
-/// Writes `contents` to `path` atomically (temporary file, sync, rename).
+/// Writes `contents` to `path` atomically: a temporary file of this process's own in the
+/// same directory (two runs sharing a path never share it), synced, renamed over `path`,
+/// and the directory synced so the rename survives a power cut.
 pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
     use std::io::Write;
-    let tmp = path.with_extension("tmp");
-    {
+    use std::sync::atomic::AtomicU64;
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let name = path.file_name().ok_or_else(|| {
+        std::io::Error::new(std::io::ErrorKind::InvalidInput, "the path names no file")
+    })?;
+    let tmp = path.with_file_name(format!(
+        ".{}.{}-{}.tmp",
+        name.to_string_lossy(),
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    let written = (|| {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(contents)?;
         f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if written.is_err() {
+        std::fs::remove_file(&tmp).ok();
     }
-    std::fs::rename(tmp, path)
+    written?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    // Directories cannot be opened for syncing everywhere (Windows): best effort.
+    if let Ok(d) = std::fs::File::open(dir) {
+        d.sync_all().ok();
+    }
+    Ok(())
+}
+
+/// [`write_atomic`], naming the file in the error (nothing is left behind on failure).
+pub fn write_file(path: &Path, contents: &[u8]) -> Result<(), BoxError> {
+    write_atomic(path, contents).map_err(|e| format!("cannot write {}: {e}", path.display()).into())
 }
 
 /// How to run a search.
@@ -130,9 +169,14 @@ pub struct RunOptions {
     pub population: usize,
     pub seed: u64,
     pub threads: usize,
+    /// Write a checkpoint here every `checkpoint_every` and at the end. An existing file
+    /// there must be a noncirc checkpoint (nothing else is overwritten).
     pub checkpoint: Option<PathBuf>,
     pub checkpoint_every: Duration,
+    /// Resume from this checkpoint: its scene, algorithm, population and seed are used.
     pub resume: Option<PathBuf>,
+    /// With `resume`: a new budget (`None` keeps the checkpoint's).
+    pub resume_budget: Option<u64>,
     /// Set by Ctrl-C: the run stops cleanly after the current generation.
     pub stop: Arc<AtomicBool>,
     /// Stop after this many generations (for tests of interrupted runs).
@@ -148,6 +192,58 @@ pub struct Outcome {
     pub seconds_to_first_feasible: Option<f64>,
     pub threads: usize,
     pub stopped_early: bool,
+    /// Checkpoint writes that failed (the search went on): say them to the user.
+    pub checkpoint_failures: Vec<String>,
+}
+
+/// Reads and checks a checkpoint file.
+pub fn read_checkpoint(path: &Path) -> Result<Checkpoint, BoxError> {
+    let bytes = read_limited(path, MAX_CHECKPOINT_BYTES)?;
+    Checkpoint::from_json(&bytes).map_err(|e| format!("{}: {e}", path.display()).into())
+}
+
+/// Largest checkpoint read (bytes): a state of the largest accepted population.
+pub const MAX_CHECKPOINT_BYTES: u64 = 1 << 30;
+
+/// Reads a regular file of at most `max` bytes, naming the path in every error.
+pub fn read_limited(path: &Path, max: u64) -> Result<Vec<u8>, BoxError> {
+    let meta =
+        std::fs::metadata(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    if !meta.is_file() {
+        return Err(format!("{} is not a regular file", path.display()).into());
+    }
+    if meta.len() > max {
+        return Err(format!(
+            "{} is {} bytes, more than the {max} this reads",
+            path.display(),
+            meta.len()
+        )
+        .into());
+    }
+    std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()).into())
+}
+
+/// Refuses a checkpoint path that holds something other than a noncirc checkpoint (a
+/// scene file, say), so that a typo never overwrites the user's work.
+fn check_checkpoint_target(path: &Path) -> Result<(), BoxError> {
+    if !path.exists() {
+        return Ok(());
+    }
+    let is_checkpoint = std::fs::metadata(path).is_ok_and(|m| m.is_file())
+        && std::fs::read(path)
+            .ok()
+            .and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok())
+            .is_some_and(|v| v.get("format").is_some_and(|f| f == checkpoint::FORMAT));
+    if is_checkpoint {
+        Ok(())
+    } else {
+        Err(InputError(format!(
+            "--checkpoint {}: the file exists and is not a noncirc checkpoint; \
+             refusing to overwrite it (choose another path)",
+            path.display()
+        ))
+        .into())
+    }
 }
 
 /// Runs (or resumes) a search on `scene` with the core's executor: the stop flag, the
@@ -158,13 +254,13 @@ pub fn run(
     opts: &RunOptions,
     observers: &mut [&mut dyn Observer],
 ) -> Result<Outcome, BoxError> {
+    if let Some(path) = &opts.checkpoint {
+        check_checkpoint_target(path)?;
+    }
     let (scene, budget, mut state) = match &opts.resume {
         Some(path) => {
-            let cp: Checkpoint = serde_json::from_slice(
-                &std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?,
-            )
-            .map_err(|e| format!("{}: not a noncirc checkpoint: {e}", path.display()))?;
-            (cp.scene, cp.budget, cp.state)
+            let cp = read_checkpoint(path)?;
+            (cp.scene, opts.resume_budget.unwrap_or(cp.budget), cp.state)
         }
         None => {
             let problem = SceneProblem::new(scene)?;
@@ -198,19 +294,17 @@ pub fn run(
     };
     let mut generation_limit = stop_after_generations(opts.max_generations.unwrap_or(u64::MAX));
     let mut last_checkpoint = Instant::now();
-    let mut checkpoint_error: Option<BoxError> = None;
-    let mut checkpoints = |state: &SearchState, budget: u64| match &opts.checkpoint {
-        Some(path) if last_checkpoint.elapsed() >= opts.checkpoint_every => {
-            last_checkpoint = Instant::now();
-            match save_checkpoint(path, &scene, budget, state) {
-                Ok(()) => Control::Continue,
-                Err(e) => {
-                    checkpoint_error = Some(e);
-                    Control::Stop
+    let mut failures = Vec::new();
+    let mut checkpoints = |state: &SearchState, budget: u64| {
+        if let Some(path) = &opts.checkpoint {
+            if last_checkpoint.elapsed() >= opts.checkpoint_every {
+                last_checkpoint = Instant::now();
+                if let Err(e) = save_checkpoint(path, &scene, budget, state) {
+                    failures.push(e.to_string());
                 }
             }
         }
-        _ => Control::Continue,
+        Control::Continue
     };
     let mut all: Vec<&mut dyn Observer> = vec![
         &mut first_feasible,
@@ -221,11 +315,10 @@ pub fn run(
     all.extend(observers.iter_mut().map(|o| &mut **o as &mut dyn Observer));
     let ending = execute(&mut state, &mut evaluator, budget, &mut all);
     drop(all);
-    if let Some(e) = checkpoint_error {
-        return Err(e);
-    }
     if let Some(path) = &opts.checkpoint {
-        save_checkpoint(path, &scene, budget, &state)?;
+        if let Err(e) = save_checkpoint(path, &scene, budget, &state) {
+            failures.push(e.to_string());
+        }
     }
     Ok(Outcome {
         problem,
@@ -235,6 +328,7 @@ pub fn run(
         seconds_to_first_feasible: seconds_to_first,
         threads: opts.threads,
         stopped_early: ending == Ending::Stopped,
+        checkpoint_failures: failures,
     })
 }
 
@@ -244,12 +338,8 @@ fn save_checkpoint(
     budget: u64,
     state: &SearchState,
 ) -> Result<(), BoxError> {
-    let cp = Checkpoint {
-        scene: scene.clone(),
-        budget,
-        state: state.clone(),
-    };
-    write_atomic(path, &serde_json::to_vec(&cp)?)
+    let cp = Checkpoint::new(scene, budget, state)?;
+    write_atomic(path, &cp.to_json())
         .map_err(|e| format!("cannot write checkpoint {}: {e}", path.display()).into())
 }
 
@@ -376,7 +466,7 @@ impl Outcome {
             let mut scene = self.problem.scene_at(&c.u);
             scene.name = format!("{}-best", self.problem.base().name);
             scene.search.free.clear();
-            write_atomic(&dir.join("best.toml"), toml::to_string(&scene)?.as_bytes())?;
+            write_file(&dir.join("best.toml"), toml::to_string(&scene)?.as_bytes())?;
         }
         let names = self.problem.names();
         let pareto = self.pareto();
@@ -394,7 +484,7 @@ impl Outcome {
                 .collect();
             csv += &(row.join(",") + "\n");
         }
-        write_atomic(&dir.join("pareto.csv"), csv.as_bytes())?;
+        write_file(&dir.join("pareto.csv"), csv.as_bytes())?;
         let json: Vec<_> = pareto
             .iter()
             .map(|(x, f)| {
@@ -404,7 +494,7 @@ impl Outcome {
                 })
             })
             .collect();
-        write_atomic(
+        write_file(
             &dir.join("pareto.json"),
             serde_json::to_string_pretty(&json)?.as_bytes(),
         )?;
@@ -416,8 +506,8 @@ impl Outcome {
                 h.generation, h.evaluations, h.best_cv, h.best_goal, h.feasible_in_generation
             );
         }
-        write_atomic(&dir.join("history.csv"), hist.as_bytes())?;
-        write_atomic(
+        write_file(&dir.join("history.csv"), hist.as_bytes())?;
+        write_file(
             &dir.join("summary.json"),
             serde_json::to_string_pretty(&self.summary())?.as_bytes(),
         )?;
@@ -439,6 +529,9 @@ pub struct SweepRow {
 
 /// The response of every objective, and of the given measures, to one parameter
 /// (three-arm paper §4.2), in parallel.
+/// Most steps of a sweep (each is a full evaluation; a million take about 20 s).
+pub const MAX_SWEEP_STEPS: usize = 1_000_000;
+
 pub fn sweep(
     scene: &Scene,
     param: &str,
@@ -449,8 +542,12 @@ pub fn sweep(
 ) -> Result<Vec<SweepRow>, BoxError> {
     let anatomy_needed = measures.iter().any(|m| m.needs_anatomy());
     let p = noncirc_core::Param::parse(param, scene)?;
-    if steps < 2 || !from.is_finite() || !to.is_finite() {
-        return Err("sweep needs finite --from/--to and --steps >= 2".into());
+    if !(2..=MAX_SWEEP_STEPS).contains(&steps) || !from.is_finite() || !to.is_finite() {
+        return Err(InputError(format!(
+            "sweep needs finite --from/--to and --steps from 2 to {MAX_SWEEP_STEPS} \
+             (got {from}, {to}, {steps})"
+        ))
+        .into());
     }
     let values: Vec<f64> = (0..steps)
         .map(|i| from + (to - from) * i as f64 / (steps - 1) as f64)

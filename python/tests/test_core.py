@@ -148,6 +148,16 @@ def test_keyword_knobs_are_validated():
         evaluate(Scene.builtin("paper"), samples_per_turn=7)
     with pytest.raises(NoncircError, match="algorithm"):
         optimise(Scene.builtin("paper-search"), algorithm="simplex", budget=10)
+    # Resource limits are typed errors, never a PanicException or a thread storm.
+    with pytest.raises(NoncircError, match="search.population"):
+        optimise(Scene.builtin("paper-search"), population=2**63 - 1, budget=10)
+    with pytest.raises(NoncircError, match="threads"):
+        optimise(Scene.builtin("paper-search"), threads=2**63, budget=10)
+    with pytest.raises(NoncircError, match="threads"):
+        evaluate_batch(Scene.builtin("paper-search"), np.zeros((1, 17)), threads=2**63)
+    # A NaN bound is refused when the scene is read, not counted as met.
+    with pytest.raises(NoncircError, match="bounds.module_min_mm"):
+        Scene.builtin("paper").with_set("bounds.module_min_mm", "nan")
     assert noncirc.__version__
 
 
@@ -162,7 +172,7 @@ def test_unknown_names_are_typed_errors_with_suggestions():
     # Any number of the scene is a free parameter, by the same path as --set.
     free = scene.with_set("search.free", '[{name = "bounds.module_min_mm", lower = 1, upper = 3}]')
     assert free.free_parameters() == [("bounds.module_min_mm", 1.0, 3.0)]
-    bad = scene.with_set("search.free", '[{name = "bounds.modul_min_mm", lower = 1, upper = 3}]')
+    # An unknown free parameter fails when it is set, naming the nearest.
     with pytest.raises(UnknownNameError, match="bounds.module_min_mm"):
-        bad.free_parameters()
+        scene.with_set("search.free", '[{name = "bounds.modul_min_mm", lower = 1, upper = 3}]')
     assert issubclass(UnknownNameError, NoncircError)

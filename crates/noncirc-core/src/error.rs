@@ -59,6 +59,9 @@ pub enum Error {
         name: String,
         nearest: Vec<String>,
     },
+    /// A search state (checkpoint) that cannot be resumed: what is wrong with it.
+    #[error("checkpoint: {0}")]
+    Checkpoint(String),
     /// An optional setting that another setting needs.
     #[error("{name} is not set: {needed_by}")]
     Missing { name: String, needed_by: String },

@@ -76,6 +76,13 @@ pub struct SearchSpec {
     pub goals: Vec<String>,
 }
 
+impl SearchSpec {
+    /// Largest population: a generation of 100 000 designs takes about two seconds.
+    pub const MAX_POPULATION: usize = 100_000;
+    /// Most free parameters (every number of the largest built-in scene is about 60).
+    pub const MAX_FREE: usize = 1_000;
+}
+
 impl Default for SearchSpec {
     fn default() -> Self {
         Self {
@@ -199,6 +206,31 @@ impl Scene {
     /// scene is read and when a search starts (not per design: [`Scene::validate`] is).
     pub fn validate_search(&self) -> Result<()> {
         use crate::search::problem::Goal;
+        crate::search::Algorithm::parse(&self.search.algorithm).ok_or_else(|| {
+            Error::UnknownName {
+                what: "algorithm",
+                name: self.search.algorithm.clone(),
+                nearest: ["guided", "de", "cmaes", "nsga2", "nsga3"]
+                    .map(String::from)
+                    .to_vec(),
+            }
+        })?;
+        let population = self.search.population;
+        if !(1..=SearchSpec::MAX_POPULATION).contains(&population) {
+            return Err(Error::OutOfRange {
+                name: "search.population".into(),
+                value: population as f64,
+                expected: format!("1 to {}", SearchSpec::MAX_POPULATION),
+            });
+        }
+        if self.search.free.len() > SearchSpec::MAX_FREE {
+            return Err(Error::OutOfRange {
+                name: "search.free (count)".into(),
+                value: self.search.free.len() as f64,
+                expected: format!("at most {}", SearchSpec::MAX_FREE),
+            });
+        }
+        self.search.screening.validate()?;
         for (i, name) in self.search.goals.iter().enumerate() {
             let goal = Goal::parse(name)?;
             let needs_box = matches!(goal, Goal::BoxTravel)

@@ -305,9 +305,7 @@ fn measures(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 fn pool(threads: Option<usize>) -> PyResult<Option<Arc<rayon::ThreadPool>>> {
     static POOLS: OnceLock<Mutex<HashMap<usize, Arc<rayon::ThreadPool>>>> = OnceLock::new();
     let n = threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    if n == 0 {
-        return Err(err("threads must be at least 1"));
-    }
+    noncirc::search::check_threads(n).map_err(err)?;
     if n == 1 {
         return Ok(None);
     }
@@ -475,6 +473,7 @@ fn optimise<'py>(
     s.search.seed = seed.unwrap_or(s.search.seed);
     s.search.budget = budget.unwrap_or(s.search.budget);
     s.search.population = population.unwrap_or(s.search.population);
+    s.validate_search().map_err(core_err)?;
     let name = s.search.algorithm.clone();
     let algorithm = Algorithm::parse(&name).ok_or_else(|| {
         err(format!(
@@ -491,6 +490,7 @@ fn optimise<'py>(
         checkpoint: None,
         checkpoint_every: std::time::Duration::from_secs(3600),
         resume: None,
+        resume_budget: None,
         stop: Arc::new(std::sync::atomic::AtomicBool::new(false)),
         max_generations: None,
     };

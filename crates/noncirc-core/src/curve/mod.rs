@@ -238,9 +238,21 @@ pub struct Fourier {
 }
 
 impl Fourier {
+    /// Most harmonics accepted: the extremum search samples densely in proportion to
+    /// them, so the cost grows with their square (10 000 took over two minutes).
+    pub const MAX_HARMONICS: usize = 256;
+
     /// Validates finiteness and positivity (`rho > 0` everywhere).
     pub fn new(c0: f64, cos: &[f64], sin: &[f64]) -> Result<Self> {
         positive_with(|| "fourier c0_mm".into(), c0)?;
+        let harmonics = cos.len().max(sin.len());
+        if harmonics > Self::MAX_HARMONICS {
+            return Err(Error::OutOfRange {
+                name: "fourier harmonics (length of cos_mm, sin_mm)".into(),
+                value: harmonics as f64,
+                expected: format!("at most {}", Self::MAX_HARMONICS),
+            });
+        }
         for (i, v) in cos.iter().enumerate() {
             finite_with(|| format!("fourier cos_mm[{i}]"), *v)?;
         }

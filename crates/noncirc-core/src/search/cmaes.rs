@@ -1,7 +1,7 @@
 //! CMA-ES (Hansen's (μ/μ_w, λ) with rank-one and rank-μ updates) in the unit cube, ranking
 //! by Deb's feasibility-first rule, with restarts from a random mean when it stalls.
 
-use super::{evaluate_all, BatchEvaluator, Candidate, Rng};
+use super::{check_len, evaluate_all, state_error, BatchEvaluator, Candidate, Rng};
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
@@ -42,6 +42,29 @@ impl Cmaes {
             stall: 0,
             rng,
         }
+    }
+
+    /// Checks a resumed state: sizes, a finite positive step, a finite covariance.
+    pub fn check(&self, dim: usize) -> crate::Result<()> {
+        check_len("cmaes: dimension", self.dim, dim)?;
+        check_len("cmaes: mean", self.mean.len(), dim)?;
+        check_len("cmaes: covariance", self.cov.len(), dim * dim)?;
+        check_len("cmaes: step-size path", self.path_sigma.len(), dim)?;
+        check_len("cmaes: covariance path", self.path_c.len(), dim)?;
+        if self.lambda < 4 {
+            return Err(state_error(format!(
+                "cmaes: population {} (at least 4)",
+                self.lambda
+            )));
+        }
+        if !(self.sigma.is_finite() && self.sigma > 0.0) {
+            return Err(state_error(format!("cmaes: step size {}", self.sigma)));
+        }
+        let all = [&self.mean, &self.cov, &self.path_sigma, &self.path_c];
+        if let Some(x) = all.iter().flat_map(|v| v.iter()).find(|x| !x.is_finite()) {
+            return Err(state_error(format!("cmaes: a state value is {x}")));
+        }
+        Ok(())
     }
 
     fn restart(&mut self) {

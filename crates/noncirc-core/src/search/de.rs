@@ -1,6 +1,8 @@
 //! Differential evolution, rand/1/bin with dithered F, feasibility-first selection.
 
-use super::{evaluate_all, BatchEvaluator, Candidate, Rng};
+use super::{
+    check_candidate, check_len, evaluate_all, state_error, BatchEvaluator, Candidate, Rng,
+};
 use serde::{Deserialize, Serialize};
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -21,6 +23,30 @@ impl DifferentialEvolution {
             population: Vec::new(),
             rng,
         }
+    }
+
+    /// Checks a resumed state: mutation needs four distinct members, so at least 5.
+    pub fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
+        check_len("de: dimension", self.dim, dim)?;
+        if self.size < 5 {
+            return Err(state_error(format!(
+                "de: population size {} (at least 5)",
+                self.size
+            )));
+        }
+        if !self.population.is_empty() {
+            check_len("de: population", self.population.len(), self.size)?;
+        }
+        if !(0.0..=1.0).contains(&self.crossover) {
+            return Err(state_error(format!(
+                "de: crossover rate {} outside [0, 1]",
+                self.crossover
+            )));
+        }
+        for (i, c) in self.population.iter().enumerate() {
+            check_candidate(&format!("de: member {i}"), c, dim, goals)?;
+        }
+        Ok(())
     }
 
     pub fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {

@@ -2,7 +2,10 @@
 //! each parameter's effect by probing it up and down, move the parameters that help most
 //! together (weighted by their gain), adapt each parameter's step, restart when stuck.
 
-use super::{clamp_unit, evaluate_all, BatchEvaluator, Candidate, Rng};
+use super::{
+    check_candidate, check_len, clamp_unit, evaluate_all, state_error, BatchEvaluator, Candidate,
+    Rng,
+};
 use serde::{Deserialize, Serialize};
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -27,6 +30,19 @@ impl ParameterGuided {
             stall: 0,
             rng,
         }
+    }
+
+    /// Checks a resumed state.
+    pub fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
+        check_len("guided: dimension", self.dim, dim)?;
+        check_len("guided: steps", self.steps.len(), dim)?;
+        if let Some(s) = self.steps.iter().find(|s| !(s.is_finite() && **s >= 0.0)) {
+            return Err(state_error(format!("guided: step {s} is not a length")));
+        }
+        if let Some(c) = &self.current {
+            check_candidate("guided: current design", c, dim, goals)?;
+        }
+        Ok(())
     }
 
     fn restart(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {

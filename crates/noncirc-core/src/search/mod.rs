@@ -4,6 +4,7 @@
 //! Evaluation is behind [`BatchEvaluator`], so that threads live at the edge (the CLI's
 //! rayon evaluator) while the solvers stay pure and deterministic.
 
+pub mod checkpoint;
 mod cmaes;
 mod de;
 pub mod executor;
@@ -175,6 +176,16 @@ impl Solver {
         }
     }
 
+    /// Checks the state against a problem of `dim` parameters and `goals` goals.
+    pub fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
+        match self {
+            Solver::Guided(s) => s.check(dim, goals),
+            Solver::De(s) => s.check(dim, goals),
+            Solver::Cmaes(s) => s.check(dim),
+            Solver::Nsga2(s) | Solver::Nsga3(s) => s.check(dim, goals),
+        }
+    }
+
     /// The current non-dominated feasible set (multi-objective solvers), if any.
     pub fn front(&self) -> Vec<Candidate> {
         match self {
@@ -232,6 +243,50 @@ impl SearchState {
             first_feasible_at: None,
             history: Vec::new(),
         }
+    }
+
+    /// Checks a state read from outside (a checkpoint) against a problem of `dim`
+    /// parameters and `goals` goals: every length, every point in the unit cube, counters
+    /// in order. A state that passes cannot panic or loop in [`SearchState::step`].
+    pub fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
+        let algorithm = match &self.solver {
+            Solver::Guided(_) => Algorithm::Guided,
+            Solver::De(_) => Algorithm::De,
+            Solver::Cmaes(_) => Algorithm::Cmaes,
+            Solver::Nsga2(_) => Algorithm::Nsga2,
+            Solver::Nsga3(_) => Algorithm::Nsga3,
+        };
+        if algorithm != self.algorithm {
+            return Err(state_error(format!(
+                "the state names algorithm '{}' but holds a '{}' solver",
+                self.algorithm.name(),
+                algorithm.name()
+            )));
+        }
+        self.solver.check(dim, goals)?;
+        for (what, c) in [
+            ("best", &self.best),
+            ("best_confirmed", &self.best_confirmed),
+        ] {
+            if let Some(c) = c {
+                check_candidate(what, c, dim, goals)?;
+            }
+        }
+        check_len("history", self.history.len(), self.generation as usize)?;
+        if let Some(at) = self.first_feasible_at {
+            if at > self.evaluations || self.best_confirmed.is_none() {
+                return Err(state_error(format!(
+                    "first_feasible_at = {at} with {} evaluations and {} confirmed design",
+                    self.evaluations,
+                    if self.best_confirmed.is_some() {
+                        "a"
+                    } else {
+                        "no"
+                    }
+                )));
+            }
+        }
+        Ok(())
     }
 
     /// Runs one generation, tracks the best, and confirms new feasible bests.
@@ -297,6 +352,47 @@ pub(crate) fn evaluate_all(eval: &mut dyn BatchEvaluator, points: Vec<Vec<f64>>)
         .zip(fitness)
         .map(|(u, fitness)| Candidate { u, fitness })
         .collect()
+}
+
+/// A state that does not fit its problem or contradicts itself (a damaged or hand-edited
+/// checkpoint): what is wrong, for [`crate::Error::Checkpoint`].
+pub(crate) fn state_error(problem: String) -> crate::Error {
+    crate::Error::Checkpoint(problem)
+}
+
+/// Checks `what`'s length against `expected`.
+pub(crate) fn check_len(what: &str, len: usize, expected: usize) -> crate::Result<()> {
+    if len == expected {
+        Ok(())
+    } else {
+        Err(state_error(format!(
+            "{what} has {len} entries, expected {expected}"
+        )))
+    }
+}
+
+/// Checks a candidate: `dim` coordinates in the unit cube, `goals` goals, a violation that
+/// is a number at least 0.
+pub(crate) fn check_candidate(
+    what: &str,
+    c: &Candidate,
+    dim: usize,
+    goals: usize,
+) -> crate::Result<()> {
+    check_len(&format!("{what}: point"), c.u.len(), dim)?;
+    check_len(&format!("{what}: goals"), c.fitness.f.len(), goals)?;
+    if let Some(x) = c.u.iter().find(|x| !(0.0..=1.0).contains(*x)) {
+        return Err(state_error(format!(
+            "{what}: coordinate {x} is outside the unit cube"
+        )));
+    }
+    if c.fitness.cv.is_nan() || c.fitness.cv < 0.0 || c.fitness.f.iter().any(|f| f.is_nan()) {
+        return Err(state_error(format!(
+            "{what}: fitness {:?} is not a violation >= 0 with goals that are numbers",
+            c.fitness
+        )));
+    }
+    Ok(())
 }
 
 /// Clamps into the unit cube.

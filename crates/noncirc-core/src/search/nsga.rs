@@ -5,7 +5,9 @@
 //! around a fixed set of reference directions, which keeps the front spread out when more
 //! than three goals compete.
 
-use super::{evaluate_all, BatchEvaluator, Candidate, Rng};
+use super::{
+    check_candidate, check_len, evaluate_all, state_error, BatchEvaluator, Candidate, Rng,
+};
 use serde::{Deserialize, Serialize};
 
 /// How the last front that fits into the next population is cut.
@@ -58,6 +60,35 @@ impl Nsga {
             crowding: Vec::new(),
             rng,
         }
+    }
+
+    /// Checks a resumed state: an even population of at least 4, ranks and crowding per
+    /// member, reference directions with one coordinate per goal.
+    pub fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
+        check_len("nsga: dimension", self.dim, dim)?;
+        if self.size < 4 || self.size % 2 == 1 {
+            return Err(state_error(format!(
+                "nsga: population size {} (even, at least 4)",
+                self.size
+            )));
+        }
+        if !self.population.is_empty() {
+            check_len("nsga: population", self.population.len(), self.size)?;
+        }
+        check_len("nsga: ranks", self.rank.len(), self.population.len())?;
+        check_len("nsga: crowding", self.crowding.len(), self.population.len())?;
+        if let Survival::ReferenceDirections(directions) = &self.survival {
+            if directions.is_empty() {
+                return Err(state_error("nsga3: no reference directions".into()));
+            }
+            for d in directions {
+                check_len("nsga3: reference direction", d.len(), goals)?;
+            }
+        }
+        for (i, c) in self.population.iter().enumerate() {
+            check_candidate(&format!("nsga: member {i}"), c, dim, goals)?;
+        }
+        Ok(())
     }
 
     /// The feasible first front of the current population.

@@ -1,0 +1,124 @@
+//! The checkpoint format: a search state with what it belongs to, checked before a resume.
+//!
+//! A checkpoint is JSON: a format name and version, the scene (so a resume needs nothing
+//! else) and a hash of it, the algorithm and the problem's dimensions, the budget, and the
+//! executor's [`SearchState`]. Reading one checks every part against the others, so a
+//! damaged or hand-edited file is refused with what is wrong instead of panicking, looping
+//! or running a state against another problem.
+
+use super::problem::SceneProblem;
+use super::{state_error, Algorithm, SearchState};
+use crate::error::Result;
+use crate::scene::Scene;
+use serde::{Deserialize, Serialize};
+
+/// The `format` field of every checkpoint.
+pub const FORMAT: &str = "noncirc-checkpoint";
+/// The version this build writes and reads; raised whenever the state's layout changes.
+pub const VERSION: u32 = 1;
+
+/// A resumable search: everything needed to continue it exactly.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Checkpoint {
+    pub format: String,
+    pub version: u32,
+    /// FNV-1a hash of the scene's JSON, in hex: an edit of the scene is detected.
+    pub scene_hash: String,
+    pub algorithm: Algorithm,
+    /// Free parameters and goals of the scene's search problem.
+    pub dim: usize,
+    pub goals: usize,
+    /// Screening evaluations the search may spend in all.
+    pub budget: u64,
+    pub scene: Scene,
+    pub state: SearchState,
+}
+
+impl Checkpoint {
+    /// A checkpoint of `state`, a search of `scene` with `budget` evaluations.
+    pub fn new(scene: &Scene, budget: u64, state: &SearchState) -> Result<Self> {
+        let problem = SceneProblem::new(scene)?;
+        Ok(Self {
+            format: FORMAT.into(),
+            version: VERSION,
+            scene_hash: scene_hash(scene),
+            algorithm: state.algorithm,
+            dim: problem.dim(),
+            goals: problem.goals(),
+            budget,
+            scene: scene.clone(),
+            state: state.clone(),
+        })
+    }
+
+    /// The checkpoint as JSON (non-finite numbers of the state are written as strings).
+    pub fn to_json(&self) -> Vec<u8> {
+        serde_json::to_vec(self).expect("a checkpoint always serialises")
+    }
+
+    /// Reads and checks a checkpoint: format and version first (so an old or foreign file
+    /// says so), then the whole state against its scene.
+    pub fn from_json(bytes: &[u8]) -> Result<Self> {
+        let tree: serde_json::Value =
+            serde_json::from_slice(bytes).map_err(|e| state_error(format!("not JSON: {e}")))?;
+        match (tree.get("format"), tree.get("version")) {
+            (Some(f), Some(v)) if f == FORMAT && v == VERSION => {}
+            (Some(f), Some(v)) if f == FORMAT => {
+                return Err(state_error(format!(
+                    "format version {v}; this noncirc reads version {VERSION}"
+                )))
+            }
+            _ => {
+                return Err(state_error(format!(
+                    "no '\"format\": \"{FORMAT}\"' with a version: not a noncirc checkpoint, \
+                     or one written before checkpoints had a version (start the search again)"
+                )))
+            }
+        }
+        let cp: Checkpoint =
+            serde_json::from_value(tree).map_err(|e| state_error(format!("damaged: {e}")))?;
+        cp.check()?;
+        Ok(cp)
+    }
+
+    /// Checks the parts against each other.
+    fn check(&self) -> Result<()> {
+        let hash = scene_hash(&self.scene);
+        if hash != self.scene_hash {
+            return Err(state_error(format!(
+                "the scene's hash is {hash}, the checkpoint says {}: the scene was edited",
+                self.scene_hash
+            )));
+        }
+        if self.algorithm != self.state.algorithm {
+            return Err(state_error(format!(
+                "algorithm '{}' but a '{}' state",
+                self.algorithm.name(),
+                self.state.algorithm.name()
+            )));
+        }
+        let problem = SceneProblem::new(&self.scene)?;
+        if (problem.dim(), problem.goals()) != (self.dim, self.goals) {
+            return Err(state_error(format!(
+                "{} parameters and {} goals recorded, but the scene's search has {} and {}",
+                self.dim,
+                self.goals,
+                problem.dim(),
+                problem.goals()
+            )));
+        }
+        self.state.check(self.dim, self.goals)
+    }
+}
+
+/// FNV-1a (64 bits) of the scene's JSON, in hex. Written here (a few lines) because it
+/// must never change between versions, unlike `std`'s hashers; it detects edits, it does
+/// not defend against tampering.
+pub fn scene_hash(scene: &Scene) -> String {
+    let bytes = serde_json::to_vec(scene).expect("a scene always serialises");
+    let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    });
+    format!("{hash:016x}")
+}

@@ -1,0 +1,192 @@
+//! The command line's promises (docs/reliability.md): exit codes, signals, closed pipes,
+//! full disks, resume flags and checkpoint paths that would overwrite the user's work.
+
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn noncirc() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_noncirc"))
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("noncirc-cli-{}-{name}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn exit_codes_tell_bad_input_from_runtime_failure() {
+    let code = |args: &[&str]| noncirc().args(args).output().unwrap().status.code();
+    assert_eq!(code(&["evaluate"]), Some(0));
+    assert_eq!(
+        code(&["evaluate", "--set", "bounds.module_min_mm=nan"]),
+        Some(2)
+    );
+    assert_eq!(code(&["optimise", "--threads", "2000"]), Some(2));
+    assert_eq!(
+        code(&["optimise", "--population", "9223372036854775807"]),
+        Some(2)
+    );
+    assert_eq!(code(&["optimise", "--checkpoint-every", "inf"]), Some(2));
+    assert_eq!(code(&["evaluate", "no-such-file.toml"]), Some(2));
+    // A runtime failure: the output directory cannot be created under a file.
+    let dir = temp("runtime");
+    let file = dir.join("file");
+    std::fs::write(&file, "x").unwrap();
+    let plot = file.join("figures");
+    assert_eq!(
+        code(&["evaluate", "--plot", plot.to_str().unwrap()]),
+        Some(1)
+    );
+}
+
+#[test]
+fn sigterm_stops_a_search_with_its_results_and_exit_130() {
+    let dir = temp("sigterm");
+    let (cp, out) = (dir.join("run.ckpt"), dir.join("out"));
+    let child = noncirc()
+        .args([
+            "optimise",
+            "--budget",
+            "100000000",
+            "--quiet",
+            "--checkpoint",
+        ])
+        .arg(&cp)
+        .arg("--out")
+        .arg(&out)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    let sent = Instant::now();
+    let pid = child.id().to_string();
+    assert!(Command::new("kill")
+        .args(["-TERM", &pid])
+        .status()
+        .unwrap()
+        .success());
+    let output = child.wait_with_output().unwrap();
+    let waited = sent.elapsed();
+    assert_eq!(output.status.code(), Some(130), "{output:?}");
+    // It stops after the current generation: well within a second.
+    assert!(waited < Duration::from_secs(5), "{waited:?}");
+    assert!(String::from_utf8_lossy(&output.stdout).contains("evaluations"));
+    assert!(out.join("best.toml").exists() && out.join("summary.json").exists());
+    // The checkpoint resumes.
+    let resumed = noncirc()
+        .args(["optimise", "--quiet", "--budget", "1", "--resume"])
+        .arg(&cp)
+        .output()
+        .unwrap();
+    assert_eq!(resumed.status.code(), Some(0), "{resumed:?}");
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn a_closed_pipe_ends_quietly_and_a_full_disk_says_so() {
+    let mut child = noncirc()
+        .args([
+            "sweep",
+            "--param",
+            "train.phi0_deg",
+            "--from",
+            "-80",
+            "--to",
+            "-40",
+        ])
+        .args(["--steps", "2000", "--format", "json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Read one byte, then close the pipe (as `| head -c1` does).
+    {
+        use std::io::Read;
+        let mut stdout = child.stdout.take().unwrap();
+        let mut byte = [0u8; 1];
+        stdout.read_exact(&mut byte).unwrap();
+    }
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(output.status.code(), Some(0), "{stderr}");
+    if std::path::Path::new("/dev/full").exists() {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let output = noncirc().arg("evaluate").stdout(full).output().unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{stderr}");
+        assert!(
+            stderr.contains("cannot write to standard output"),
+            "{stderr}"
+        );
+    }
+}
+
+#[test]
+fn a_resume_refuses_flags_it_would_ignore() {
+    let dir = temp("resume");
+    let cp = dir.join("run.ckpt");
+    let first = noncirc()
+        .args(["optimise", "--quiet", "--budget", "500", "--checkpoint"])
+        .arg(&cp)
+        .output()
+        .unwrap();
+    assert!(first.status.success(), "{first:?}");
+    for flags in [
+        &["--seed", "3"][..],
+        &["--algorithm", "cmaes"],
+        &["--population", "10"],
+        &["--set", "search.seed=4"],
+        &["paper-search"],
+    ] {
+        let output = noncirc()
+            .args(["optimise", "--quiet", "--resume"])
+            .arg(&cp)
+            .args(flags)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{flags:?}: {stderr}");
+        assert!(stderr.contains("would be ignored"), "{stderr}");
+    }
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn a_checkpoint_never_overwrites_another_file() {
+    let dir = temp("overwrite");
+    let scene = dir.join("ps.toml");
+    let text = include_str!("../scenes/paper-search.toml");
+    std::fs::write(&scene, text).unwrap();
+    let output = noncirc()
+        .args(["optimise", "--quiet", "--budget", "200"])
+        .arg(&scene)
+        .arg("--checkpoint")
+        .arg(&scene)
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("refusing to overwrite"));
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), text);
+    // Nor does a temporary file stay behind after a normal run.
+    let cp = dir.join("run.ckpt");
+    let ok = noncirc()
+        .args(["optimise", "--quiet", "--budget", "200", "--checkpoint"])
+        .arg(&cp)
+        .output()
+        .unwrap();
+    assert!(ok.status.success(), "{ok:?}");
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+    std::fs::remove_dir_all(dir).ok();
+}
