@@ -26,26 +26,82 @@ pub enum SceneError {
         key: String,
         nearest: Vec<String>,
     },
-    /// A scene that reads but cannot be evaluated or searched as written.
-    #[error("{origin}: {source}")]
+    /// A scene that reads but cannot be evaluated or searched as written; `line` is the
+    /// line of the file that sets the bad value, where it can be found.
+    #[error("{origin}: {}{source}", line.map(|l| format!("line {l}: ")).unwrap_or_default())]
     Invalid {
         origin: String,
+        line: Option<usize>,
         #[source]
         source: noncirc_core::Error,
     },
 }
 
-/// The scene if every value in it can be evaluated and searched, else why not.
-fn checked(scene: Scene, origin: &str) -> Result<Scene, SceneError> {
+/// The scene if every value in it can be evaluated and searched, else why not; `text`,
+/// the file the scene was read from, locates the bad value's line.
+fn checked(scene: Scene, origin: &str, text: Option<&str>) -> Result<Scene, SceneError> {
     scene
         .validate()
         .and_then(|()| scene.validate_search())
         .and_then(|()| scene.gear.curve.build().map(drop))
         .map_err(|source| SceneError::Invalid {
             origin: origin.to_string(),
+            line: text.and_then(|t| line_of(t, error_key(&source)?)),
             source,
         })?;
     Ok(scene)
+}
+
+/// The scene path an error names (`bounds.picking_angle_deg` of
+/// `bounds.picking_angle_deg[1]`), if it names one.
+fn error_key(e: &noncirc_core::Error) -> Option<&str> {
+    use noncirc_core::Error;
+    let name = match e {
+        Error::NonFinite { name, .. }
+        | Error::OutOfRange { name, .. }
+        | Error::Missing { name, .. } => name.as_str(),
+        Error::BadList { list, .. } => list,
+        _ => return None,
+    };
+    let end = name
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '.'))
+        .unwrap_or(name.len());
+    name[..end].contains('.').then_some(&name[..end])
+}
+
+/// The 1-based line of a scene file that sets `path` (`table.key`): a `key = …` line
+/// under the `[table]` (or `[[table]]`) header, or the header of a table `path`; in JSON,
+/// the first `"key":`. Best effort: `None` when the file does not spell it out.
+fn line_of(text: &str, path: &str) -> Option<usize> {
+    let (table, key) = path.rsplit_once('.').unwrap_or(("", path));
+    if text.trim_start().starts_with('{') {
+        let quoted = format!("\"{key}\"");
+        return text
+            .lines()
+            .position(|l| l.contains(&quoted))
+            .map(|i| i + 1);
+    }
+    let mut current = String::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if let Some(header) = line.strip_prefix('[') {
+            current = header
+                .trim_matches(|c| c == '[' || c == ']')
+                .trim()
+                .to_string();
+            if current == path {
+                return Some(i + 1);
+            }
+            continue;
+        }
+        let assigned = line
+            .strip_prefix(key)
+            .is_some_and(|rest| rest.trim_start().starts_with('='));
+        if assigned && current == table {
+            return Some(i + 1);
+        }
+    }
+    None
 }
 
 /// Built-in scenes: `(name, file contents)`; the same files live under `scenes/`.
@@ -66,7 +122,7 @@ pub const DEFAULT_SCENE: &str = "paper";
 /// Parses and checks scene text. `origin` names it in errors; JSON if it starts with `{`,
 /// else TOML.
 pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
-    checked(read_scene(text, origin)?, origin)
+    checked(read_scene(text, origin)?, origin, Some(text))
 }
 
 /// Parses scene text without checking its values (they may still be set by `--set`).
@@ -123,9 +179,9 @@ pub fn load_scene(spec: Option<&str>) -> Result<Scene, SceneError> {
 pub fn load_scene_with(spec: Option<&str>, assignments: &[String]) -> Result<Scene, SceneError> {
     let name = spec.unwrap_or(DEFAULT_SCENE);
     let builtin = BUILTIN.iter().find(|(n, _)| *n == name);
-    let scene = match builtin {
+    let (text, origin) = match builtin {
         Some((_, text)) if !Path::new(name).exists() => {
-            read_scene(text, &format!("built-in scene '{name}'"))?
+            (text.to_string(), format!("built-in scene '{name}'"))
         }
         _ => {
             let path = Path::new(name);
@@ -151,16 +207,18 @@ pub fn load_scene_with(spec: Option<&str>, assignments: &[String]) -> Result<Sce
                     ),
                 });
             }
-            let text = std::fs::read_to_string(path).map_err(io)?;
-            read_scene(&text, name)?
+            (std::fs::read_to_string(path).map_err(io)?, name.to_string())
         }
     };
+    let scene = read_scene(&text, &origin)?;
     if assignments.is_empty() {
-        checked(scene, name)
+        checked(scene, &origin, Some(&text))
     } else {
+        // A bad value may come from the file or from --set: no line is claimed.
         checked(
             set_values(scene, assignments)?,
-            &format!("{name} with --set {}", assignments.join(" ")),
+            &format!("{origin} with --set {}", assignments.join(" ")),
+            None,
         )
     }
 }
@@ -213,6 +271,7 @@ pub fn apply_overrides(scene: Scene, assignments: &[String]) -> Result<Scene, Sc
     checked(
         set_values(scene, assignments)?,
         &format!("--set {}", assignments.join(" ")),
+        None,
     )
 }
 

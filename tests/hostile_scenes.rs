@@ -22,6 +22,16 @@ fn a_nan_bound_is_refused_not_counted_as_met() {
     let e = parse_scene(&text, "nan.toml").unwrap_err();
     assert!(matches!(e, SceneError::Invalid { .. }), "{e}");
     assert!(e.to_string().contains("bounds.module_min_mm"), "{e}");
+    // The error points at the line that sets it.
+    let line = 1 + PAPER
+        .lines()
+        .position(|l| l.starts_with("module_min_mm"))
+        .unwrap();
+    assert!(
+        e.to_string()
+            .starts_with(&format!("nan.toml: line {line}: ")),
+        "{e}"
+    );
     let e = parse_scene(
         &PAPER.replace("module_min_mm = 2.5", "module_min_mm = -inf"),
         "x",
