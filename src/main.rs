@@ -334,6 +334,7 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
         }
     }
     let summary = outcome.summary();
+    noncirc::report::check_finite(&summary).map_err(|e| e as Box<dyn std::error::Error>)?;
     match args.scene.format {
         Format::Json => out(&json(&summary)?)?,
         Format::Table => out(&noncirc::report::summary_table(&summary))?,
@@ -361,6 +362,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
         Command::Gear(args) => {
             let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
             let (report, pair) = GearReport::from_scene(&scene)?;
+            noncirc::report::check_finite(&report).map_err(|e| e as Box<dyn std::error::Error>)?;
             for dir in [&args.export, &args.scene.plot].into_iter().flatten() {
                 for f in noncirc::export::export_gears(&pair, dir).map_err(|e| e.to_string())? {
                     eprintln!("wrote {}", f.display());
@@ -385,6 +387,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
         Command::Evaluate(args) => {
             let scene = load_scene_with(args.scene.as_deref(), &args.set)?;
             let (report, eval) = EvaluationReport::from_scene(&scene)?;
+            noncirc::report::check_finite(&report).map_err(|e| e as Box<dyn std::error::Error>)?;
             if let Some(dir) = &args.plot {
                 plot_evaluation(&scene, &eval, dir)?;
             }
@@ -404,6 +407,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             }
             let (report, eval) = EvaluationReport::from_scene(&box_scene)?;
             let b = report.moving_box.ok_or("this scene has no moving box")?;
+            noncirc::report::check_finite(&b).map_err(|e| e as Box<dyn std::error::Error>)?;
             if let Some(dir) = &args.plot {
                 std::fs::create_dir_all(dir)?;
                 let fig = noncirc::figures::BoxFigure {

@@ -52,10 +52,7 @@ impl GearReport {
             teeth: module.teeth,
             module_limit_mm: module.module_limit_mm,
             min_convex_radius_mm: module.min_convex_radius_mm,
-            min_concave_radius_mm: module
-                .min_concave_radius_mm
-                .is_finite()
-                .then_some(module.min_concave_radius_mm),
+            min_concave_radius_mm: module.min_concave_radius_mm,
             rho_min_mm: rmin,
             rho_max_mm: rmax,
             ratio_min: (a - rmax) / rmax,
@@ -596,4 +593,81 @@ pub fn sweep_table(param: &str, rows: &[crate::search::SweepRow]) -> String {
         out += "\n";
     }
     out
+}
+
+/// Checks that every number in a report is finite: a NaN or infinity in an output is a
+/// bug (an input check missed it), refused rather than printed. Absent values (`None`)
+/// are not numbers and pass. Returns the first bad number's path.
+pub fn check_finite(report: &impl Serialize) -> std::result::Result<(), crate::BoxError> {
+    fn walk(v: &toml::Value, path: &str) -> Option<(String, f64)> {
+        match v {
+            toml::Value::Float(x) if !x.is_finite() => Some((path.to_string(), *x)),
+            toml::Value::Array(a) => a
+                .iter()
+                .enumerate()
+                .find_map(|(i, x)| walk(x, &format!("{path}[{i}]"))),
+            toml::Value::Table(t) => t.iter().find_map(|(k, x)| {
+                walk(
+                    x,
+                    &if path.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{path}.{k}")
+                    },
+                )
+            }),
+            _ => None,
+        }
+    }
+    // TOML leaves `None` out and keeps NaN and infinity as numbers, unlike JSON's null.
+    let tree = toml::Value::try_from(report)?;
+    match walk(&tree, "") {
+        None => Ok(()),
+        Some((path, x)) => Err(noncirc_core::Error::NonFinite {
+            name: format!("output '{path}' (a bug: please report the scene)"),
+            value: x,
+        }
+        .into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_finite;
+
+    #[derive(serde::Serialize)]
+    struct Inner {
+        speeds: Vec<f64>,
+        absent: Option<f64>,
+    }
+
+    #[derive(serde::Serialize)]
+    struct Report {
+        value: f64,
+        inner: Inner,
+    }
+
+    #[test]
+    fn a_non_finite_output_is_refused_by_its_path() {
+        let mut r = Report {
+            value: 1.0,
+            inner: Inner {
+                speeds: vec![1.0, 2.0],
+                absent: None,
+            },
+        };
+        check_finite(&r).unwrap();
+        r.inner.speeds[1] = f64::INFINITY;
+        let e = check_finite(&r).unwrap_err().to_string();
+        assert!(
+            e.contains("output 'inner.speeds[1]'") && e.contains("inf"),
+            "{e}"
+        );
+        r.inner.speeds[1] = 0.0;
+        r.value = f64::NAN;
+        assert!(check_finite(&r)
+            .unwrap_err()
+            .to_string()
+            .contains("'value'"));
+    }
 }

@@ -527,11 +527,11 @@ pub struct SweepRow {
     pub error: Option<String>,
 }
 
-/// The response of every objective, and of the given measures, to one parameter
-/// (three-arm paper §4.2), in parallel.
 /// Most steps of a sweep (each is a full evaluation; a million take about 20 s).
 pub const MAX_SWEEP_STEPS: usize = 1_000_000;
 
+/// The response of every objective, and of the given measures, to one parameter
+/// (three-arm paper §4.2), in parallel.
 pub fn sweep(
     scene: &Scene,
     param: &str,

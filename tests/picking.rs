@@ -291,6 +291,11 @@ proptest! {
                 prop_assert!(v.is_finite(), "{} = {}", m.name(), v);
             }
         }
+        // The report the CLI prints holds no NaN or infinity either.
+        let (report, _) = noncirc::report::EvaluationReport::from_scene(&s).unwrap();
+        if let Err(e) = noncirc::report::check_finite(&report) {
+            prop_assert!(false, "{e}");
+        }
         let check = eval.events.unwrap().check;
         let met = eval.objective(ObjectiveKind::PickingAdmissible).unwrap().violation == 0.0;
         prop_assert_eq!(met, check.failures().is_none());

@@ -1,6 +1,7 @@
 //! Scenes evaluate only what they ask for; loading never panics, whatever the file.
 
 use noncirc::core::{Evaluator, ObjectiveKind, Scene, SceneKind};
+use noncirc::report::{check_finite, EvaluationReport};
 use noncirc::scene_file::{load_scene, parse_scene, SceneError, BUILTIN};
 use proptest::prelude::*;
 
@@ -146,6 +147,11 @@ proptest! {
                         for b in [o.lower, o.upper].into_iter().flatten() {
                             prop_assert!(b.is_finite(), "{}: bound {b}", o.kind.name());
                         }
+                    }
+                    // Every number of the report a user reads is finite.
+                    let (report, _) = EvaluationReport::from_scene(&scene).unwrap();
+                    if let Err(e) = check_finite(&report) {
+                        prop_assert!(false, "{e}");
                     }
                 }
             }

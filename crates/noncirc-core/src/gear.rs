@@ -234,8 +234,8 @@ pub struct ModuleReport {
     pub module_limit_mm: f64,
     /// Least convex radius of curvature over all gears (mm).
     pub min_convex_radius_mm: f64,
-    /// Least concave |radius of curvature| over all gears (mm); infinite if none is concave.
-    pub min_concave_radius_mm: f64,
+    /// Least concave |radius of curvature| over all gears (mm); `None` if none is concave.
+    pub min_concave_radius_mm: Option<f64>,
 }
 
 /// Largest module for a ratio-1 train whose gears show the given curvature radii and share
@@ -268,7 +268,7 @@ pub fn module_max(
         teeth,
         module_limit_mm: limit,
         min_convex_radius_mm: min_convex,
-        min_concave_radius_mm: min_concave,
+        min_concave_radius_mm: min_concave.is_finite().then_some(min_concave),
     }
 }
 
