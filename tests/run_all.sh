@@ -15,6 +15,21 @@ cargo test --release          # default members: the core and the CLI (maturin b
 # Benches compile and run once as tests (no timing).
 cargo test --release --benches
 
+echo "== fuzz targets (scene files, checkpoints): 20 000 fixed-seed runs each from the corpus"
+# cargo-fuzz needs nightly Rust; both are installed here if missing. The runs are
+# deterministic (-seed, -runs); new inputs go to a temporary directory, not the corpus.
+if command -v rustup >/dev/null; then
+  rustup toolchain list | grep -q '^nightly' || rustup toolchain install nightly --profile minimal
+  command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked --version 0.13.2
+  FUZZ_TMP=$(mktemp -d)
+  for target in scene checkpoint; do
+    mkdir -p "$FUZZ_TMP/$target"
+    cargo +nightly fuzz run -O "$target" "$FUZZ_TMP/$target" "fuzz/corpus/$target" -- \
+      -seed=1 -runs=20000 -artifact_prefix="$FUZZ_TMP/" 2>&1 | tail -1
+  done
+  rm -rf "$FUZZ_TMP"
+fi
+
 if [ -f python/pyproject.toml ]; then
   echo "== Python package (maturin + pytest)"
   VENV=.venv
