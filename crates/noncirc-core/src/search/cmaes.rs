@@ -189,39 +189,14 @@ fn identity(d: usize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::search::test_problem::{sphere, FnProblem};
     use crate::search::Fitness;
-
-    /// A 4-dimensional problem with one goal: the sphere, or a constant.
-    struct Problem {
-        flat: bool,
-    }
-    impl BatchEvaluator for Problem {
-        fn dim(&self) -> usize {
-            4
-        }
-        fn goals(&self) -> usize {
-            1
-        }
-        fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
-            points
-                .iter()
-                .map(|p| Fitness {
-                    cv: 0.0,
-                    f: vec![if self.flat {
-                        1.0
-                    } else {
-                        p.iter().map(|x| (x - 0.3) * (x - 0.3)).sum()
-                    }],
-                })
-                .collect()
-        }
-    }
 
     /// A search that keeps improving keeps its distribution: no restart in 60 generations.
     #[test]
     fn an_improving_search_does_not_restart() {
         let mut cmaes = Cmaes::new(4, 8, Rng::new(3));
-        let mut problem = Problem { flat: false };
+        let mut problem = sphere(4, 0.3);
         let mut previous = f64::INFINITY;
         for generation in 1..=60 {
             cmaes.step(&mut problem);
@@ -239,7 +214,14 @@ mod tests {
     #[test]
     fn a_stalled_search_restarts_after_the_stall_limit() {
         let mut cmaes = Cmaes::new(4, 8, Rng::new(3));
-        let mut problem = Problem { flat: true };
+        let mut problem = FnProblem {
+            dim: 4,
+            goals: 1,
+            score: |_: &[f64]| Fitness {
+                cv: 0.0,
+                f: vec![1.0],
+            },
+        };
         for generation in 1..=34 {
             cmaes.step(&mut problem);
             assert_eq!(

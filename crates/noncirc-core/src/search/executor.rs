@@ -81,42 +81,24 @@ pub fn stop_after_generations(n: u64) -> impl Observer {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::search::test_problem::{sphere, FnProblem};
     use crate::search::{Algorithm, Fitness};
-
-    struct Sphere;
-    impl BatchEvaluator for Sphere {
-        fn dim(&self) -> usize {
-            3
-        }
-        fn goals(&self) -> usize {
-            1
-        }
-        fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
-            points
-                .iter()
-                .map(|p| Fitness {
-                    cv: 0.0,
-                    f: vec![p.iter().map(|x| (x - 0.5).powi(2)).sum()],
-                })
-                .collect()
-        }
-    }
 
     /// A run stopped and continued equals a run that never stopped.
     #[test]
     fn stopping_and_continuing_equals_one_run() {
         let mut whole = SearchState::new(Algorithm::De, 3, 1, 12, 5);
         assert_eq!(
-            execute(&mut whole, &mut Sphere, 600, &mut []),
+            execute(&mut whole, &mut sphere(3, 0.5), 600, &mut []),
             Ending::Budget
         );
         let mut parts = SearchState::new(Algorithm::De, 3, 1, 12, 5);
         let mut stop = stop_after_generations(7);
-        let ending = execute(&mut parts, &mut Sphere, 600, &mut [&mut stop]);
+        let ending = execute(&mut parts, &mut sphere(3, 0.5), 600, &mut [&mut stop]);
         assert_eq!(ending, Ending::Stopped);
         assert_eq!(parts.generation, 7);
         assert_eq!(
-            execute(&mut parts, &mut Sphere, 600, &mut []),
+            execute(&mut parts, &mut sphere(3, 0.5), 600, &mut []),
             Ending::Budget
         );
         assert_eq!(
@@ -134,38 +116,24 @@ mod tests {
             seen.push((s.generation, budget));
             Control::Continue
         };
-        execute(&mut state, &mut Sphere, 80, &mut [&mut log]);
+        execute(&mut state, &mut sphere(3, 0.5), 80, &mut [&mut log]);
         assert_eq!(seen.len() as u64, state.generation + 1);
         assert!(seen
             .iter()
             .enumerate()
             .all(|(i, &(g, b))| g == i as u64 && b == 80));
     }
-}
-
-#[cfg(test)]
-mod resume_tests {
-    use super::*;
-    use crate::search::{Algorithm, Fitness};
 
     /// A constrained sphere in 4 dimensions, two goals (so NSGA's crowding distances are
     /// infinite at the front's ends).
-    struct Problem;
-    impl BatchEvaluator for Problem {
-        fn dim(&self) -> usize {
-            4
-        }
-        fn goals(&self) -> usize {
-            2
-        }
-        fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
-            points
-                .iter()
-                .map(|p| Fitness {
-                    cv: (0.3 - p[0]).max(0.0),
-                    f: vec![p.iter().map(|x| x * x).sum(), (1.0 - p[0]).powi(2) + p[1]],
-                })
-                .collect()
+    fn two_goals() -> FnProblem<impl Fn(&[f64]) -> Fitness> {
+        FnProblem {
+            dim: 4,
+            goals: 2,
+            score: |p: &[f64]| Fitness {
+                cv: (0.3 - p[0]).max(0.0),
+                f: vec![p.iter().map(|x| x * x).sum(), (1.0 - p[0]).powi(2) + p[1]],
+            },
         }
     }
 
@@ -182,18 +150,18 @@ mod resume_tests {
         ] {
             let fresh = || SearchState::new(algorithm, 4, 2, 12, 11);
             let mut whole = fresh();
-            execute(&mut whole, &mut Problem, 1200, &mut []);
+            execute(&mut whole, &mut two_goals(), 1200, &mut []);
             let mut part = fresh();
             execute(
                 &mut part,
-                &mut Problem,
+                &mut two_goals(),
                 1200,
                 &mut [&mut stop_after_generations(9)],
             );
             let json = serde_json::to_string(&part).unwrap();
             let mut resumed: SearchState = serde_json::from_str(&json)
                 .unwrap_or_else(|e| panic!("{algorithm:?}: checkpoint does not load: {e}"));
-            execute(&mut resumed, &mut Problem, 1200, &mut []);
+            execute(&mut resumed, &mut two_goals(), 1200, &mut []);
             assert_eq!(
                 serde_json::to_string(&whole).unwrap(),
                 serde_json::to_string(&resumed).unwrap(),

@@ -13,6 +13,8 @@ mod nonfinite;
 mod nsga;
 pub mod problem;
 mod rng;
+#[cfg(test)]
+mod test_problem;
 
 pub use cmaes::Cmaes;
 pub use de::DifferentialEvolution;
