@@ -5,7 +5,7 @@ use noncirc_core::{GearPair, Kinematics};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::search::write_file;
+use crate::files::write_file;
 use crate::BoxError;
 
 /// A named closed polyline in mm.

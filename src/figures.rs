@@ -914,10 +914,10 @@ pub fn evaluation_figures(
     Ok(files)
 }
 
-/// `noncirc animate`: the mechanism turning, gears and arms drawn, as a GIF.
 /// Most frames of an animation (a frame per 0.1° of carrier turn).
 pub const MAX_FRAMES: usize = 3600;
 
+/// `noncirc animate`: the mechanism turning, gears and arms drawn, as a GIF.
 pub fn animate(kin: &Kinematics, path: &Path, frames: usize) -> Result<(), BoxError> {
     if !(2..=MAX_FRAMES).contains(&frames) {
         return Err(InputError(format!("--frames {frames}: expected 2 to {MAX_FRAMES}")).into());

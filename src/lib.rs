@@ -5,6 +5,7 @@
 pub mod accuracy;
 pub mod export;
 pub mod figures;
+pub mod files;
 pub mod plots;
 pub mod report;
 pub mod scene_file;
