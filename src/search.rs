@@ -240,7 +240,7 @@ pub fn run(
         if let Some(path) = &opts.checkpoint {
             if last_checkpoint.elapsed() >= opts.checkpoint_every {
                 last_checkpoint = Instant::now();
-                if let Err(e) = save_checkpoint(path, &scene, budget, state) {
+                if let Err(e) = save_checkpoint(path, &problem, budget, state) {
                     failures.push(e.to_string());
                 }
             }
@@ -257,7 +257,7 @@ pub fn run(
     let ending = execute(&mut state, &mut evaluator, budget, &mut all);
     drop(all);
     if let Some(path) = &opts.checkpoint {
-        if let Err(e) = save_checkpoint(path, &scene, budget, &state) {
+        if let Err(e) = save_checkpoint(path, &problem, budget, &state) {
             failures.push(e.to_string());
         }
     }
@@ -275,12 +275,11 @@ pub fn run(
 
 fn save_checkpoint(
     path: &Path,
-    scene: &Scene,
+    problem: &SceneProblem,
     budget: u64,
     state: &SearchState,
 ) -> Result<(), BoxError> {
-    let cp = Checkpoint::new(scene, budget, state)?;
-    write_atomic(path, &cp.to_json())
+    write_atomic(path, &Checkpoint::new(problem, budget, state).to_json())
         .map_err(|e| format!("cannot write checkpoint {}: {e}", path.display()).into())
 }
 

@@ -33,7 +33,7 @@ fn checkpoint(algorithm: Algorithm) -> Value {
         10_000,
         &mut [&mut stop_after_generations(3)],
     );
-    serde_json::from_slice(&Checkpoint::new(&scene, 10_000, &state).unwrap().to_json()).unwrap()
+    serde_json::from_slice(&Checkpoint::new(&problem, 10_000, &state).to_json()).unwrap()
 }
 
 fn read(v: &Value) -> Result<Checkpoint, String> {

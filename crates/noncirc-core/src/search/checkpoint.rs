@@ -36,10 +36,11 @@ pub struct Checkpoint {
 }
 
 impl Checkpoint {
-    /// A checkpoint of `state`, a search of `scene` with `budget` evaluations.
-    pub fn new(scene: &Scene, budget: u64, state: &SearchState) -> Result<Self> {
-        let problem = SceneProblem::new(scene)?;
-        Ok(Self {
+    /// A checkpoint of `state`, a search of `problem` (its scene and dimensions) with
+    /// `budget` evaluations.
+    pub fn new(problem: &SceneProblem, budget: u64, state: &SearchState) -> Self {
+        let scene = problem.base();
+        Self {
             format: FORMAT.into(),
             version: VERSION,
             scene_hash: scene_hash(scene),
@@ -49,7 +50,7 @@ impl Checkpoint {
             budget,
             scene: scene.clone(),
             state: state.clone(),
-        })
+        }
     }
 
     /// The checkpoint as JSON (non-finite numbers of the state are written as strings).
