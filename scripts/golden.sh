@@ -29,19 +29,32 @@ for set in "train.beta0_deg=-47" "train.phi0_deg=70" "train.arm_length_mm=160" \
   i=$((i + 1))
   run "design-$i" evaluate paper --set "$set" --set train.gamma0_deg=-50
 done
-run optimise-de optimise --budget 3000 --seed 3 --threads 2
+# Random designs: fixed pseudo-random values for the twelve radii and the train's angles.
+for seed in 1 2 3 4 5 6; do
+  sets=$(python3 -c "
+import random
+r = random.Random($seed)
+print(' '.join(f'--set gear.curve.radii_mm[{i}]={r.uniform(35, 70):.3f}' for i in range(12)),
+      f'--set train.gamma0_deg={r.uniform(-70, -30):.3f}', f'--set train.beta0_deg={r.uniform(-60, -30):.3f}')")
+  # shellcheck disable=SC2086
+  run "random-$seed" evaluate paper $sets
+done
+for algorithm in guided de cmaes nsga2 nsga3; do
+  run "optimise-$algorithm" optimise --algorithm "$algorithm" --budget 3000 --seed 3 --threads 2
+done
+run optimise-de-1-thread optimise --budget 3000 --seed 3 --threads 1
 # Wall-clock times are the one thing allowed to differ.
-python3 - "$out/optimise-de.json" <<'PY'
+python3 - "$out"/optimise-*.json <<'PY'
 import json, sys
-path = sys.argv[1]
-def strip(v):
-    if isinstance(v, dict):
-        return {k: strip(x) for k, x in v.items() if "seconds" not in k}
-    if isinstance(v, list):
-        return [strip(x) for x in v]
-    return v
-with open(path) as f:
-    data = json.load(f)
-with open(path, "w") as f:
-    json.dump(strip(data), f, indent=1, sort_keys=True)
+for path in sys.argv[1:]:
+  def strip(v):
+      if isinstance(v, dict):
+          return {k: strip(x) for k, x in v.items() if "seconds" not in k}
+      if isinstance(v, list):
+          return [strip(x) for x in v]
+      return v
+  with open(path) as f:
+      data = json.load(f)
+  with open(path, "w") as f:
+      json.dump(strip(data), f, indent=1, sort_keys=True)
 PY
