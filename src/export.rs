@@ -15,26 +15,17 @@ pub struct Outline {
 }
 
 /// The driving gear (sun and planets) and the driven gear (intermediates), each in its own
-/// frame: driver points at `ψ`, driven points at its own angle `χ = −φ2(ψ)`, radius `a − ρ`.
+/// frame: driver points at `ψ`, driven points at its own angle `χ = −φ2(ψ)`, radius `a − ρ`,
+/// in the order of the pair's sample grid.
 pub fn outlines(pair: &GearPair) -> Vec<Outline> {
-    let a = pair.centre_distance();
-    let driver = pair.samples().iter().enumerate().map(|(j, p)| {
-        let psi = std::f64::consts::TAU * j as f64 / pair.samples().len() as f64;
-        [p.rho * psi.cos(), p.rho * psi.sin()]
-    });
-    let driven = pair
-        .samples()
-        .iter()
-        .zip(pair.phi2_nodes())
-        .map(|(p, phi2)| [(a - p.rho) * (-phi2).cos(), (a - p.rho) * (-phi2).sin()]);
     vec![
         Outline {
             name: "driver",
-            points: driver.collect(),
+            points: pair.driver_points(),
         },
         Outline {
             name: "driven",
-            points: driven.collect(),
+            points: pair.driven_points(),
         },
     ]
 }

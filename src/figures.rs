@@ -8,7 +8,7 @@ use noncirc_core::events::Events;
 use noncirc_core::moving_box::{box_curves, BoxReport, BoxSpec};
 use noncirc_core::objectives::Travel;
 use noncirc_core::planetary::Kinematics;
-use noncirc_core::{Evaluation, GearPair, ObjectiveValue, Scene};
+use noncirc_core::{Evaluation, ObjectiveValue, Scene};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -383,22 +383,6 @@ impl Figure for GroundFigure<'_> {
     }
 }
 
-/// Own-frame outline of the intermediate gear: points `(χ, a − ρ)` over one turn.
-fn intermediate_outline(curve: &PitchCurve, kin: &Kinematics) -> Result<Vec<[f64; 2]>, BoxError> {
-    let pair = GearPair::solve(curve.clone(), *kin.resolution()).map_err(err)?;
-    let a = kin.centre_distance();
-    let offset = pair.phi2(kin.spec().psi_start());
-    Ok(pair
-        .samples()
-        .iter()
-        .zip(pair.phi2_nodes())
-        .map(|(p, phi2)| {
-            let chi = -(phi2 - offset);
-            [(a - p.rho) * chi.cos(), (a - p.rho) * chi.sin()]
-        })
-        .collect())
-}
-
 fn place(outline: &[[f64; 2]], centre: [f64; 2], angle: f64) -> Vec<(f64, f64)> {
     let (s, c) = angle.sin_cos();
     outline
@@ -454,7 +438,7 @@ impl Figure for GearsFigure<'_> {
         let n = kin.len();
         let ratio: Vec<(f64, f64)> = (0..n)
             .map(|j| {
-                let r = kin.sun_samples()[j].rho;
+                let r = kin.pair().samples()[j].rho;
                 (kin.theta(j).to_degrees(), (kin.centre_distance() - r) / r)
             })
             .collect();
@@ -518,7 +502,7 @@ where
 {
     let curve = kin.curve();
     let sun = sun_outline(curve, kin.len());
-    let inter = intermediate_outline(curve, kin)?;
+    let inter = kin.pair().driven_points();
     let mut shapes: Vec<(Vec<(f64, f64)>, RGBColor)> = vec![(
         place(&sun, [0.0, 0.0], kin.spec().sun_angle()),
         RGBColor(60, 60, 60),

@@ -3,7 +3,7 @@
 use crate::export::{export_gears, export_trajectory};
 use crate::figures::{evaluation_figures, save, LinesFigure};
 use crate::search::{Outcome, SweepRow};
-use noncirc_core::{Evaluation, GearPair, Param, Scene};
+use noncirc_core::{Evaluation, Param, Scene};
 use std::path::{Path, PathBuf};
 
 use crate::BoxError;
@@ -17,8 +17,7 @@ pub fn evaluation_outputs(
     let mut files = evaluation_figures(scene, eval, dir)?;
     if let Some(kin) = &eval.kinematics {
         files.push(export_trajectory(kin, dir)?);
-        let pair = GearPair::solve(scene.gear.curve.build()?, eval.resolution)?;
-        files.extend(export_gears(&pair, dir)?);
+        files.extend(export_gears(kin.pair(), dir)?);
     }
     Ok(files)
 }

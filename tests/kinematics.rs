@@ -184,3 +184,30 @@ fn mesh_error_shrinks_as_resolution_grows() {
     );
     assert!(fine.2 < coarse.2 / 4.0, "slip {coarse:?} -> {fine:?}");
 }
+
+/// The train solves its sun–intermediate pair once, on the carrier grid: for a clockwise
+/// train with the sun installed, node j is the sun's parameter −θ_j, so the pair is the
+/// standard-grid pair read backwards, and its driven outline is the same curve.
+#[test]
+fn the_train_pair_is_the_gear_pair_on_the_carrier_grid() {
+    let sun = CurveSpec::paper().build().unwrap();
+    let res = Resolution::DEFAULT.with_samples(720);
+    let kin = Kinematics::solve(&sun, &TrainSpec::default(), &res).unwrap();
+    let standard = GearPair::solve(sun, res).unwrap();
+    let pair = kin.pair();
+    let n = pair.samples().len();
+    assert_eq!(pair.grid().sense, -1.0);
+    let a = standard.centre_distance();
+    assert!((pair.centre_distance() - a).abs() < 1e-9 * a);
+    let (ours, theirs) = (pair.driven_points(), standard.driven_points());
+    for j in 0..n {
+        let k = (n - j) % n;
+        assert!((pair.samples()[j].rho - standard.samples()[k].rho).abs() < 1e-12);
+        let gap = (ours[j][0] - theirs[k][0]).hypot(ours[j][1] - theirs[k][1]);
+        assert!(gap < 1e-8, "node {j}: driven points {gap:e} mm apart");
+    }
+    // The module read from the train is the gear command's module.
+    let rule = noncirc::core::gear::ModuleRule::default();
+    let (m1, m2) = (pair.module(&rule), standard.module(&rule));
+    assert!((m1.module_max_mm - m2.module_max_mm).abs() < 1e-9);
+}

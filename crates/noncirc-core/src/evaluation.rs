@@ -4,9 +4,9 @@
 use crate::anatomy::{anatomy, Anatomy};
 use crate::error::{Error, Result};
 use crate::events::{events, Events};
-use crate::gear::{perimeter, GearPair, ModuleReport};
+use crate::gear::{GearPair, ModuleReport};
 use crate::moving_box::{evaluate_box_with, BoxReport};
-use crate::objectives::{module, objective_value, Agronomy, ObjectiveKind, ObjectiveValue};
+use crate::objectives::{objective_value, Agronomy, ObjectiveKind, ObjectiveValue};
 use crate::planetary::Kinematics;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
@@ -44,7 +44,10 @@ pub struct Evaluation {
     pub objectives: Vec<ObjectiveValue>,
     pub events: Option<Events>,
     pub moving_box: Option<BoxReport>,
+    /// The three-arm train's motion (it owns the solved sun–intermediate pair).
     pub kinematics: Option<Kinematics>,
+    /// A gear scene's solved pair (three-arm scenes: see [`Evaluation::pair`]).
+    pub gear_pair: Option<GearPair>,
 }
 
 impl Evaluation {
@@ -61,6 +64,12 @@ impl Evaluation {
             agro,
             self.events.as_ref()?,
         ))
+    }
+
+    /// The solved gear pair of the evaluation, if it has one: a gear scene's pair, or the
+    /// three-arm train's sun–intermediate pair on the carrier grid.
+    pub fn pair(&self) -> Option<&GearPair> {
+        (self.kinematics.as_ref().map(Kinematics::pair)).or(self.gear_pair.as_ref())
     }
 
     /// The value of one objective, if it was evaluated.
@@ -124,6 +133,7 @@ impl Evaluator {
             events: None,
             moving_box: None,
             kinematics: None,
+            gear_pair: None,
         };
         match scene.kind {
             SceneKind::Gear => {
@@ -148,6 +158,7 @@ impl Evaluator {
                         &scene.bounds,
                     ));
                 }
+                out.gear_pair = Some(pair);
             }
             SceneKind::ThreeArm | SceneKind::Transplanter => {
                 scene.agronomy.validate()?;
@@ -168,7 +179,7 @@ impl Evaluator {
                 let gear_module = scene
                     .objectives
                     .contains(&ObjectiveKind::Module)
-                    .then(|| module(&kin, &scene.gear.module));
+                    .then(|| kin.pair().module(&scene.gear.module));
                 for &kind in &scene.objectives {
                     self.counts.objectives[kind as usize] += 1;
                     let value = objective_value(
@@ -199,8 +210,8 @@ impl Evaluator {
                 }
                 out.gear = gear_module.map(|module| GearSummary {
                     centre_distance_mm: kin.centre_distance(),
-                    closure_error_mm: kin.closure_error(),
-                    perimeter_mm: perimeter(kin.sun_samples()),
+                    closure_error_mm: kin.pair().closure().error_estimate,
+                    perimeter_mm: kin.pair().perimeter(),
                     module,
                 });
                 out.events = ev;

@@ -204,8 +204,7 @@ fn extreme_and_runner_up(tips: &[[f64; 2]], dir: [f64; 2]) -> (usize, Option<f64
 pub fn housing_radius(kin: &Kinematics, agro: &Agronomy) -> f64 {
     let a = kin.centre_distance();
     let (rmin, rmax) = kin.radius_range();
-    let planet_radius = 2.0 * a * (kin.spec().gamma0_deg.to_radians() / 2.0).cos().abs();
-    rmax.max(a + (a - rmin)).max(planet_radius + rmax) + agro.housing_margin_mm
+    rmax.max(a + (a - rmin)).max(kin.planet_radius() + rmax) + agro.housing_margin_mm
 }
 
 /// Locates picking and planting, checks the picking, and finds the window and the

@@ -4,7 +4,9 @@ use crate::curve::{parabola_vertex, PitchCurve, Polar, TAU};
 use crate::error::{positive, Error, Result};
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
+use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
+use std::sync::OnceLock;
 
 /// The solved closure condition.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -330,22 +332,52 @@ pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     (convex, concave)
 }
 
-/// A solved gear pair: the driver's pitch curve, its conjugate at the closing centre distance.
+/// Where a gear pair samples its driver: `psi_j = start + sense·j·2π/N`. The gear command
+/// uses [`SampleGrid::STANDARD`]; the planetary train samples the sun on its carrier grid
+/// (its start and its rotation sense), so one solved pair serves the motion, the module and
+/// the outlines.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SampleGrid {
+    /// Driver parameter of node 0 (rad).
+    pub start: f64,
+    /// +1: nodes advance counter-clockwise in ψ; −1: clockwise.
+    pub sense: f64,
+}
+
+impl SampleGrid {
+    /// `psi_j = j·2π/N`.
+    pub const STANDARD: SampleGrid = SampleGrid {
+        start: 0.0,
+        sense: 1.0,
+    };
+}
+
+/// A solved gear pair: the driver's pitch curve, its conjugate at the closing centre
+/// distance, sampled on one [`SampleGrid`].
 #[derive(Debug, Clone)]
 pub struct GearPair {
     curve: PitchCurve,
     resolution: Resolution,
-    /// Driver samples at `psi_j = j·2π/N`.
+    grid: SampleGrid,
+    /// Driver samples at the grid's nodes.
     samples: Vec<Polar>,
     closure: Closure,
-    /// Driven angle at the sample nodes.
+    /// The curve's own least and largest radius (mm; exact or refined between samples).
+    radius_range: (f64, f64),
+    /// `dφ2/du = ρ/(a − ρ)` at the nodes (`u`: the driver's turn along the grid).
+    ratio_nodes: Vec<f64>,
+    /// Driven angle at the nodes (rad, 0 at node 0).
     phi2_nodes: Vec<f64>,
-    /// Fourier coefficients of `rho/(a - rho)` (k ≥ 0), for `phi2` between nodes.
-    ratio_coeffs: Vec<rustfft::num_complex::Complex64>,
+    /// Mean of `ratio_nodes` (1 up to the closure error): the driven turn per driver turn.
+    phi2_mean_rate: f64,
+    /// Fourier coefficients of the ratio (k ≥ 0) for `phi2` between nodes, computed on
+    /// first use: the planetary train interpolates its own way and never pays for them.
+    ratio_coeffs: OnceLock<Vec<Complex64>>,
 }
 
 impl GearPair {
-    /// Samples the curve, solves the closure and integrates the driven angle.
+    /// Samples the curve on the standard grid, solves the closure and integrates the
+    /// driven angle.
     pub fn solve(curve: PitchCurve, resolution: Resolution) -> Result<Self> {
         resolution.validate()?;
         let mut integrator = SpectralIntegrator::new(resolution.samples_per_turn);
@@ -358,43 +390,61 @@ impl GearPair {
         resolution: Resolution,
         integrator: &mut SpectralIntegrator,
     ) -> Result<Self> {
+        Self::solve_on(curve, resolution, SampleGrid::STANDARD, integrator)
+    }
+
+    /// As [`GearPair::solve_with`], on any sample grid. Every pair of the crate is solved
+    /// here: the samples must be positive and finite, the closure must converge, and the
+    /// curve must stay inside the centre distance between the samples too.
+    pub fn solve_on(
+        curve: PitchCurve,
+        resolution: Resolution,
+        grid: SampleGrid,
+        integrator: &mut SpectralIntegrator,
+    ) -> Result<Self> {
         resolution.validate()?;
         let n = resolution.samples_per_turn;
-        let samples = curve.sample_uniform(0.0, TAU / n as f64, n);
-        let rho: Vec<f64> = samples.iter().map(|p| p.rho).collect();
+        let samples = curve.sample_uniform(grid.start, grid.sense * TAU / n as f64, n);
         if let Some((j, p)) = samples
             .iter()
             .enumerate()
             .find(|(_, p)| !(p.rho > 0.0 && p.d1.is_finite() && p.d2.is_finite()))
         {
             return Err(Error::NonPositiveRadius {
-                psi_deg: 360.0 * j as f64 / n as f64,
+                psi_deg: grid.start.to_degrees() + grid.sense * 360.0 * j as f64 / n as f64,
                 rho_mm: p.rho,
             });
         }
-        let closure = solve_closure(&rho, &resolution)?;
+        // The radii for the closure first, then the ratio (one allocation).
+        let mut ratio_nodes: Vec<f64> = samples.iter().map(|p| p.rho).collect();
+        let closure = solve_closure(&ratio_nodes, &resolution)?;
         let a = closure.centre_distance;
-        let true_max = curve.radius_range(&samples).1;
-        if true_max >= a {
+        let radius_range = curve.radius_range(&samples);
+        if radius_range.1 >= a {
             return Err(Error::SpikeBetweenSamples {
-                rho_max_mm: true_max,
+                rho_max_mm: radius_range.1,
                 centre_distance_mm: a,
             });
         }
-        let g: Vec<f64> = rho.iter().map(|&r| r / (a - r)).collect();
+        for (g, p) in ratio_nodes.iter_mut().zip(&samples) {
+            *g = p.rho / (a - p.rho);
+        }
         let mut phi2_nodes = vec![0.0; n];
         if integrator.len() != n {
             *integrator = SpectralIntegrator::new(n);
         }
-        integrator.cumulative(&g, &mut phi2_nodes);
-        let ratio_coeffs = integrator.coefficients(&g);
+        let phi2_mean_rate = integrator.cumulative(&ratio_nodes, &mut phi2_nodes);
         Ok(Self {
             curve,
             resolution,
+            grid,
             samples,
             closure,
+            radius_range,
+            ratio_nodes,
             phi2_nodes,
-            ratio_coeffs,
+            phi2_mean_rate,
+            ratio_coeffs: OnceLock::new(),
         })
     }
 
@@ -418,29 +468,81 @@ impl GearPair {
         self.closure.centre_distance
     }
 
-    /// Driver samples at `psi_j = j·2π/N`.
+    /// The grid the driver is sampled on.
+    pub fn grid(&self) -> SampleGrid {
+        self.grid
+    }
+
+    /// Driver parameter of node `j` (rad): `start + sense·j·2π/N`.
+    pub fn psi(&self, j: usize) -> f64 {
+        self.grid.start + self.grid.sense * TAU * j as f64 / self.samples.len() as f64
+    }
+
+    /// Driver samples at the grid's nodes.
     pub fn samples(&self) -> &[Polar] {
         &self.samples
     }
 
-    /// Driven angle at the sample nodes `psi_j = j·2π/N` (rad, `phi2(0) = 0`).
+    /// The driver curve's least and largest radius (mm), exact or refined between samples.
+    pub fn radius_range(&self) -> (f64, f64) {
+        self.radius_range
+    }
+
+    /// `dφ2/du = ρ/(a − ρ)` at the nodes, `u` being the driver's turn along the grid.
+    pub fn ratio_nodes(&self) -> &[f64] {
+        &self.ratio_nodes
+    }
+
+    /// Driven angle at the nodes (rad, 0 at node 0; on the standard grid `phi2(psi_j)`).
     pub fn phi2_nodes(&self) -> &[f64] {
         &self.phi2_nodes
     }
 
-    /// Driven rotation `phi2(psi)` (rad) at any `psi`, by the trigonometric interpolant of
-    /// the sampled integrand integrated term by term (O(N) per call; spectrally accurate).
-    /// For even N the Nyquist term is dropped, as in the node values.
-    pub fn phi2(&self, psi: f64) -> f64 {
-        let mean = self.ratio_coeffs[0].re;
+    /// Mean driven turn per driver turn (1 up to the closure error).
+    pub fn phi2_mean_rate(&self) -> f64 {
+        self.phi2_mean_rate
+    }
+
+    /// Driven rotation `phi2(u)` (rad) after the driver has turned by `u` along the grid from
+    /// node 0 (on the standard grid `u = psi`), by the trigonometric interpolant of the
+    /// sampled ratio integrated term by term (O(N) per call; spectrally accurate). For even
+    /// N the Nyquist term is dropped, as in the node values.
+    pub fn phi2(&self, u: f64) -> f64 {
+        let coeffs = self.ratio_coeffs.get_or_init(|| {
+            SpectralIntegrator::new(self.ratio_nodes.len()).coefficients(&self.ratio_nodes)
+        });
+        let mean = coeffs[0].re;
         let mut periodic = 0.0;
-        for (k, c) in self.ratio_coeffs.iter().enumerate().skip(1) {
+        for (k, c) in coeffs.iter().enumerate().skip(1) {
             let kf = k as f64;
-            // 2 Re[(c_k/(ik)) (e^{ikψ} - 1)]
-            let (s, co) = (kf * psi).sin_cos();
+            // 2 Re[(c_k/(ik)) (e^{iku} - 1)]
+            let (s, co) = (kf * u).sin_cos();
             periodic += 2.0 / kf * (c.im * (co - 1.0) + c.re * s);
         }
-        mean * psi + periodic
+        mean * u + periodic
+    }
+
+    /// The driver's pitch curve in its own frame (mm), at the grid's nodes.
+    pub fn driver_points(&self) -> Vec<[f64; 2]> {
+        (self.samples.iter().enumerate())
+            .map(|(j, p)| {
+                let psi = self.psi(j);
+                [p.rho * psi.cos(), p.rho * psi.sin()]
+            })
+            .collect()
+    }
+
+    /// The driven gear's pitch curve in its own frame (mm): the point that meets the driver's
+    /// node `j` sits at radius `a − ρ_j` and own angle `−sense·phi2_j`, angle 0 meeting node 0.
+    pub fn driven_points(&self) -> Vec<[f64; 2]> {
+        let a = self.centre_distance();
+        let sense = self.grid.sense;
+        (self.samples.iter().zip(&self.phi2_nodes))
+            .map(|(p, phi2)| {
+                let (s, c) = (-sense * phi2).sin_cos();
+                [(a - p.rho) * c, (a - p.rho) * s]
+            })
+            .collect()
     }
 
     /// Transmission ratio `i12 = ω1/ω2 = (a - ρ)/ρ` at `psi`.

@@ -4,7 +4,7 @@
 use crate::curve::{parabola_vertex, TAU};
 use crate::error::{finite, finite_with, length, Error, Result};
 use crate::events::{events, housing_radius, Events};
-use crate::gear::{curvature_extremes, module_max, perimeter, ModuleReport, ModuleRule};
+use crate::gear::{ModuleReport, ModuleRule};
 use crate::planetary::Kinematics;
 use serde::{Deserialize, Serialize};
 
@@ -483,14 +483,6 @@ pub fn ground_clearance(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     -housing - ground
 }
 
-/// Objective 8: the largest admissible module of the train's gears (sun = planet, and the
-/// intermediate), from the carrier-grid samples.
-pub fn module(kin: &Kinematics, rule: &ModuleRule) -> ModuleReport {
-    let samples = kin.sun_samples();
-    let (convex, concave) = curvature_extremes(samples, kin.centre_distance());
-    module_max(perimeter(samples), convex, concave, rule)
-}
-
 impl ObjectiveKind {
     /// Whether this objective needs the picking/planting events.
     pub fn needs_events(self) -> bool {
@@ -538,7 +530,7 @@ pub fn evaluate_all(
     rule: &ModuleRule,
 ) -> (Vec<ObjectiveValue>, Events) {
     let ev = events(kin, agro);
-    let gear_module = module(kin, rule);
+    let gear_module = kin.pair().module(rule);
     let values = ObjectiveKind::ALL
         .iter()
         .map(|&kind| {

@@ -2,9 +2,9 @@
 //! and planet (congruent to the sun) gears on a carrier, an arm on each planet (spec §2).
 
 use crate::angle::unit;
-use crate::curve::{PitchCurve, Polar, TAU};
+use crate::curve::{PitchCurve, TAU};
 use crate::error::{finite, length, positive, Error, Result};
-use crate::gear::solve_closure;
+use crate::gear::{GearPair, SampleGrid};
 use crate::quadrature::{DriftInverse, MonotoneDrift, SpectralIntegrator};
 use crate::resolution::Resolution;
 use serde::{Deserialize, Serialize};
@@ -169,23 +169,24 @@ pub struct ArmState {
 /// any carrier angle. Arms II and III follow at `θ − 120°` and `θ − 240°`.
 #[derive(Debug, Clone)]
 pub struct Kinematics {
-    curve: PitchCurve,
+    /// The sun–intermediate pair, sampled on the carrier grid: node `j` is the sun's
+    /// own-frame parameter `psi_start + σθ_j` at the contact, and the pair's driven angle at
+    /// the node is `Φ(θ_j)`, the intermediate's turn relative to the carrier.
+    pair: GearPair,
     spec: TrainSpec,
-    resolution: Resolution,
     sigma: f64,
-    centre_distance: f64,
-    closure_error: f64,
-    /// Sun samples at `psi_j = psi_start + σ θ_j` (own frame).
-    sun: Vec<Polar>,
-    /// `Φ(θ_j)`, `Φ'(θ_j) = g̃`, `Φ''(θ_j) = g̃'`.
-    big_phi: Vec<f64>,
-    g: Vec<f64>,
+    /// The spec's angles in radians: `Φ0`, `γ0`, `β0`, the sun's own-frame parameter at the
+    /// contact for θ = 0 and the sun's turn in the ground frame.
+    phi0: f64,
+    gamma0: f64,
+    beta0: f64,
+    psi_start: f64,
+    sun_angle: f64,
+    /// `Φ''(θ_j) = g̃'` (`Φ' = g̃` is the pair's ratio at the nodes).
     dg: Vec<f64>,
     /// `(Φ⁻¹)' = 1/g̃` and `(Φ⁻¹)'' = −g̃'/g̃³` at the nodes.
     inv_d1: Vec<f64>,
     inv_d2: Vec<f64>,
-    /// Exact (or refined) least and largest sun radius (mm).
-    radius_range: (f64, f64),
     /// Pusher-axis direction less the planet orientation (rad): `β0 ± asin(H1/S)`.
     pusher_turn: f64,
     /// Mesh delay of the intermediate between its two meshes (rad).
@@ -219,58 +220,40 @@ impl Kinematics {
         resolution: &Resolution,
         integrator: &mut SpectralIntegrator,
     ) -> Result<Self> {
-        resolution.validate()?;
         spec.validate()?;
+        let sigma = spec.rotation.sign();
+        let grid = SampleGrid {
+            start: spec.psi_start(),
+            sense: sigma,
+        };
+        let pair = GearPair::solve_on(curve, *resolution, grid, integrator)?;
         let n = resolution.samples_per_turn;
         let h = TAU / n as f64;
-        let sigma = spec.rotation.sign();
-        let psi0 = spec.psi_start();
-        let sun = curve.sample_uniform(psi0, sigma * h, n);
-        // `g` holds the radii for the closure first, then the ratio (one allocation).
-        let mut g: Vec<f64> = sun.iter().map(|p| p.rho).collect();
-        let closure = solve_closure(&g, resolution)?;
-        let a = closure.centre_distance;
-        let (rmin, rmax) = curve.radius_range(&sun);
-        if rmax >= a {
-            return Err(Error::SpikeBetweenSamples {
-                rho_max_mm: rmax,
-                centre_distance_mm: a,
-            });
-        }
-        for (g, p) in g.iter_mut().zip(&sun) {
-            *g = p.rho / (a - p.rho);
-        }
-        let dg: Vec<f64> = sun
-            .iter()
+        let a = pair.centre_distance();
+        let dg: Vec<f64> = (pair.samples().iter())
             .map(|p| sigma * a * p.d1 / ((a - p.rho) * (a - p.rho)))
             .collect();
-        let (inv_d1, inv_d2) = g
-            .iter()
+        let (inv_d1, inv_d2) = (pair.ratio_nodes().iter())
             .zip(&dg)
             .map(|(&g, &dg)| DriftInverse::node_derivatives(g, dg))
             .unzip();
-        let mut big_phi = vec![0.0; n];
-        if integrator.len() != n {
-            *integrator = SpectralIntegrator::new(n);
-        }
-        let phi_period = integrator.cumulative(&g, &mut big_phi) * TAU;
+        let phi_period = pair.phi2_mean_rate() * TAU;
         let gamma0 = spec.gamma0_deg.to_radians();
+        let beta0 = spec.beta0_deg.to_radians();
         let delay = (sigma * (gamma0 - std::f64::consts::PI)).rem_euclid(TAU);
         let mut kin = Self {
-            curve,
+            pair,
             spec: *spec,
-            resolution: *resolution,
             sigma,
-            centre_distance: a,
-            closure_error: closure.error_estimate,
-            sun,
-            big_phi,
-            g,
+            phi0: spec.phi0_deg.to_radians(),
+            gamma0,
+            beta0,
+            psi_start: spec.psi_start(),
+            sun_angle: spec.sun_angle(),
             dg,
             inv_d1,
             inv_d2,
-            radius_range: (rmin, rmax),
-            pusher_turn: spec.beta0_deg.to_radians()
+            pusher_turn: beta0
                 + match spec.pusher_side {
                     PusherSide::Left => 1.0,
                     PusherSide::Right => -1.0,
@@ -285,7 +268,7 @@ impl Kinematics {
         // θ_s at every node: sorted targets, so each cell search starts at the last cell.
         let inverse = kin.phi_inverse();
         let mut hint = 0;
-        let theta_s = (kin.big_phi.iter())
+        let theta_s = (kin.pair.phi2_nodes().iter())
             .map(|&phi| {
                 let (ts, cell) = inverse.eval(phi - delay, hint);
                 hint = cell;
@@ -295,8 +278,7 @@ impl Kinematics {
         kin.theta_s = theta_s;
         // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
         let step = unit(sigma * h);
-        let phi_h0 = spec.phi0_deg.to_radians();
-        let (mut e1, mut e2) = (unit(phi_h0), unit(phi_h0 + spec.gamma0_deg.to_radians()));
+        let (mut e1, mut e2) = (unit(kin.phi0), unit(kin.phi0 + gamma0));
         let rotate = |e: [f64; 2]| {
             [
                 e[0] * step[0] - e[1] * step[1],
@@ -308,10 +290,10 @@ impl Kinematics {
             let ts = kin.theta_s[j];
             let o3 = [a * (e1[0] + e2[0]), a * (e1[1] + e2[1])];
             (e1, e2) = (rotate(e1), rotate(e2));
-            let theta3 = spec.sun_angle() + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
+            let theta3 = kin.sun_angle + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
             kin.theta3[j] = theta3;
             kin.o3[j] = o3;
-            let u = unit(theta3 + spec.beta0_deg.to_radians());
+            let u = unit(theta3 + beta0);
             kin.tip[j] = [
                 o3[0] + spec.arm_length_mm * u[0],
                 o3[1] + spec.arm_length_mm * u[1],
@@ -323,8 +305,8 @@ impl Kinematics {
     /// `Φ(θ)`, the intermediate's turn relative to the carrier, as an invertible function.
     fn phi_fn(&self) -> MonotoneDrift<'_> {
         MonotoneDrift {
-            value: &self.big_phi,
-            d1: &self.g,
+            value: self.pair.phi2_nodes(),
+            d1: self.pair.ratio_nodes(),
             d2: &self.dg,
             period_increment: self.phi_period,
         }
@@ -339,24 +321,30 @@ impl Kinematics {
         }
     }
 
+    /// The sun–intermediate gear pair on the carrier grid (the planet–intermediate mesh is
+    /// the same pair: the planet is congruent to the sun).
+    pub fn pair(&self) -> &GearPair {
+        &self.pair
+    }
+
     /// Centre distance `a` shared by both meshes (mm).
     pub fn centre_distance(&self) -> f64 {
-        self.centre_distance
+        self.pair.centre_distance()
     }
 
     /// Least and largest radius of the sun's pitch curve (mm).
     pub fn radius_range(&self) -> (f64, f64) {
-        self.radius_range
+        self.pair.radius_range()
     }
 
-    /// Estimated error of the centre distance (mm).
-    pub fn closure_error(&self) -> f64 {
-        self.closure_error
+    /// Distance from the carrier axis to a planet centre (mm): `2a·|cos(γ0/2)|`.
+    pub fn planet_radius(&self) -> f64 {
+        2.0 * self.centre_distance() * (self.gamma0 / 2.0).cos().abs()
     }
 
     /// The sun's pitch curve.
     pub fn curve(&self) -> &PitchCurve {
-        &self.curve
+        self.pair.curve()
     }
 
     /// The train parameters.
@@ -365,8 +353,8 @@ impl Kinematics {
     }
 
     /// The resolution that produced this motion.
-    pub fn resolution(&self) -> &Resolution {
-        &self.resolution
+    pub fn resolution(&self) -> Resolution {
+        self.pair.resolution()
     }
 
     /// Number of carrier-angle samples per turn.
@@ -384,10 +372,6 @@ impl Kinematics {
         TAU * j as f64 / self.len() as f64
     }
 
-    /// Sun samples at the nodes (`psi_j = psi_start + σ θ_j`, the sun's own frame).
-    pub fn sun_samples(&self) -> &[Polar] {
-        &self.sun
-    }
 
     /// Tip of arm I at the nodes (mm).
     pub fn tips(&self) -> &[[f64; 2]] {
@@ -431,8 +415,8 @@ impl Kinematics {
 
     /// `g̃(u) = g(psi_start + σu)` and `g̃'(u)` at any carrier angle, from the curve itself.
     fn ratio_at(&self, u: f64) -> (f64, f64) {
-        let a = self.centre_distance;
-        let p = self.curve.eval(self.spec.psi_start() + self.sigma * u);
+        let a = self.centre_distance();
+        let p = self.curve().eval(self.psi_start + self.sigma * u);
         let gap = a - p.rho;
         (p.rho / gap, self.sigma * a * p.d1 / (gap * gap))
     }
@@ -440,24 +424,22 @@ impl Kinematics {
     /// The full state of arm I at any carrier angle `theta` (rad): positions, the tip's
     /// first two derivatives, orientations and the pusher-axis angle.
     pub fn state_at(&self, theta: f64) -> ArmState {
-        let spec = &self.spec;
         let sigma = self.sigma;
         let (big_phi, _) = self.phi_fn().eval(theta);
         // Start the cell search where node ⌊θ/h⌋'s own θ_s lies: O(1) instead of O(N).
         let hint = self.node_below(self.theta_s[self.node_below(theta)]);
         let (ts, _) = self.phi_inverse().eval(big_phi - self.delay, hint);
-        let gamma0 = spec.gamma0_deg.to_radians();
-        let beta0 = spec.beta0_deg.to_radians();
-        let s = spec.arm_length_mm;
-        let a = self.centre_distance;
-        let theta3 = spec.sun_angle() + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
+        let (gamma0, beta0) = (self.gamma0, self.beta0);
+        let s = self.spec.arm_length_mm;
+        let a = self.centre_distance();
+        let theta3 = self.sun_angle + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
         let (g_t, dg_t) = self.ratio_at(theta);
         let (g_s, dg_s) = self.ratio_at(ts);
         let ts1 = g_t / g_s;
         let ts2 = (dg_t * g_s - g_t * dg_s * ts1) / (g_s * g_s);
         let th1 = sigma * (1.0 - ts1);
         let th2 = -sigma * ts2;
-        let phi_h = spec.phi0_deg.to_radians() + sigma * theta;
+        let phi_h = self.phi0 + sigma * theta;
         let (e1, e2) = (unit(phi_h), unit(phi_h + gamma0));
         let o2 = [a * e1[0], a * e1[1]];
         let o3 = [a * (e1[0] + e2[0]), a * (e1[1] + e2[1])];
@@ -480,7 +462,7 @@ impl Kinematics {
             o3,
             theta3,
             theta2,
-            psi_planet_mesh: spec.psi_start() + sigma * ts,
+            psi_planet_mesh: self.psi_start + sigma * ts,
             tip,
             tip_d1,
             tip_d2,

@@ -276,11 +276,7 @@ fn evaluate<'py>(
             "planet_centres",
             points(kin.planet_centres()).into_pyarray(py),
         )?;
-        let curve = s.gear.curve.build().map_err(err)?;
-        let pair = py
-            .allow_threads(|| GearPair::solve(curve, res))
-            .map_err(err)?;
-        let outlines = noncirc::export::outlines(&pair);
+        let outlines = noncirc::export::outlines(kin.pair());
         out.set_item("driver_curve", points(&outlines[0].points).into_pyarray(py))?;
         out.set_item("driven_curve", points(&outlines[1].points).into_pyarray(py))?;
     }
