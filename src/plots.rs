@@ -48,7 +48,7 @@ pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>, Box
         },
         &dir.join("convergence"),
     )?;
-    let pareto = outcome.pareto();
+    let pareto = &outcome.confirmed.pareto;
     if outcome.problem.goals() >= 2 {
         let pts: Vec<(f64, f64)> = pareto.iter().map(|(_, f)| (f.f[0], f.f[1])).collect();
         files.extend(save(
@@ -62,11 +62,8 @@ pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>, Box
             &dir.join("pareto"),
         )?);
     }
-    if let Some(best) = outcome.reported() {
-        let scene = outcome.problem.scene_at(&best.u);
-        if let Ok(eval) = noncirc_core::Evaluator::new().evaluate(&scene) {
-            files.extend(evaluation_outputs(&scene, &eval, &dir.join("best"))?);
-        }
+    if let Some((scene, Some(eval))) = &outcome.confirmed.best {
+        files.extend(evaluation_outputs(scene, eval, &dir.join("best"))?);
     }
     Ok(files)
 }

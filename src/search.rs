@@ -7,7 +7,7 @@ use noncirc_core::search::problem::SceneProblem;
 use noncirc_core::search::{
     non_dominated_fronts, Algorithm, BatchEvaluator, Candidate, Fitness, SearchState,
 };
-use noncirc_core::{Evaluator, Resolution, Scene};
+use noncirc_core::{Evaluation, Evaluator, Resolution, Scene};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -153,6 +153,66 @@ pub struct Outcome {
     pub stopped_early: bool,
     /// Checkpoint writes that failed (the search went on): say them to the user.
     pub checkpoint_failures: Vec<String>,
+    /// The reported designs confirmed at the scene's resolution, once, when the run ended.
+    pub confirmed: Confirmed,
+}
+
+/// The reported designs re-evaluated at the scene's own resolution. Each design is
+/// evaluated once; the summary, the files, the figures and Python all read this.
+pub struct Confirmed {
+    /// The reported design (best confirmed-feasible, else best screened): its scene and its
+    /// evaluation (`None` if it failed to evaluate at the scene's resolution).
+    pub best: Option<(Scene, Option<Evaluation>)>,
+    /// The confirmed first front (multi-objective), else the best design; only those still
+    /// feasible at the scene's resolution (or the best design if none is): parameter values
+    /// and fitness.
+    pub pareto: Vec<(Vec<f64>, Fitness)>,
+}
+
+impl Confirmed {
+    fn new(problem: &SceneProblem, state: &SearchState) -> Self {
+        let base = problem.base();
+        let mut ev = Evaluator::new();
+        let mut scratch = base.clone();
+        let reported = state.best_confirmed.as_ref().or(state.best.as_ref());
+        let mut best = None;
+        let mut members: Vec<Candidate> = state.solver.front();
+        if members.is_empty() {
+            members.extend(reported.cloned());
+        }
+        let mut confirmed = Vec::with_capacity(members.len());
+        for c in &members {
+            let (fitness, eval) = problem.fitness(&c.u, &mut ev, &mut scratch, &base.resolution);
+            if best.is_none() && reported.is_some_and(|r| r.u == c.u) {
+                best = Some((problem.scene_at(&c.u), eval));
+            }
+            confirmed.push((problem.decode(&c.u), fitness));
+        }
+        if let (None, Some(r)) = (&best, reported) {
+            let (_, eval) = problem.fitness(&r.u, &mut ev, &mut scratch, &base.resolution);
+            best = Some((problem.scene_at(&r.u), eval));
+        }
+        let feasible: Vec<Candidate> = (confirmed.iter())
+            .filter(|(_, f)| f.feasible())
+            .map(|(x, f)| Candidate {
+                u: x.clone(),
+                fitness: f.clone(),
+            })
+            .collect();
+        let pareto = if feasible.is_empty() {
+            confirmed.into_iter().take(1).collect()
+        } else {
+            // Confirmation moves the goals slightly: keep the non-dominated confirmed designs.
+            let front = non_dominated_fronts(&feasible)
+                .into_iter()
+                .next()
+                .unwrap_or_default();
+            (front.into_iter())
+                .map(|i| (feasible[i].u.clone(), feasible[i].fitness.clone()))
+                .collect()
+        };
+        Self { best, pareto }
+    }
 }
 
 /// Reads and checks a checkpoint file.
@@ -261,6 +321,7 @@ pub fn run(
             failures.push(e.to_string());
         }
     }
+    let confirmed = Confirmed::new(&problem, &state);
     Ok(Outcome {
         problem,
         state,
@@ -270,6 +331,7 @@ pub fn run(
         threads: opts.threads,
         stopped_early: ending == Ending::Stopped,
         checkpoint_failures: failures,
+        confirmed,
     })
 }
 
@@ -314,7 +376,7 @@ impl Outcome {
             .or(self.state.best.as_ref())
     }
 
-    /// Summary with the reported design re-evaluated at the scene's resolution.
+    /// Summary with the reported design confirmed at the scene's resolution.
     pub fn summary(&self) -> Summary {
         let base = self.problem.base();
         let mut best = BTreeMap::new();
@@ -325,13 +387,12 @@ impl Outcome {
             for (name, x) in self.problem.names().iter().zip(self.problem.decode(&c.u)) {
                 best.insert(name.to_string(), x);
             }
-            let scene = self.problem.scene_at(&c.u);
-            if let Ok(eval) = Evaluator::new().evaluate(&scene) {
-                feasible = eval.total_violation() == 0.0;
-                for o in &eval.objectives {
-                    violations.insert(o.kind.name().to_string(), o.violation);
-                    objectives.insert(o.kind.name().to_string(), o.value);
-                }
+        }
+        if let Some((_, Some(eval))) = &self.confirmed.best {
+            feasible = eval.total_violation() == 0.0;
+            for o in &eval.objectives {
+                violations.insert(o.kind.name().to_string(), o.violation);
+                objectives.insert(o.kind.name().to_string(), o.value);
             }
         }
         Summary {
@@ -354,68 +415,24 @@ impl Outcome {
         }
     }
 
-    /// The reported set: the confirmed first front (multi-objective), else the best design;
-    /// each re-evaluated at the scene's resolution, keeping only those still feasible
-    /// (or the best design if none is).
-    pub fn pareto(&self) -> Vec<(Vec<f64>, Fitness)> {
-        let base = self.problem.base();
-        let mut ev = Evaluator::new();
-        let mut scratch = base.clone();
-        let mut members: Vec<Candidate> = self.state.solver.front();
-        if members.is_empty() {
-            members.extend(self.reported().cloned());
-        }
-        let confirmed: Vec<(Vec<f64>, Fitness)> = members
-            .iter()
-            .map(|c| {
-                (
-                    self.problem.decode(&c.u),
-                    self.problem
-                        .fitness(&c.u, &mut ev, &mut scratch, &base.resolution)
-                        .0,
-                )
-            })
-            .collect();
-        let feasible: Vec<Candidate> = confirmed
-            .iter()
-            .filter(|(_, f)| f.feasible())
-            .map(|(x, f)| Candidate {
-                u: x.clone(),
-                fitness: f.clone(),
-            })
-            .collect();
-        if feasible.is_empty() {
-            return confirmed.into_iter().take(1).collect();
-        }
-        // Confirmation moves the goals slightly: keep the non-dominated confirmed designs.
-        let front = non_dominated_fronts(&feasible)
-            .into_iter()
-            .next()
-            .unwrap_or_default();
-        front
-            .into_iter()
-            .map(|i| (feasible[i].u.clone(), feasible[i].fitness.clone()))
-            .collect()
-    }
-
     /// Writes best.toml, pareto.csv/json, history.csv and summary.json into `dir`.
     pub fn write(&self, dir: &Path) -> Result<(), BoxError> {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-        if let Some(c) = self.reported() {
-            let mut scene = self.problem.scene_at(&c.u);
+        if let Some((scene, _)) = &self.confirmed.best {
+            let mut scene = scene.clone();
             scene.name = format!("{}-best", self.problem.base().name);
             scene.search.free.clear();
             write_file(&dir.join("best.toml"), toml::to_string(&scene)?.as_bytes())?;
         }
         let names = self.problem.names();
-        let pareto = self.pareto();
+        let pareto = &self.confirmed.pareto;
         let mut csv = names.join(",");
         for g in 0..self.problem.goals() {
             csv += &format!(",goal{g}");
         }
         csv += ",cv\n";
-        for (x, f) in &pareto {
+        for (x, f) in pareto {
             let row: Vec<String> = x
                 .iter()
                 .chain(&f.f)

@@ -493,7 +493,7 @@ fn optimise<'py>(
     let outcome = py
         .allow_threads(|| noncirc::search::run(&s, &opts, &mut []))
         .map_err(err)?;
-    let (summary, pareto) = py.allow_threads(|| (outcome.summary(), outcome.pareto()));
+    let summary = outcome.summary();
     let json = serde_json::to_string(&summary).map_err(err)?;
     let out = py
         .import("json")?
@@ -501,10 +501,10 @@ fn optimise<'py>(
         .downcast_into::<PyDict>()?;
     let names = outcome.problem.names();
     let front = PyList::empty(py);
-    for (x, f) in pareto {
+    for (x, f) in &outcome.confirmed.pareto {
         let d = PyDict::new(py);
         let params = PyDict::new(py);
-        for (n, v) in names.iter().zip(&x) {
+        for (n, v) in names.iter().zip(x) {
             params.set_item(*n, *v)?;
         }
         d.set_item("parameters", params)?;
@@ -513,11 +513,11 @@ fn optimise<'py>(
         front.append(d)?;
     }
     out.set_item("pareto", front)?;
-    if let Some(best) = outcome.reported() {
+    if let Some((best, _)) = &outcome.confirmed.best {
         out.set_item(
             "best_scene",
             Scene {
-                inner: outcome.problem.scene_at(&best.u),
+                inner: best.clone(),
             },
         )?;
     }
