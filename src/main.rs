@@ -8,7 +8,7 @@ use noncirc::core::search::SearchState;
 use noncirc::core::SceneKind;
 use noncirc::report::{EvaluationReport, GearReport};
 use noncirc::scene_file::{load_scene_with, BUILTIN};
-use noncirc::search::RunOptions;
+use noncirc::search::{RunOptions, SearchSettings};
 use noncirc::InputError;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -55,7 +55,7 @@ struct OptimiseArgs {
     scene: SceneArgs,
     /// Algorithm: guided, de, cmaes, nsga2 or nsga3 (default: the scene's, `de`).
     #[arg(long)]
-    algorithm: Option<String>,
+    algorithm: Option<Algorithm>,
     /// Evaluation budget (default: the scene's).
     #[arg(long)]
     budget: Option<u64>,
@@ -268,25 +268,14 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
     }
     let name = args.scene.scene.as_deref().unwrap_or("paper-search");
     let mut scene = load_scene_with(Some(name), &args.scene.set)?;
-    if let Some(a) = &args.algorithm {
-        scene.search.algorithm = a.clone();
+    SearchSettings {
+        algorithm: args.algorithm,
+        budget: args.budget,
+        population: args.population,
+        seed: args.seed,
+        screening_samples_per_turn: None,
     }
-    if let Some(b) = args.budget {
-        scene.search.budget = b;
-    }
-    if let Some(p) = args.population {
-        scene.search.population = p;
-    }
-    if let Some(s) = args.seed {
-        scene.search.seed = s;
-    }
-    // The flags are scene values too: the same checks.
-    scene.validate_search()?;
-    let algorithm = Algorithm::parse(&scene.search.algorithm).expect("checked above");
-    let threads = args
-        .threads
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    noncirc::search::check_threads(threads)?;
+    .apply(&mut scene)?;
     if !(args.checkpoint_every.is_finite()
         && (0.0..=MAX_CHECKPOINT_EVERY_S).contains(&args.checkpoint_every))
     {
@@ -301,17 +290,12 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
     let flag = stop.clone();
     ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))?;
     let opts = RunOptions {
-        algorithm,
-        budget: scene.search.budget,
-        population: scene.search.population,
-        seed: scene.search.seed,
-        threads,
         checkpoint: args.checkpoint,
         checkpoint_every: Duration::from_secs_f64(args.checkpoint_every),
         resume: args.resume,
         resume_budget: args.budget,
         stop: stop.clone(),
-        max_generations: None,
+        ..RunOptions::new(args.threads)?
     };
     let mut progress = ProgressBar {
         bar: None,

@@ -121,12 +121,35 @@ impl BatchEvaluator for ParallelEvaluator<'_> {
     }
 }
 
-/// How to run a search.
+/// Search settings a front end sets over the scene's own (the CLI's flags, Python's
+/// keywords): each one given replaces the scene's value, so the scene states what ran.
+#[derive(Debug, Clone, Default)]
+pub struct SearchSettings {
+    pub algorithm: Option<Algorithm>,
+    pub budget: Option<u64>,
+    pub population: Option<usize>,
+    pub seed: Option<u64>,
+    pub screening_samples_per_turn: Option<usize>,
+}
+
+impl SearchSettings {
+    /// Writes the settings given into the scene and checks its search as a scene file's own
+    /// search is checked (the flags are scene values too).
+    pub fn apply(&self, scene: &mut Scene) -> Result<(), noncirc_core::Error> {
+        let search = &mut scene.search;
+        search.algorithm = self.algorithm.unwrap_or(search.algorithm);
+        search.budget = self.budget.unwrap_or(search.budget);
+        search.population = self.population.unwrap_or(search.population);
+        search.seed = self.seed.unwrap_or(search.seed);
+        search.screening.samples_per_turn = self
+            .screening_samples_per_turn
+            .unwrap_or(search.screening.samples_per_turn);
+        scene.validate_search()
+    }
+}
+
+/// How to run a search (what to search is the scene's: its `[search]` table).
 pub struct RunOptions {
-    pub algorithm: Algorithm,
-    pub budget: u64,
-    pub population: usize,
-    pub seed: u64,
     pub threads: usize,
     /// Write a checkpoint here every `checkpoint_every` and at the end. An existing file
     /// there must be a noncirc checkpoint (nothing else is overwritten).
@@ -140,6 +163,23 @@ pub struct RunOptions {
     pub stop: Arc<AtomicBool>,
     /// Stop after this many generations (for tests of interrupted runs).
     pub max_generations: Option<u64>,
+}
+
+impl RunOptions {
+    /// A run on `threads` threads (`None`: every core), without checkpoints.
+    pub fn new(threads: Option<usize>) -> Result<Self, InputError> {
+        let threads =
+            threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+        Ok(Self {
+            threads: check_threads(threads)?,
+            checkpoint: None,
+            checkpoint_every: Duration::from_secs(600),
+            resume: None,
+            resume_budget: None,
+            stop: Arc::new(AtomicBool::new(false)),
+            max_generations: None,
+        })
+    }
 }
 
 /// A finished (or stopped) search.
@@ -264,15 +304,16 @@ pub fn run(
             (cp.scene, opts.resume_budget.unwrap_or(cp.budget), cp.state)
         }
         None => {
+            scene.validate_search()?;
             let problem = SceneProblem::new(scene)?;
             let state = SearchState::new(
-                opts.algorithm,
+                scene.search.algorithm,
                 problem.dim(),
                 problem.goals(),
-                opts.population,
-                opts.seed,
+                scene.search.population,
+                scene.search.seed,
             );
-            (scene.clone(), opts.budget, state)
+            (scene.clone(), scene.search.budget, state)
         }
     };
     let problem = SceneProblem::new(&scene)?;

@@ -200,10 +200,10 @@ fn the_train_pair_is_the_gear_pair_on_the_carrier_grid() {
     let a = standard.centre_distance();
     assert!((pair.centre_distance() - a).abs() < 1e-9 * a);
     let (ours, theirs) = (pair.driven_points(), standard.driven_points());
-    for j in 0..n {
+    for (j, (p, q)) in pair.samples().iter().zip(&ours).enumerate() {
         let k = (n - j) % n;
-        assert!((pair.samples()[j].rho - standard.samples()[k].rho).abs() < 1e-12);
-        let gap = (ours[j][0] - theirs[k][0]).hypot(ours[j][1] - theirs[k][1]);
+        assert!((p.rho - standard.samples()[k].rho).abs() < 1e-12);
+        let gap = (q[0] - theirs[k][0]).hypot(q[1] - theirs[k][1]);
         assert!(gap < 1e-8, "node {j}: driven points {gap:e} mm apart");
     }
     // The module read from the train is the gear command's module.

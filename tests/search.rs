@@ -2,7 +2,7 @@
 
 use noncirc::core::search::{das_dennis, Algorithm, BatchEvaluator, Fitness, SearchState};
 use noncirc::scene_file::load_scene;
-use noncirc::search::{Outcome, RunOptions};
+use noncirc::search::{Outcome, RunOptions, SearchSettings};
 
 /// A search with no observers of the caller's own.
 fn run(scene: &noncirc::core::Scene, opts: &RunOptions) -> Result<Outcome, noncirc::BoxError> {
@@ -174,6 +174,21 @@ fn nsga3_converges_to_the_dtlz2_front_with_four_goals() {
     );
 }
 
+/// The paper-search scene searched by `algorithm`: 2400 evaluations, 24 a generation, seed 11.
+fn short_search(algorithm: Algorithm) -> noncirc::core::Scene {
+    let mut scene = load_scene(Some("paper-search")).unwrap();
+    SearchSettings {
+        algorithm: Some(algorithm),
+        budget: Some(2400),
+        population: Some(24),
+        seed: Some(11),
+        screening_samples_per_turn: None,
+    }
+    .apply(&mut scene)
+    .unwrap();
+    scene
+}
+
 fn options(
     threads: usize,
     checkpoint: Option<std::path::PathBuf>,
@@ -181,10 +196,6 @@ fn options(
     max_generations: Option<u64>,
 ) -> RunOptions {
     RunOptions {
-        algorithm: Algorithm::De,
-        budget: 2400,
-        population: 24,
-        seed: 11,
         threads,
         checkpoint,
         checkpoint_every: Duration::from_secs(3600),
@@ -207,30 +218,10 @@ fn fingerprint(state: &SearchState) -> String {
 
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
-    let scene = load_scene(Some("paper-search")).unwrap();
-    for algorithm in [
-        Algorithm::De,
-        Algorithm::Cmaes,
-        Algorithm::Guided,
-        Algorithm::Nsga2,
-        Algorithm::Nsga3,
-    ] {
-        let one = run(
-            &scene,
-            &RunOptions {
-                algorithm,
-                ..options(1, None, None, None)
-            },
-        )
-        .unwrap();
-        let two = run(
-            &scene,
-            &RunOptions {
-                algorithm,
-                ..options(2, None, None, None)
-            },
-        )
-        .unwrap();
+    for algorithm in Algorithm::ALL {
+        let scene = short_search(algorithm);
+        let one = run(&scene, &options(1, None, None, None)).unwrap();
+        let two = run(&scene, &options(2, None, None, None)).unwrap();
         assert!(
             fingerprint(&one.state) == fingerprint(&two.state),
             "{algorithm:?}: 1 and 2 threads differ"
@@ -240,7 +231,7 @@ fn results_do_not_depend_on_the_thread_count() {
 
 #[test]
 fn a_killed_and_resumed_run_ends_where_an_uninterrupted_one_does() {
-    let scene = load_scene(Some("paper-search")).unwrap();
+    let scene = short_search(Algorithm::De);
     let dir = std::env::temp_dir().join(format!("noncirc-resume-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let cp = dir.join("run.ckpt");
@@ -268,17 +259,16 @@ fn a_killed_and_resumed_run_ends_where_an_uninterrupted_one_does() {
 
 #[test]
 fn reported_designs_meet_the_objectives_at_the_default_resolution() {
-    let scene = load_scene(Some("paper-search")).unwrap();
-    let out = run(
-        &scene,
-        &RunOptions {
-            budget: 30_000,
-            population: 48,
-            seed: 1,
-            ..options(2, None, None, None)
-        },
-    )
+    let mut scene = load_scene(Some("paper-search")).unwrap();
+    SearchSettings {
+        budget: Some(30_000),
+        population: Some(48),
+        seed: Some(1),
+        ..SearchSettings::default()
+    }
+    .apply(&mut scene)
     .unwrap();
+    let out = run(&scene, &options(2, None, None, None)).unwrap();
     let summary = out.summary();
     if out.state.best_confirmed.is_some() {
         assert!(
@@ -308,7 +298,8 @@ fn reported_designs_meet_the_objectives_at_the_default_resolution() {
 #[test]
 fn measures_are_search_goals() {
     use noncirc::core::anatomy::Section;
-    use noncirc::core::search::problem::{Goal, SceneProblem};
+    use noncirc::core::search::problem::SceneProblem;
+    use noncirc::core::search::Goal;
     use noncirc::core::{Evaluator, Scene};
     use noncirc::scene_file::apply_overrides;
     let scene: Scene = apply_overrides(

@@ -372,7 +372,6 @@ impl Kinematics {
         TAU * j as f64 / self.len() as f64
     }
 
-
     /// Tip of arm I at the nodes (mm).
     pub fn tips(&self) -> &[[f64; 2]] {
         &self.tip

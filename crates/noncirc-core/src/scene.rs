@@ -7,6 +7,7 @@ use crate::moving_box::BoxSpec;
 use crate::objectives::{Agronomy, Bounds, ObjectiveKind};
 use crate::planetary::TrainSpec;
 use crate::resolution::Resolution;
+use crate::search::{Algorithm, Goal};
 use serde::{Deserialize, Serialize};
 
 /// A gear pair's specification: the driver's pitch curve and the tooth-cutting rules.
@@ -61,8 +62,8 @@ pub struct FreeParam {
 pub struct SearchSpec {
     /// The free parameters; empty means the default space around the scene's design.
     pub free: Vec<FreeParam>,
-    /// Algorithm name (see `noncirc optimise --help`).
-    pub algorithm: String,
+    /// The algorithm (by name in scene files: see `noncirc optimise --help`).
+    pub algorithm: Algorithm,
     /// Evaluation budget.
     pub budget: u64,
     /// Population size of population-based algorithms.
@@ -71,9 +72,10 @@ pub struct SearchSpec {
     pub seed: u64,
     /// Resolution used for screening; every reported design is re-evaluated at the scene's.
     pub screening: Resolution,
-    /// Goals to maximise beyond feasibility: objective margins by name, plus
-    /// `picking_tip_speed` (minimised) and `box_travel` (minimised).
-    pub goals: Vec<String>,
+    /// Goals beyond feasibility, by name in scene files: objective margins (maximised),
+    /// `least_margin`, `picking_tip_speed` and `box_travel` (minimised), `min:NAME` /
+    /// `max:NAME` of any measure. Empty: `least_margin`.
+    pub goals: Vec<Goal>,
 }
 
 impl SearchSpec {
@@ -87,7 +89,7 @@ impl Default for SearchSpec {
     fn default() -> Self {
         Self {
             free: Vec::new(),
-            algorithm: "de".into(),
+            algorithm: Algorithm::De,
             budget: 60_000,
             population: 48,
             seed: 1,
@@ -205,16 +207,6 @@ impl Scene {
     /// exist, each once, with finite ordered bounds a finite width apart. Checked when a
     /// scene is read and when a search starts (not per design: [`Scene::validate`] is).
     pub fn validate_search(&self) -> Result<()> {
-        use crate::search::problem::Goal;
-        crate::search::Algorithm::parse(&self.search.algorithm).ok_or_else(|| {
-            Error::UnknownName {
-                what: "algorithm",
-                name: self.search.algorithm.clone(),
-                nearest: ["guided", "de", "cmaes", "nsga2", "nsga3"]
-                    .map(String::from)
-                    .to_vec(),
-            }
-        })?;
         let population = self.search.population;
         if !(1..=SearchSpec::MAX_POPULATION).contains(&population) {
             return Err(Error::OutOfRange {
@@ -231,13 +223,11 @@ impl Scene {
             });
         }
         self.search.screening.validate()?;
-        for (i, name) in self.search.goals.iter().enumerate() {
-            let goal = Goal::parse(name)?;
-            let needs_box = matches!(goal, Goal::BoxTravel)
-                || matches!(goal, Goal::Measure { measure, .. } if measure.name() == "box_travel_mm");
-            let problem = if self.search.goals[..i].contains(name) {
+        for (i, goal) in self.search.goals.iter().enumerate() {
+            let name = goal.name();
+            let problem = if self.search.goals[..i].contains(goal) {
                 format!("'{name}' is listed twice")
-            } else if needs_box && self.kind != SceneKind::Transplanter {
+            } else if goal.needs_moving_box() && self.kind != SceneKind::Transplanter {
                 format!("'{name}' needs a moving box: only a transplanter scene computes it")
             } else {
                 continue;

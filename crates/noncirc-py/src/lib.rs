@@ -4,8 +4,9 @@
 use noncirc::core::measures::Measure;
 use noncirc::core::search::problem::SceneProblem;
 use noncirc::core::search::Algorithm;
-use noncirc::core::{Evaluator, GearPair, Resolution};
+use noncirc::core::{Evaluator, Resolution};
 use noncirc::scene_file::{apply_overrides, load_scene, parse_scene, BUILTIN};
+use noncirc::search::{RunOptions, SearchSettings};
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::create_exception;
@@ -459,37 +460,20 @@ fn optimise<'py>(
     screening_samples_per_turn: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mut s = scene.inner.clone();
-    if let Some(n) = screening_samples_per_turn {
-        s.search.screening.samples_per_turn = n;
-    }
     // The keywords override the scene's search settings, so the summary states what ran.
-    if let Some(a) = algorithm {
-        s.search.algorithm = a.to_string();
+    SearchSettings {
+        algorithm: algorithm
+            .map(Algorithm::parse)
+            .transpose()
+            .map_err(core_err)?,
+        budget,
+        population,
+        seed,
+        screening_samples_per_turn,
     }
-    s.search.seed = seed.unwrap_or(s.search.seed);
-    s.search.budget = budget.unwrap_or(s.search.budget);
-    s.search.population = population.unwrap_or(s.search.population);
-    s.validate_search().map_err(core_err)?;
-    let name = s.search.algorithm.clone();
-    let algorithm = Algorithm::parse(&name).ok_or_else(|| {
-        err(format!(
-            "unknown algorithm '{name}': use guided, de, cmaes, nsga2 or nsga3"
-        ))
-    })?;
-    let opts = noncirc::search::RunOptions {
-        algorithm,
-        budget: s.search.budget,
-        population: s.search.population,
-        seed: s.search.seed,
-        threads: threads
-            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
-        checkpoint: None,
-        checkpoint_every: std::time::Duration::from_secs(3600),
-        resume: None,
-        resume_budget: None,
-        stop: Arc::new(std::sync::atomic::AtomicBool::new(false)),
-        max_generations: None,
-    };
+    .apply(&mut s)
+    .map_err(core_err)?;
+    let opts = RunOptions::new(threads).map_err(err)?;
     let outcome = py
         .allow_threads(|| noncirc::search::run(&s, &opts, &mut []))
         .map_err(err)?;

@@ -8,6 +8,7 @@ pub mod checkpoint;
 mod cmaes;
 mod de;
 pub mod executor;
+mod goal;
 mod guided;
 mod nonfinite;
 mod nsga;
@@ -18,10 +19,12 @@ mod test_problem;
 
 pub use cmaes::Cmaes;
 pub use de::DifferentialEvolution;
+pub use goal::Goal;
 pub use guided::ParameterGuided;
 pub use nsga::{das_dennis, non_dominated_fronts, Nsga, Survival};
 pub use rng::Rng;
 
+use crate::error::Error;
 use serde::{Deserialize, Serialize};
 
 /// Feasibility-first fitness: the summed normalised constraint violation (pymoo's `CV`)
@@ -99,9 +102,9 @@ pub trait BatchEvaluator {
     }
 }
 
-/// The algorithms.
+/// The algorithms. In scene files and on the command line by name (`de`, `cmaes`, …).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[serde(try_from = "String", into = "String")]
 pub enum Algorithm {
     /// The papers' parameter-guided heuristic.
     Guided,
@@ -116,15 +119,32 @@ pub enum Algorithm {
 }
 
 impl Algorithm {
-    /// Parses a name: `guided`, `de`, `cmaes`, `nsga2`, `nsga3`.
-    pub fn parse(name: &str) -> Option<Self> {
+    /// Every algorithm, in the order `noncirc optimise --help` lists them.
+    pub const ALL: [Algorithm; 5] = [
+        Algorithm::Guided,
+        Algorithm::De,
+        Algorithm::Cmaes,
+        Algorithm::Nsga2,
+        Algorithm::Nsga3,
+    ];
+
+    /// Parses a name: `guided`, `de`, `cmaes`, `nsga2`, `nsga3` (or `parameter-guided`,
+    /// `cma-es`, `nsga-ii`, `nsga-iii`); an unknown name is [`Error::UnknownName`].
+    pub fn parse(name: &str) -> crate::error::Result<Self> {
         match name {
-            "guided" | "parameter-guided" => Some(Algorithm::Guided),
-            "de" => Some(Algorithm::De),
-            "cmaes" | "cma-es" => Some(Algorithm::Cmaes),
-            "nsga2" | "nsga-ii" => Some(Algorithm::Nsga2),
-            "nsga3" | "nsga-iii" => Some(Algorithm::Nsga3),
-            _ => None,
+            "guided" | "parameter-guided" => Ok(Algorithm::Guided),
+            "de" => Ok(Algorithm::De),
+            "cmaes" | "cma-es" => Ok(Algorithm::Cmaes),
+            "nsga2" | "nsga-ii" => Ok(Algorithm::Nsga2),
+            "nsga3" | "nsga-iii" => Ok(Algorithm::Nsga3),
+            _ => Err(Error::UnknownName {
+                what: "algorithm",
+                name: name.to_string(),
+                nearest: crate::measures::nearest(
+                    name,
+                    &Algorithm::ALL.map(|a| a.name().to_string()),
+                ),
+            }),
         }
     }
 
@@ -136,6 +156,26 @@ impl Algorithm {
             Algorithm::Nsga2 => "nsga2",
             Algorithm::Nsga3 => "nsga3",
         }
+    }
+}
+
+impl TryFrom<String> for Algorithm {
+    type Error = Error;
+    fn try_from(name: String) -> crate::error::Result<Self> {
+        Algorithm::parse(&name)
+    }
+}
+
+impl From<Algorithm> for String {
+    fn from(a: Algorithm) -> String {
+        a.name().into()
+    }
+}
+
+impl std::str::FromStr for Algorithm {
+    type Err = Error;
+    fn from_str(name: &str) -> crate::error::Result<Self> {
+        Algorithm::parse(name)
     }
 }
 

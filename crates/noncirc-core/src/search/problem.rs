@@ -1,11 +1,10 @@
 //! A search problem made from a scene: free parameters with bounds, the objectives'
 //! violations as constraints, and goals to minimise.
 
-use super::Fitness;
+use super::{Fitness, Goal};
 use crate::error::{Error, Result};
 use crate::evaluation::{Evaluation, Evaluator};
-use crate::measures::Measure;
-use crate::objectives::{Bounds, ObjectiveKind, ObjectiveValue};
+use crate::objectives::{Bounds, ObjectiveKind};
 use crate::params::Param;
 use crate::resolution::Resolution;
 use crate::scene::{FreeParam, Scene};
@@ -20,87 +19,6 @@ pub fn scale(kind: ObjectiveKind, bounds: &Bounds) -> f64 {
         (Some(l), Some(u)) => ((u - l) / 2.0).max(1e-9),
         (Some(b), None) | (None, Some(b)) => (b.abs() * 0.1).max(1.0),
         (None, None) => 1.0,
-    }
-}
-
-/// A goal to minimise once the constraints are met.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Goal {
-    /// Maximise the least normalised margin over the objectives (the default).
-    LeastMargin,
-    /// Maximise one objective's normalised margin.
-    Margin(ObjectiveKind),
-    /// Minimise the tip speed relative to the seedling at picking (m/s).
-    PickingTipSpeed,
-    /// Minimise the box travel while picking (transplanter scenes; mm).
-    BoxTravel,
-    /// Minimise (`min:NAME`) or maximise (`max:NAME`) any measure (`noncirc measures`).
-    Measure { measure: Measure, maximise: bool },
-}
-
-impl Goal {
-    pub fn parse(name: &str) -> Result<Self> {
-        match name {
-            "least_margin" => Ok(Goal::LeastMargin),
-            "picking_tip_speed" => Ok(Goal::PickingTipSpeed),
-            "box_travel" => Ok(Goal::BoxTravel),
-            other if other.starts_with("min:") || other.starts_with("max:") => Ok(Goal::Measure {
-                measure: Measure::parse(&other[4..])?,
-                maximise: other.starts_with("max:"),
-            }),
-            other => ObjectiveKind::ALL
-                .iter()
-                .find(|k| k.name() == other)
-                .map(|&k| Goal::Margin(k))
-                .ok_or_else(|| Error::OutOfRange {
-                    name: format!("search goal '{other}'"),
-                    value: f64::NAN,
-                    expected: "least_margin, picking_tip_speed, box_travel, an objective name, \
-                               or min:NAME / max:NAME of a measure (noncirc measures)"
-                        .into(),
-                }),
-        }
-    }
-
-    fn value(self, eval: &Evaluation, scene: &Scene) -> f64 {
-        let bounds = &scene.bounds;
-        let norm = |o: &ObjectiveValue| o.margin / scale(o.kind, bounds);
-        let v = match self {
-            // The seedling-push margin is 0 whenever it is met: it cannot rank designs.
-            Goal::LeastMargin => -eval
-                .objectives
-                .iter()
-                .filter(|o| o.kind != ObjectiveKind::SeedlingPush)
-                .map(norm)
-                .fold(f64::INFINITY, f64::min),
-            Goal::Margin(k) => -eval.objective(k).map_or(f64::NEG_INFINITY, norm),
-            Goal::PickingTipSpeed => eval
-                .events
-                .as_ref()
-                .map_or(f64::INFINITY, |e| e.picking_tip_speed_m_s),
-            Goal::BoxTravel => eval
-                .moving_box
-                .as_ref()
-                .map_or(f64::INFINITY, |b| b.elliptic_delta_h_mm),
-            Goal::Measure { measure, maximise } => {
-                let anatomy = if measure.needs_anatomy() {
-                    eval.anatomy(&scene.agronomy)
-                } else {
-                    None
-                };
-                let v = measure.value(eval, anatomy.as_ref()).unwrap_or(f64::NAN);
-                if maximise {
-                    -v
-                } else {
-                    v
-                }
-            }
-        };
-        if v.is_finite() {
-            v
-        } else {
-            INVALID_CV
-        }
     }
 }
 
@@ -190,12 +108,7 @@ impl SceneProblem {
         let goals = if scene.search.goals.is_empty() {
             vec![Goal::LeastMargin]
         } else {
-            scene
-                .search
-                .goals
-                .iter()
-                .map(|g| Goal::parse(g))
-                .collect::<Result<_>>()?
+            scene.search.goals.clone()
         };
         scene.search.screening.validate()?;
         Ok(Self {
