@@ -1,8 +1,8 @@
 //! Closure solve across resolutions: from samples alone, and the whole gear pair.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use noncirc::core::gear::solve_closure;
-use noncirc::core::search::Rng;
+use noncirc::core::solve_closure;
+use noncirc::core::Rng;
 use noncirc::core::{CurveSpec, GearPair, Resolution};
 use rayon::prelude::*;
 use std::hint::black_box;

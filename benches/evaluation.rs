@@ -3,8 +3,8 @@
 //! and the cost curve over samples per turn.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use noncirc::core::search::problem::SceneProblem;
-use noncirc::core::search::{BatchEvaluator, Rng};
+use noncirc::core::SceneProblem;
+use noncirc::core::{BatchEvaluator, Rng};
 use noncirc::core::{Evaluator, Resolution};
 use noncirc::scene_file::load_scene;
 use noncirc::search::ParallelEvaluator;

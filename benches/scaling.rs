@@ -7,8 +7,8 @@
 //! `cargo test --benches`) it runs 3, to show it works. `SCALING_DUMP=FILE` also writes
 //! each round's two times (s), one round per line.
 
-use noncirc::core::search::problem::SceneProblem;
-use noncirc::core::search::{BatchEvaluator, Rng};
+use noncirc::core::SceneProblem;
+use noncirc::core::{BatchEvaluator, Rng};
 use noncirc::scene_file::load_scene;
 use noncirc::search::ParallelEvaluator;
 use std::hint::black_box;

@@ -5,7 +5,7 @@
 //!
 //! `cargo run --release --example parameter_response -- docs/figures/response`
 
-use noncirc::core::measures::Measure;
+use noncirc::core::Measure;
 use noncirc::core::{Evaluator, Param, Scene};
 use noncirc::figures::{save, LinesFigure};
 use noncirc::scene_file::load_scene;

@@ -2,7 +2,7 @@
 //! resolutions, against a converged reference that is itself checked.
 
 use crate::report::table;
-use noncirc_core::accuracy::{compare, observed_order, ErrorRow};
+use noncirc_core::{compare, observed_order, ErrorRow};
 use noncirc_core::{Evaluation, Evaluator, Resolution, Scene};
 use serde::Serialize;
 use std::time::Instant;

@@ -130,7 +130,7 @@ pub fn export_trajectory(kin: &Kinematics, dir: &Path) -> Result<PathBuf, BoxErr
             kin.planet_centres()[j],
             kin.planet_angles()[j],
         );
-        let att = noncirc_core::events::attitude_deg(kin.pusher_angle(th));
+        let att = noncirc_core::attitude_deg(kin.pusher_angle(th));
         let _ = writeln!(
             s,
             "{:.6},{:.9},{:.9},{:.9},{:.9},{:.9},{:.9}",

@@ -1,13 +1,13 @@
 //! Figures (SVG and PNG, plotters) and the animation (GIF). Text uses DejaVu Sans, embedded
 //! in the binary, so rendering needs no system font or package.
 
-use noncirc_core::anatomy::{anatomy, Section};
-use noncirc_core::angle::unit;
-use noncirc_core::curve::PitchCurve;
-use noncirc_core::events::Events;
-use noncirc_core::moving_box::{box_curves, BoxReport, BoxSpec};
-use noncirc_core::objectives::Travel;
-use noncirc_core::planetary::Kinematics;
+use noncirc_core::unit;
+use noncirc_core::Events;
+use noncirc_core::Kinematics;
+use noncirc_core::PitchCurve;
+use noncirc_core::Travel;
+use noncirc_core::{anatomy, Section};
+use noncirc_core::{box_curves, BoxReport, BoxSpec};
 use noncirc_core::{Evaluation, ObjectiveValue, Scene};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -464,7 +464,7 @@ impl Figure for GearsFigure<'_> {
             .map(|j| {
                 (
                     kin.theta(j).to_degrees(),
-                    noncirc_core::events::attitude_deg(kin.pusher_angle(kin.planet_angles()[j])),
+                    noncirc_core::attitude_deg(kin.pusher_angle(kin.planet_angles()[j])),
                 )
             })
             .collect();
@@ -596,7 +596,7 @@ impl Figure for ObjectivesFigure<'_> {
             .map_err(err)?;
         for (i, o) in self.objectives.iter().enumerate() {
             let y = m - i as f64 - 0.5;
-            let scale = noncirc_core::search::problem::scale(o.kind, &self.scene.bounds);
+            let scale = noncirc_core::scale(o.kind, &self.scene.bounds);
             let (lo, hi, x) = match (o.lower, o.upper) {
                 (Some(l), Some(u)) => (0.0, 1.0, (o.value - l) / (u - l)),
                 (Some(l), None) => (0.0, 2.5, (o.value - l) / (scale * 10.0)),

@@ -1,11 +1,11 @@
 //! The `noncirc` command line.
 
 use clap::{Parser, Subcommand, ValueEnum};
-use noncirc::core::measures::Measure;
-use noncirc::core::search::executor::{Control, Observer};
-use noncirc::core::search::Algorithm;
-use noncirc::core::search::SearchState;
+use noncirc::core::Algorithm;
+use noncirc::core::Measure;
 use noncirc::core::SceneKind;
+use noncirc::core::SearchState;
+use noncirc::core::{Control, Observer};
 use noncirc::report::{EvaluationReport, GearReport};
 use noncirc::scene_file::{load_scene_with, BUILTIN};
 use noncirc::search::{RunOptions, SearchSettings};

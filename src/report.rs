@@ -1,11 +1,11 @@
 //! Reports: what the CLI prints, as serialisable structs and readable tables.
 
-use noncirc_core::anatomy::{Anatomy, SectionMeasures};
-use noncirc_core::evaluation::GearSummary;
-use noncirc_core::events::{Events, PickingCheck};
-use noncirc_core::measures::Measure;
-use noncirc_core::moving_box::BoxReport;
+use noncirc_core::BoxReport;
+use noncirc_core::GearSummary;
+use noncirc_core::Measure;
+use noncirc_core::{Anatomy, SectionMeasures};
 use noncirc_core::{Evaluation, Evaluator, GearPair, ObjectiveValue, Result, Scene, SceneKind};
+use noncirc_core::{Events, PickingCheck};
 use serde::Serialize;
 
 /// Everything `noncirc gear` reports about a gear pair.

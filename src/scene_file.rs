@@ -319,7 +319,7 @@ fn set_values(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError>
                 .ok_or_else(|| SceneError::UnknownKey {
                     assignment: assignment.clone(),
                     key: key.trim().to_string(),
-                    nearest: noncirc_core::measures::nearest(key.trim(), &key_paths(&scene_tree)),
+                    nearest: noncirc_core::nearest(key.trim(), &key_paths(&scene_tree)),
                 })?;
             if let Some(i) = index {
                 node = node

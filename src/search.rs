@@ -1,13 +1,10 @@
 //! Running searches: parallel batch evaluation, progress, checkpoints, Ctrl-C, outputs.
 
-use noncirc_core::measures::Measure;
-use noncirc_core::search::checkpoint::{self, Checkpoint};
-use noncirc_core::search::executor::{execute, stop_after_generations, Control, Ending, Observer};
-use noncirc_core::search::problem::SceneProblem;
-use noncirc_core::search::{
-    non_dominated_fronts, Algorithm, BatchEvaluator, Candidate, Fitness, SearchState,
+use noncirc_core::{
+    execute, non_dominated_fronts, stop_after_generations, Algorithm, BatchEvaluator, Candidate,
+    Checkpoint, Control, Ending, Evaluation, Evaluator, Fitness, Measure, Observer, Resolution,
+    Scene, SceneProblem, SearchState, CHECKPOINT_FORMAT,
 };
-use noncirc_core::{Evaluation, Evaluator, Resolution, Scene};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -274,7 +271,7 @@ fn check_checkpoint_target(path: &Path) -> Result<(), BoxError> {
         && std::fs::read(path)
             .ok()
             .and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok())
-            .is_some_and(|v| v.get("format").is_some_and(|f| f == checkpoint::FORMAT));
+            .is_some_and(|v| v.get("format").is_some_and(|f| f == CHECKPOINT_FORMAT));
     if is_checkpoint {
         Ok(())
     } else {

@@ -2,11 +2,11 @@
 //! checkpoint is refused with what is wrong, never a panic, a hang or a run against the
 //! wrong problem (issue 22). The proptest is the fuzz target for checkpoint files.
 
-use noncirc::core::search::checkpoint::Checkpoint;
-use noncirc::core::search::executor::{execute, stop_after_generations};
-use noncirc::core::search::problem::SceneProblem;
-use noncirc::core::search::{Algorithm, SearchState};
+use noncirc::core::Checkpoint;
 use noncirc::core::Scene;
+use noncirc::core::SceneProblem;
+use noncirc::core::{execute, stop_after_generations};
+use noncirc::core::{Algorithm, SearchState};
 use noncirc::scene_file::{apply_overrides, load_scene};
 use noncirc::search::ParallelEvaluator;
 use proptest::prelude::*;

@@ -1,6 +1,6 @@
 //! Gear-pair physics: closed forms, invariants over random designs, convergence, extremes.
 
-use noncirc::core::curve::{CurveSpec, Ellipse, PitchCurve};
+use noncirc::core::{CurveSpec, Ellipse, PitchCurve};
 use noncirc::core::{Error, GearPair, Resolution};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
@@ -191,7 +191,7 @@ fn a_sharp_spike_still_closes() {
 
 #[test]
 fn nan_and_infinity_in_every_input_are_typed_errors() {
-    let (r, a) = noncirc::core::curve::paper_control_points();
+    let (r, a) = noncirc::core::paper_control_points();
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         for i in 0..r.len() {
             for spec_of in [
@@ -247,7 +247,7 @@ fn nan_and_infinity_in_every_input_are_typed_errors() {
 
 #[test]
 fn angles_outside_one_turn_and_extreme_units_scale_correctly() {
-    let (r, a) = noncirc::core::curve::paper_control_points();
+    let (r, a) = noncirc::core::paper_control_points();
     let base = GearPair::solve(
         CurveSpec::Spline {
             radii_mm: r.clone(),
@@ -374,7 +374,7 @@ proptest! {
 /// overshoot before the first knot, at 6.83°, which the knot walk sees as 366.83°.
 #[test]
 fn overshoot_errors_name_an_angle_within_one_turn() {
-    let (radii_mm, mut angles_deg) = noncirc::core::curve::paper_control_points();
+    let (radii_mm, mut angles_deg) = noncirc::core::paper_control_points();
     for gap in [0.01, 0.1, 0.5] {
         angles_deg[1] = angles_deg[0] + gap;
         let spec = CurveSpec::Spline {

@@ -1,7 +1,7 @@
 //! Scenes that would once have given a silent wrong answer are refused when read, with an
 //! error that names the bad value (issue 22's findings, one test each).
 
-use noncirc::core::{evaluation::Evaluator, GearPair, Resolution};
+use noncirc::core::{Evaluator, GearPair, Resolution};
 use noncirc::scene_file::{apply_overrides, load_scene, parse_scene, SceneError};
 
 const PAPER: &str = include_str!("../scenes/paper.toml");

@@ -3,10 +3,10 @@
 //! contact point on the line of centres; the curves are tangent there; the material points'
 //! velocities agree. Run for both rotation senses, both sun frames and several designs.
 
-use noncirc::core::angle::unit;
-use noncirc::core::curve::{CurveSpec, PitchCurve};
-use noncirc::core::planetary::{Kinematics, Rotation, SunFrame, TrainSpec};
+use noncirc::core::unit;
+use noncirc::core::{CurveSpec, PitchCurve};
 use noncirc::core::{GearPair, Resolution};
+use noncirc::core::{Kinematics, Rotation, SunFrame, TrainSpec};
 use std::f64::consts::{PI, TAU};
 
 /// The intermediate's own pitch curve: the material point of sun parameter ψ at own angle
@@ -103,7 +103,7 @@ fn mesh_errors(spec: &CurveSpec, train: &TrainSpec, samples: usize) -> (f64, f64
         vel = vel.max((vi[0] - vp[0]).hypot(vi[1] - vp[1]));
         // Mesh 1 velocity: the intermediate's point at C1 must be at rest (the sun is fixed).
         let c1 = [r_sun * unit(phi_h)[0], r_sun * unit(phi_h)[1]];
-        let moved1 = |st: &noncirc::core::planetary::ArmState| {
+        let moved1 = |st: &noncirc::core::ArmState| {
             let rel = [c1[0] - s.o2[0], c1[1] - s.o2[1]];
             let rot = unit(st.theta2 - s.theta2);
             [
@@ -118,7 +118,7 @@ fn mesh_errors(spec: &CurveSpec, train: &TrainSpec, samples: usize) -> (f64, f64
 }
 
 fn designs() -> Vec<(&'static str, CurveSpec)> {
-    let (r, a) = noncirc::core::curve::paper_control_points();
+    let (r, a) = noncirc::core::paper_control_points();
     vec![
         (
             "paper spline",
@@ -170,7 +170,7 @@ fn both_meshes_touch_on_the_line_of_centres_without_slip() {
 
 #[test]
 fn mesh_error_shrinks_as_resolution_grows() {
-    let (r, a) = noncirc::core::curve::paper_control_points();
+    let (r, a) = noncirc::core::paper_control_points();
     let spec = CurveSpec::Spline {
         radii_mm: r,
         angles_deg: a,
@@ -207,7 +207,7 @@ fn the_train_pair_is_the_gear_pair_on_the_carrier_grid() {
         assert!(gap < 1e-8, "node {j}: driven points {gap:e} mm apart");
     }
     // The module read from the train is the gear command's module.
-    let rule = noncirc::core::gear::ModuleRule::default();
+    let rule = noncirc::core::ModuleRule::default();
     let (m1, m2) = (pair.module(&rule), standard.module(&rule));
     assert!((m1.module_max_mm - m2.module_max_mm).abs() < 1e-9);
 }

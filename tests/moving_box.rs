@@ -1,7 +1,7 @@
 //! The moving box against the moving-box paper and its own closed forms.
 
-use noncirc::core::moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxSpec};
 use noncirc::core::Resolution;
+use noncirc::core::{box_curves, eccentricity_for_ratio, evaluate_box, BoxSpec};
 use std::f64::consts::{PI, TAU};
 
 fn res() -> Resolution {

@@ -1,22 +1,17 @@
 //! The paper design's computed values (pinned), event accuracy, and robustness of the
 //! objectives over random designs.
 
-use noncirc::core::events::events;
-use noncirc::core::objectives::evaluate_all;
-use noncirc::core::planetary::{Kinematics, Rotation};
+use noncirc::core::evaluate_all;
+use noncirc::core::events;
 use noncirc::core::{
     Agronomy, Bounds, CurveSpec, ModuleRule, ObjectiveKind, Resolution, TrainSpec,
 };
+use noncirc::core::{Kinematics, Rotation};
 use noncirc::report::EvaluationReport;
 use noncirc::scene_file::load_scene;
 use proptest::prelude::*;
 
-fn paper(
-    samples: usize,
-) -> (
-    Vec<noncirc::core::ObjectiveValue>,
-    noncirc::core::events::Events,
-) {
+fn paper(samples: usize) -> (Vec<noncirc::core::ObjectiveValue>, noncirc::core::Events) {
     let kin = Kinematics::solve(
         &CurveSpec::paper().build().unwrap(),
         &TrainSpec::default(),
@@ -153,7 +148,7 @@ proptest! {
         phi0 in -180.0f64..180.0, beta0 in -90.0f64..90.0, s in 60.0f64..250.0,
         h1 in 0.0f64..59.0, gamma0 in -170.0f64..170.0,
     ) {
-        let (_, angles) = noncirc::core::curve::paper_control_points();
+        let (_, angles) = noncirc::core::paper_control_points();
         let Ok(curve) = (CurveSpec::Spline { radii_mm: radii, angles_deg: angles }).build() else { return Ok(()); };
         let train = TrainSpec { phi0_deg: phi0, beta0_deg: beta0, arm_length_mm: s, pusher_offset_mm: h1, gamma0_deg: gamma0, ..TrainSpec::default() };
         let Ok(kin) = Kinematics::solve(&curve, &train, &Resolution::FAST) else { return Ok(()); };

@@ -3,8 +3,8 @@
 //! the range docs/parameter-response.md sweeps. The claims that do not hold are listed, with
 //! the reason, in that page.
 
-use noncirc::core::anatomy::Anatomy;
-use noncirc::core::evaluation::Evaluation;
+use noncirc::core::Anatomy;
+use noncirc::core::Evaluation;
 use noncirc::core::{Evaluator, Param, Scene};
 use noncirc::scene_file::load_scene;
 
@@ -25,7 +25,7 @@ fn sweep(name: &str, lo: f64, hi: f64) -> Vec<(Scene, Evaluation, Anatomy)> {
 
 /// A radius swept ±20 % around the paper's value.
 fn sweep_radius(i: usize) -> Vec<(Scene, Evaluation, Anatomy)> {
-    let (radii, _) = noncirc::core::curve::paper_control_points();
+    let (radii, _) = noncirc::core::paper_control_points();
     sweep(
         &format!("gear.curve.radii_mm[{i}]"),
         0.8 * radii[i],
@@ -57,8 +57,7 @@ fn r1_lowers_the_return_section_and_barely_moves_the_removal_section() {
     let rows = sweep_radius(0);
     let ret = measure(&rows, |a| a.return_height_mm);
     let removal = measure(&rows, |a| {
-        a.section(noncirc::core::anatomy::Section::Removal)
-            .length_mm
+        a.section(noncirc::core::Section::Removal).length_mm
     });
     assert!(decreasing(&ret), "{ret:?}");
     assert!(
@@ -72,8 +71,7 @@ fn r1_lowers_the_return_section_and_barely_moves_the_removal_section() {
 fn r7_shortens_the_removal_section() {
     let rows = sweep_radius(6);
     let removal = measure(&rows, |a| {
-        a.section(noncirc::core::anatomy::Section::Removal)
-            .length_mm
+        a.section(noncirc::core::Section::Removal).length_mm
     });
     assert!(decreasing(&removal), "{removal:?}");
 }

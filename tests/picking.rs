@@ -2,11 +2,11 @@
 //! the measures: the default design picks where a machine can, a tray behind the mechanism
 //! is refused with its reason, a branch switch is flagged, and the sections tile the turn.
 
-use noncirc::core::anatomy::Section;
-use noncirc::core::evaluation::Evaluation;
-use noncirc::core::events::housing_radius;
-use noncirc::core::gear::ModuleReading;
-use noncirc::core::measures::Measure;
+use noncirc::core::housing_radius;
+use noncirc::core::Evaluation;
+use noncirc::core::Measure;
+use noncirc::core::ModuleReading;
+use noncirc::core::Section;
 use noncirc::core::{Evaluator, ObjectiveKind, Scene};
 use noncirc::scene_file::{apply_overrides, load_scene};
 use proptest::prelude::*;
@@ -174,7 +174,7 @@ fn sections_tile_the_turn_and_their_lengths_converge() {
         let gap = (w[1].carrier_deg[0] - w[0].carrier_deg[1]).rem_euclid(360.0);
         assert!(gap < 1e-9 || (360.0 - gap) < 1e-9, "{w:?}");
     }
-    let inside = |m: &noncirc::core::anatomy::SectionMeasures, t: f64| {
+    let inside = |m: &noncirc::core::SectionMeasures, t: f64| {
         (t - m.carrier_deg[0]).rem_euclid(360.0) <= m.span_deg
     };
     assert!(inside(

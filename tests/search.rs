@@ -1,6 +1,6 @@
 //! Search: known optima, determinism across thread counts, checkpoint and resume.
 
-use noncirc::core::search::{das_dennis, Algorithm, BatchEvaluator, Fitness, SearchState};
+use noncirc::core::{das_dennis, Algorithm, BatchEvaluator, Fitness, SearchState};
 use noncirc::scene_file::load_scene;
 use noncirc::search::{Outcome, RunOptions, SearchSettings};
 
@@ -146,9 +146,8 @@ fn nsga3_converges_to_the_dtlz2_front_with_four_goals() {
     }
     let front = state.solver.front();
     assert!(front.len() >= 100, "front of {}", front.len());
-    let radius = |c: &noncirc::core::search::Candidate| {
-        c.fitness.f.iter().map(|v| v * v).sum::<f64>().sqrt()
-    };
+    let radius =
+        |c: &noncirc::core::Candidate| c.fitness.f.iter().map(|v| v * v).sum::<f64>().sqrt();
     let worst = front.iter().map(|c| radius(c) - 1.0).fold(0.0, f64::max);
     assert!(worst < 0.05, "distance to the true front {worst}");
     // Spread: the members' nearest reference directions cover most of the 120.
@@ -297,9 +296,9 @@ fn reported_designs_meet_the_objectives_at_the_default_resolution() {
 /// misspelt name is refused with the nearest names.
 #[test]
 fn measures_are_search_goals() {
-    use noncirc::core::anatomy::Section;
-    use noncirc::core::search::problem::SceneProblem;
-    use noncirc::core::search::Goal;
+    use noncirc::core::Goal;
+    use noncirc::core::SceneProblem;
+    use noncirc::core::Section;
     use noncirc::core::{Evaluator, Scene};
     use noncirc::scene_file::apply_overrides;
     let scene: Scene = apply_overrides(
@@ -347,7 +346,7 @@ fn measures_are_search_goals() {
 /// `sweep --measure` gives each design's measures, the same values `evaluate` reports.
 #[test]
 fn sweeps_report_any_measure() {
-    use noncirc::core::measures::Measure;
+    use noncirc::core::Measure;
     use noncirc::core::{Evaluator, Param};
     let scene = load_scene(Some("paper")).unwrap();
     let measures = [

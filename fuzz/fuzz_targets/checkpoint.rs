@@ -1,9 +1,9 @@
 //! Any bytes as a checkpoint: refused, or resumed for two generations without a panic.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use noncirc::core::search::checkpoint::Checkpoint;
-use noncirc::core::search::executor::{execute, stop_after_generations};
-use noncirc::core::search::problem::SceneProblem;
+use noncirc::core::Checkpoint;
+use noncirc::core::{execute, stop_after_generations};
+use noncirc::core::SceneProblem;
 use noncirc::search::ParallelEvaluator;
 
 fuzz_target!(|data: &[u8]| {

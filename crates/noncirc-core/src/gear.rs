@@ -144,12 +144,6 @@ fn ratio_sums(rho: &[f64], a: f64) -> Option<([f64; 2], f64)> {
     (least > 0.0).then_some(([q[0] + q[2], q[1] + q[3]], dq.iter().sum()))
 }
 
-/// Radius of curvature `R_c = (ρ² + ρ'²)^{3/2} / (ρ² + 2ρ'² - ρρ'')` (mm): positive on convex arcs.
-#[inline]
-pub fn curvature_radius(p: Polar) -> f64 {
-    1.0 / curvature(p)
-}
-
 /// The driven curve's `(ρ2, dρ2/dφ2, d²ρ2/dφ2²)` at the contact where the driver shows `p`.
 #[inline]
 pub fn conjugate_polar(p: Polar, a: f64) -> Polar {

@@ -1,31 +1,60 @@
-//! noncirc-core: the pure numerical core of noncirc (no I/O, no threads).
+//! noncirc-core: the pure numerical core of noncirc (no I/O, no threads, no clock).
 //!
 //! Units: millimetres and radians inside; degrees only where a person reads or writes.
+//! Every public item has one path, at the crate root: the modules are private, the list
+//! below is the API.
 
-pub mod accuracy;
-pub mod anatomy;
-pub mod angle;
-pub mod curve;
-pub mod error;
-pub mod evaluation;
-pub mod events;
-pub mod gear;
-pub mod measures;
-pub mod moving_box;
-pub mod objectives;
-pub mod params;
-pub mod planetary;
-pub mod quadrature;
-pub mod resolution;
-pub mod scene;
-pub mod search;
+mod accuracy;
+mod anatomy;
+mod angle;
+mod curve;
+mod error;
+mod evaluation;
+mod events;
+mod gear;
+mod measures;
+mod moving_box;
+mod objectives;
+mod params;
+mod planetary;
+mod quadrature;
+mod resolution;
+mod scene;
+mod search;
 
-pub use curve::{CurveSpec, PitchCurve, Polar};
-pub use error::{Error, Result};
-pub use evaluation::{Evaluation, Evaluator, StageCounts};
-pub use gear::{GearPair, ModuleReport, ModuleRule};
-pub use objectives::{Agronomy, Bounds, ObjectiveKind, ObjectiveValue};
+// The scene: what is designed and asked, and at which resolution.
+pub use curve::{
+    paper_control_points, CartesianCurve, CartesianKind, CurveSpec, Ellipse, Fourier,
+    PeriodicSpline, PitchCurve, Polar,
+};
+pub use moving_box::BoxSpec;
+pub use objectives::{Agronomy, Bounds, ObjectiveKind};
 pub use params::Param;
-pub use planetary::{Kinematics, TrainSpec};
+pub use planetary::{PusherSide, Rotation, SunFrame, TrainSpec};
 pub use resolution::Resolution;
 pub use scene::{FreeParam, GearSpec, Scene, SceneKind, SearchSpec};
+
+// The model: gear pairs, the train's motion, events, sections, measures.
+pub use anatomy::{anatomy, Anatomy, Section, SectionMeasures};
+pub use angle::unit;
+pub use events::{attitude_deg, events, housing_radius, Event, Events, PickingCheck};
+pub use gear::{
+    solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, SampleGrid,
+};
+pub use measures::{nearest, Measure};
+pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
+pub use objectives::{evaluate_all, travel_sign, ObjectiveValue, Travel};
+pub use planetary::{ArmState, Kinematics};
+
+// Evaluation and its accuracy.
+pub use accuracy::{compare, observed_order, ErrorRow};
+pub use error::{Error, Result};
+pub use evaluation::{Evaluation, Evaluator, GearSummary, StageCounts};
+
+// Search: the problem, the solvers, the executor and its checkpoints.
+pub use search::{
+    das_dennis, execute, non_dominated_fronts, scale, stop_after_generations, Algorithm,
+    BatchEvaluator, Candidate, Checkpoint, Cmaes, Control, DifferentialEvolution, Ending, Fitness,
+    Goal, HistoryRow, Nsga, Observer, ParameterGuided, Rng, SceneProblem, SearchState, Solver,
+    Survival, CHECKPOINT_FORMAT, INVALID_CV,
+};

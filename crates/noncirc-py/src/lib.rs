@@ -1,9 +1,9 @@
 //! The `noncirc._noncirc` extension: a thin layer over the `noncirc` facade. Every error
 //! becomes `noncirc.NoncircError` (a `ValueError`), and heavy work runs with the GIL released.
 
-use noncirc::core::measures::Measure;
-use noncirc::core::search::problem::SceneProblem;
-use noncirc::core::search::Algorithm;
+use noncirc::core::Algorithm;
+use noncirc::core::Measure;
+use noncirc::core::SceneProblem;
 use noncirc::core::{Evaluator, Resolution};
 use noncirc::scene_file::{apply_overrides, load_scene, parse_scene, BUILTIN};
 use noncirc::search::{RunOptions, SearchSettings};
@@ -400,7 +400,7 @@ fn evaluate_batch<'py>(
     let n = rows.len();
     let mut values = Array2::from_elem((n, k), f64::NAN);
     let mut violations = Array2::from_elem((n, k), f64::NAN);
-    let mut normalised = Array2::from_elem((n, k), noncirc::core::search::problem::INVALID_CV);
+    let mut normalised = Array2::from_elem((n, k), noncirc::core::INVALID_CV);
     let mut goals = Array2::zeros((n, g));
     let mut cv = Array1::zeros(n);
     let mut valid = Array1::from_elem(n, false);
@@ -416,8 +416,8 @@ fn evaluate_batch<'py>(
                 for (j, o) in objectives.iter().enumerate() {
                     values[[i, j]] = o.value;
                     violations[[i, j]] = o.violation;
-                    normalised[[i, j]] = o.violation
-                        / noncirc::core::search::problem::scale(o.kind, &scene.inner.bounds);
+                    normalised[[i, j]] =
+                        o.violation / noncirc::core::scale(o.kind, &scene.inner.bounds);
                 }
                 errors.append(py.None())?;
             }
