@@ -5,8 +5,8 @@ use noncirc_core::{GearPair, Kinematics};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::files::write_file;
-use crate::BoxError;
+use crate::files::{create_dir, write_file};
+use crate::Result;
 
 /// A named closed polyline in mm.
 pub struct Outline {
@@ -97,8 +97,8 @@ fn csv(points: &[[f64; 2]]) -> String {
 }
 
 /// Writes `<name>.csv` per outline, `pitch_curves.svg` and `pitch_curves.dxf` into `dir`.
-pub fn export_gears(pair: &GearPair, dir: &Path) -> Result<Vec<PathBuf>, BoxError> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+pub fn export_gears(pair: &GearPair, dir: &Path) -> Result<Vec<PathBuf>> {
+    create_dir(dir)?;
     let outlines = outlines(pair);
     let mut files = Vec::new();
     for o in &outlines {
@@ -119,8 +119,8 @@ pub fn export_gears(pair: &GearPair, dir: &Path) -> Result<Vec<PathBuf>, BoxErro
 
 /// Writes `trajectory.csv`: carrier angle, tip of arm I, planet centre and orientation,
 /// and the arm's attitude, at every sample (for ADAMS, MATLAB, …).
-pub fn export_trajectory(kin: &Kinematics, dir: &Path) -> Result<PathBuf, BoxError> {
-    std::fs::create_dir_all(dir)?;
+pub fn export_trajectory(kin: &Kinematics, dir: &Path) -> Result<PathBuf> {
+    create_dir(dir)?;
     let mut s = String::from(
         "carrier_deg,tip_x_mm,tip_y_mm,planet_x_mm,planet_y_mm,planet_angle_deg,attitude_deg\n",
     );

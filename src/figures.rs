@@ -16,11 +16,12 @@ use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use crate::{BoxError, InputError};
+use crate::files::create_dir;
+use crate::{Error, Result};
 const FONT: &str = "sans-serif";
 
 /// Registers the embedded font once per process.
-pub fn register_font() -> Result<(), BoxError> {
+pub fn register_font() -> Result<()> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED.get_or_init(|| {
         plotters::style::register_font(FONT, FontStyle::Normal, dejavu::sans::regular()).is_ok()
@@ -28,12 +29,14 @@ pub fn register_font() -> Result<(), BoxError> {
     if ok {
         Ok(())
     } else {
-        Err("the embedded DejaVu Sans font could not be loaded".into())
+        Err(Error::Figure(
+            "the embedded DejaVu Sans font could not be loaded".into(),
+        ))
     }
 }
 
-fn err<E: std::fmt::Display>(e: E) -> BoxError {
-    e.to_string().into()
+fn err<E: std::fmt::Display>(e: E) -> Error {
+    Error::Figure(e.to_string())
 }
 
 /// A figure that can draw itself on any plotters backend.
@@ -41,13 +44,13 @@ pub trait Figure {
     fn size(&self) -> (u32, u32) {
         (900, 700)
     }
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), BoxError>
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
         DB::ErrorType: 'static;
 }
 
 /// Renders `fig` to `<base>.svg` and `<base>.png`; returns both paths.
-pub fn save(fig: &impl Figure, base: &Path) -> Result<Vec<PathBuf>, BoxError> {
+pub fn save(fig: &impl Figure, base: &Path) -> Result<Vec<PathBuf>> {
     register_font()?;
     let (svg, png) = (base.with_extension("svg"), base.with_extension("png"));
     {
@@ -125,7 +128,7 @@ pub struct TrajectoryFigure<'a> {
 }
 
 impl Figure for TrajectoryFigure<'_> {
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), BoxError>
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
         DB::ErrorType: 'static,
     {
@@ -291,7 +294,7 @@ impl Figure for GroundFigure<'_> {
     fn size(&self) -> (u32, u32) {
         (1100, 600)
     }
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), BoxError>
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
         DB::ErrorType: 'static,
     {
@@ -418,7 +421,7 @@ impl Figure for GearsFigure<'_> {
     fn size(&self) -> (u32, u32) {
         (1200, 600)
     }
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), BoxError>
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
         DB::ErrorType: 'static,
     {
@@ -496,7 +499,7 @@ fn draw_train<DB: DrawingBackend>(
     kin: &Kinematics,
     theta: f64,
     caption: &str,
-) -> Result<(), BoxError>
+) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
@@ -570,7 +573,7 @@ impl Figure for ObjectivesFigure<'_> {
     fn size(&self) -> (u32, u32) {
         (1000, 80 + 60 * self.objectives.len() as u32)
     }
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), BoxError>
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
         DB::ErrorType: 'static,
     {
@@ -653,7 +656,7 @@ impl Figure for BoxFigure<'_> {
     fn size(&self) -> (u32, u32) {
         (1000, 700)
     }
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), BoxError>
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
         DB::ErrorType: 'static,
     {
@@ -767,7 +770,7 @@ pub struct LinesFigure {
 }
 
 impl Figure for LinesFigure {
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), BoxError>
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
         DB::ErrorType: 'static,
     {
@@ -845,12 +848,8 @@ impl Figure for LinesFigure {
 }
 
 /// Every figure of one evaluation into `dir`; returns the files written.
-pub fn evaluation_figures(
-    scene: &Scene,
-    eval: &Evaluation,
-    dir: &Path,
-) -> Result<Vec<PathBuf>, BoxError> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+pub fn evaluation_figures(scene: &Scene, eval: &Evaluation, dir: &Path) -> Result<Vec<PathBuf>> {
+    create_dir(dir)?;
     let mut files = Vec::new();
     if let (Some(kin), Some(ev)) = (&eval.kinematics, &eval.events) {
         files.extend(save(
@@ -902,13 +901,15 @@ pub fn evaluation_figures(
 pub const MAX_FRAMES: usize = 3600;
 
 /// `noncirc animate`: the mechanism turning, gears and arms drawn, as a GIF.
-pub fn animate(kin: &Kinematics, path: &Path, frames: usize) -> Result<(), BoxError> {
+pub fn animate(kin: &Kinematics, path: &Path, frames: usize) -> Result<()> {
     if !(2..=MAX_FRAMES).contains(&frames) {
-        return Err(InputError(format!("--frames {frames}: expected 2 to {MAX_FRAMES}")).into());
+        return Err(Error::Input(format!(
+            "--frames {frames}: expected 2 to {MAX_FRAMES}"
+        )));
     }
     register_font()?;
     // Open the file first: plotters reports a failure as a debug dump.
-    std::fs::File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    std::fs::File::create(path).map_err(|e| Error::file("write", path, e))?;
     let root = BitMapBackend::gif(path, (640, 640), 60)
         .map_err(err)?
         .into_drawing_area();

@@ -1,7 +1,7 @@
 //! Files noncirc writes and reads: atomic writes that name the file in their errors, and
 //! bounded reads of regular files.
 
-use crate::BoxError;
+use crate::{Error, Result};
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -42,24 +42,46 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
 }
 
 /// [`write_atomic`], naming the file in the error (nothing is left behind on failure).
-pub fn write_file(path: &Path, contents: &[u8]) -> Result<(), BoxError> {
-    write_atomic(path, contents).map_err(|e| format!("cannot write {}: {e}", path.display()).into())
+pub fn write_file(path: &Path, contents: &[u8]) -> Result<()> {
+    write_atomic(path, contents).map_err(|e| Error::file("write", path, e))
+}
+
+/// Creates a directory and its parents, naming it in the error.
+pub fn create_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::file("create", dir, e))
 }
 
 /// Reads a regular file of at most `max` bytes, naming the path in every error.
-pub fn read_limited(path: &Path, max: u64) -> Result<Vec<u8>, BoxError> {
-    let meta =
-        std::fs::metadata(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+pub fn read_limited(path: &Path, max: u64) -> Result<Vec<u8>> {
+    let meta = std::fs::metadata(path).map_err(|e| Error::file("read", path, e))?;
     if !meta.is_file() {
-        return Err(format!("{} is not a regular file", path.display()).into());
+        return Err(Error::Input(format!(
+            "{} is not a regular file",
+            path.display()
+        )));
     }
     if meta.len() > max {
-        return Err(format!(
+        return Err(Error::Input(format!(
             "{} is {} bytes, more than the {max} this reads",
             path.display(),
             meta.len()
-        )
-        .into());
+        )));
     }
-    std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()).into())
+    std::fs::read(path).map_err(|e| Error::file("read", path, e))
+}
+
+/// Pretty JSON of `value` (`what` names it in the error).
+pub fn json_text(value: &impl serde::Serialize, what: &'static str) -> Result<String> {
+    serde_json::to_string_pretty(value).map_err(|e| Error::Serialise {
+        what,
+        message: e.to_string(),
+    })
+}
+
+/// TOML of `value` (`what` names it in the error).
+pub fn toml_text(value: &impl serde::Serialize, what: &'static str) -> Result<String> {
+    toml::to_string(value).map_err(|e| Error::Serialise {
+        what,
+        message: e.to_string(),
+    })
 }

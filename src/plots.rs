@@ -6,14 +6,11 @@ use crate::search::{Outcome, SweepRow};
 use noncirc_core::{Evaluation, Param, Scene};
 use std::path::{Path, PathBuf};
 
-use crate::BoxError;
+use crate::files::create_dir;
+use crate::Result;
 
 /// Figures of an evaluation, the trajectory CSV and the pitch-curve exports.
-pub fn evaluation_outputs(
-    scene: &Scene,
-    eval: &Evaluation,
-    dir: &Path,
-) -> Result<Vec<PathBuf>, BoxError> {
+pub fn evaluation_outputs(scene: &Scene, eval: &Evaluation, dir: &Path) -> Result<Vec<PathBuf>> {
     let mut files = evaluation_figures(scene, eval, dir)?;
     if let Some(kin) = &eval.kinematics {
         files.push(export_trajectory(kin, dir)?);
@@ -23,8 +20,8 @@ pub fn evaluation_outputs(
 }
 
 /// Search convergence, the Pareto set (two goals or more), and the best design's figures.
-pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>, BoxError> {
-    std::fs::create_dir_all(dir)?;
+pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>> {
+    create_dir(dir)?;
     let h = &outcome.state.history;
     let cv: Vec<(f64, f64)> = h
         .iter()
@@ -74,8 +71,8 @@ pub fn sweep_figures(
     param: &str,
     rows: &[SweepRow],
     dir: &Path,
-) -> Result<Vec<PathBuf>, BoxError> {
-    std::fs::create_dir_all(dir)?;
+) -> Result<Vec<PathBuf>> {
+    create_dir(dir)?;
     let mut names: Vec<String> = rows
         .iter()
         .find(|r| !r.objectives.is_empty())

@@ -598,7 +598,7 @@ pub fn sweep_table(param: &str, rows: &[crate::search::SweepRow]) -> String {
 /// Checks that every number in a report is finite: a NaN or infinity in an output is a
 /// bug (an input check missed it), refused rather than printed. Absent values (`None`)
 /// are not numbers and pass. Returns the first bad number's path.
-pub fn check_finite(report: &impl Serialize) -> std::result::Result<(), crate::BoxError> {
+pub fn check_finite(report: &impl Serialize) -> crate::Result<()> {
     fn walk(v: &toml::Value, path: &str) -> Option<(String, f64)> {
         match v {
             toml::Value::Float(x) if !x.is_finite() => Some((path.to_string(), *x)),
@@ -620,7 +620,10 @@ pub fn check_finite(report: &impl Serialize) -> std::result::Result<(), crate::B
         }
     }
     // TOML leaves `None` out and keeps NaN and infinity as numbers, unlike JSON's null.
-    let tree = toml::Value::try_from(report)?;
+    let tree = toml::Value::try_from(report).map_err(|e| crate::Error::Serialise {
+        what: "a report",
+        message: e.to_string(),
+    })?;
     match walk(&tree, "") {
         None => Ok(()),
         Some((path, x)) => Err(noncirc_core::Error::NonFinite {

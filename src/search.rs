@@ -13,8 +13,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use crate::files::{read_limited, write_atomic, write_file};
-use crate::{BoxError, InputError};
+use crate::files::{create_dir, json_text, read_limited, toml_text, write_atomic, write_file};
+use crate::{Error, Result};
 
 /// Most designs per parallel piece of a batch of `len` on `threads` ([`map_batch`] passes
 /// it to rayon's `with_max_len`): about 32 pieces per thread. Uncapped, rayon splits a
@@ -41,22 +41,26 @@ pub struct ParallelEvaluator<'a> {
 pub const MAX_THREADS: usize = 256;
 
 /// Checks a thread count (1 to [`MAX_THREADS`]).
-pub fn check_threads(threads: usize) -> Result<usize, InputError> {
+pub fn check_threads(threads: usize) -> Result<usize> {
     if (1..=MAX_THREADS).contains(&threads) {
         Ok(threads)
     } else {
-        Err(InputError(format!(
+        Err(Error::Input(format!(
             "threads = {threads}: expected 1 to {MAX_THREADS}"
         )))
     }
 }
 
 impl<'a> ParallelEvaluator<'a> {
-    pub fn new(problem: &'a SceneProblem, threads: usize) -> Result<Self, BoxError> {
+    pub fn new(problem: &'a SceneProblem, threads: usize) -> Result<Self> {
         check_threads(threads)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
-            .build()?;
+            .build()
+            .map_err(|e| Error::Threads {
+                threads,
+                message: e.to_string(),
+            })?;
         let confirm_at = problem.base().resolution;
         Ok(Self {
             problem,
@@ -132,7 +136,7 @@ pub struct SearchSettings {
 impl SearchSettings {
     /// Writes the settings given into the scene and checks its search as a scene file's own
     /// search is checked (the flags are scene values too).
-    pub fn apply(&self, scene: &mut Scene) -> Result<(), noncirc_core::Error> {
+    pub fn apply(&self, scene: &mut Scene) -> noncirc_core::Result<()> {
         let search = &mut scene.search;
         search.algorithm = self.algorithm.unwrap_or(search.algorithm);
         search.budget = self.budget.unwrap_or(search.budget);
@@ -164,7 +168,7 @@ pub struct RunOptions {
 
 impl RunOptions {
     /// A run on `threads` threads (`None`: every core), without checkpoints.
-    pub fn new(threads: Option<usize>) -> Result<Self, InputError> {
+    pub fn new(threads: Option<usize>) -> Result<Self> {
         let threads =
             threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
         Ok(Self {
@@ -253,9 +257,12 @@ impl Confirmed {
 }
 
 /// Reads and checks a checkpoint file.
-pub fn read_checkpoint(path: &Path) -> Result<Checkpoint, BoxError> {
+pub fn read_checkpoint(path: &Path) -> Result<Checkpoint> {
     let bytes = read_limited(path, MAX_CHECKPOINT_BYTES)?;
-    Checkpoint::from_json(&bytes).map_err(|e| format!("{}: {e}", path.display()).into())
+    Checkpoint::from_json(&bytes).map_err(|source| Error::Content {
+        path: path.into(),
+        source,
+    })
 }
 
 /// Largest checkpoint read (bytes): a state of the largest accepted population.
@@ -263,7 +270,7 @@ pub const MAX_CHECKPOINT_BYTES: u64 = 1 << 30;
 
 /// Refuses a checkpoint path that holds something other than a noncirc checkpoint (a
 /// scene file, say), so that a typo never overwrites the user's work.
-fn check_checkpoint_target(path: &Path) -> Result<(), BoxError> {
+fn check_checkpoint_target(path: &Path) -> Result<()> {
     if !path.exists() {
         return Ok(());
     }
@@ -275,12 +282,11 @@ fn check_checkpoint_target(path: &Path) -> Result<(), BoxError> {
     if is_checkpoint {
         Ok(())
     } else {
-        Err(InputError(format!(
+        Err(Error::Input(format!(
             "--checkpoint {}: the file exists and is not a noncirc checkpoint; \
              refusing to overwrite it (choose another path)",
             path.display()
-        ))
-        .into())
+        )))
     }
 }
 
@@ -291,7 +297,7 @@ pub fn run(
     scene: &Scene,
     opts: &RunOptions,
     observers: &mut [&mut dyn Observer],
-) -> Result<Outcome, BoxError> {
+) -> Result<Outcome> {
     if let Some(path) = &opts.checkpoint {
         check_checkpoint_target(path)?;
     }
@@ -378,9 +384,9 @@ fn save_checkpoint(
     problem: &SceneProblem,
     budget: u64,
     state: &SearchState,
-) -> Result<(), BoxError> {
+) -> Result<()> {
     write_atomic(path, &Checkpoint::new(problem, budget, state).to_json())
-        .map_err(|e| format!("cannot write checkpoint {}: {e}", path.display()).into())
+        .map_err(|e| Error::file("write the checkpoint", path, e))
 }
 
 /// The summary `--format json` prints.
@@ -454,14 +460,16 @@ impl Outcome {
     }
 
     /// Writes best.toml, pareto.csv/json, history.csv and summary.json into `dir`.
-    pub fn write(&self, dir: &Path) -> Result<(), BoxError> {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    pub fn write(&self, dir: &Path) -> Result<()> {
+        create_dir(dir)?;
         if let Some((scene, _)) = &self.confirmed.best {
             let mut scene = scene.clone();
             scene.name = format!("{}-best", self.problem.base().name);
             scene.search.free.clear();
-            write_file(&dir.join("best.toml"), toml::to_string(&scene)?.as_bytes())?;
+            write_file(
+                &dir.join("best.toml"),
+                toml_text(&scene, "the best scene")?.as_bytes(),
+            )?;
         }
         let names = self.problem.names();
         let pareto = &self.confirmed.pareto;
@@ -491,7 +499,7 @@ impl Outcome {
             .collect();
         write_file(
             &dir.join("pareto.json"),
-            serde_json::to_string_pretty(&json)?.as_bytes(),
+            json_text(&json, "the Pareto set")?.as_bytes(),
         )?;
         let mut hist =
             String::from("generation,evaluations,best_cv,best_goal,feasible_in_generation\n");
@@ -504,7 +512,7 @@ impl Outcome {
         write_file(&dir.join("history.csv"), hist.as_bytes())?;
         write_file(
             &dir.join("summary.json"),
-            serde_json::to_string_pretty(&self.summary())?.as_bytes(),
+            json_text(&self.summary(), "the summary")?.as_bytes(),
         )?;
         Ok(())
     }
@@ -534,15 +542,14 @@ pub fn sweep(
     to: f64,
     steps: usize,
     measures: &[Measure],
-) -> Result<Vec<SweepRow>, BoxError> {
+) -> Result<Vec<SweepRow>> {
     let anatomy_needed = measures.iter().any(|m| m.needs_anatomy());
     let p = noncirc_core::Param::parse(param, scene)?;
     if !(2..=MAX_SWEEP_STEPS).contains(&steps) || !from.is_finite() || !to.is_finite() {
-        return Err(InputError(format!(
+        return Err(Error::Input(format!(
             "sweep needs finite --from/--to and --steps from 2 to {MAX_SWEEP_STEPS} \
              (got {from}, {to}, {steps})"
-        ))
-        .into());
+        )));
     }
     let values: Vec<f64> = (0..steps)
         .map(|i| from + (to - from) * i as f64 / (steps - 1) as f64)

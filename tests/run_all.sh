@@ -10,8 +10,14 @@ cargo clippy --workspace --all-targets -- -D warnings
 echo "== the core builds for the browser (wasm32-unknown-unknown)"
 if command -v rustup >/dev/null; then rustup target add wasm32-unknown-unknown >/dev/null 2>&1 || true; fi
 cargo build -p noncirc-core --target wasm32-unknown-unknown
+echo "== the library builds without figures; the Python extension without the CLI's crates"
+cargo check -p noncirc --no-default-features
+if cargo tree -p noncirc-py -e normal | grep -E "^[^a-z]*(clap|indicatif|ctrlc|plotters) "; then
+  echo "the Python extension must not depend on the crates above" >&2
+  exit 1
+fi
 echo "== cargo test"
-cargo test --release          # default members: the core and the CLI (maturin builds the extension)
+cargo test --release          # default members: core, library, CLI (maturin builds the extension)
 # Benches compile and run once as tests (no timing).
 cargo test --release --benches
 

@@ -5,7 +5,7 @@ use noncirc::scene_file::load_scene;
 use noncirc::search::{Outcome, RunOptions, SearchSettings};
 
 /// A search with no observers of the caller's own.
-fn run(scene: &noncirc::core::Scene, opts: &RunOptions) -> Result<Outcome, noncirc::BoxError> {
+fn run(scene: &noncirc::core::Scene, opts: &RunOptions) -> noncirc::Result<Outcome> {
     noncirc::search::run(scene, opts, &mut [])
 }
 use std::sync::atomic::AtomicBool;

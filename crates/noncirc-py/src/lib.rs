@@ -43,6 +43,16 @@ fn core_err(e: noncirc::core::Error) -> PyErr {
     }
 }
 
+/// A library error: the core's and the scene's as above, files as `OSError`.
+fn lib_err(e: noncirc::Error) -> PyErr {
+    match e {
+        noncirc::Error::Core(e) => core_err(e),
+        noncirc::Error::Scene(e) => scene_err(e),
+        e @ noncirc::Error::File { .. } => pyo3::exceptions::PyOSError::new_err(e.to_string()),
+        other => err(other),
+    }
+}
+
 /// A scene-file or `--set` error: unknown keys become `UnknownNameError`.
 fn scene_err(e: noncirc::scene_file::SceneError) -> PyErr {
     match e {
@@ -91,7 +101,7 @@ impl Scene {
             return Err(err(format!("unknown built-in scene '{name}'")));
         }
         Ok(Self {
-            inner: load_scene(Some(name)).map_err(err)?,
+            inner: load_scene(Some(name)).map_err(scene_err)?,
         })
     }
 
@@ -143,7 +153,7 @@ impl Scene {
 
     /// Names of the search goals (all minimised).
     fn goal_names(&self) -> PyResult<Vec<String>> {
-        Ok(SceneProblem::new(&self.inner).map_err(err)?.goal_names())
+        Ok(SceneProblem::new(&self.inner).map_err(core_err)?.goal_names())
     }
 
     /// Names of the objectives this scene evaluates, in order.
@@ -181,7 +191,7 @@ fn resolution(
     if let Some(t) = closure_rel_tol {
         r.closure_rel_tol = t;
     }
-    r.validate().map_err(err)?;
+    r.validate().map_err(core_err)?;
     Ok(r)
 }
 
@@ -202,7 +212,7 @@ fn evaluate<'py>(
     let s = scene.inner.clone();
     let eval = py
         .allow_threads(|| Evaluator::new().evaluate_at(&s, &res))
-        .map_err(err)?;
+        .map_err(core_err)?;
     let out = PyDict::new(py);
     out.set_item("samples_per_turn", res.samples_per_turn)?;
     out.set_item("feasible", eval.total_violation() == 0.0)?;
@@ -302,7 +312,7 @@ fn measures(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 fn pool(threads: Option<usize>) -> PyResult<Option<Arc<rayon::ThreadPool>>> {
     static POOLS: OnceLock<Mutex<HashMap<usize, Arc<rayon::ThreadPool>>>> = OnceLock::new();
     let n = threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    noncirc::search::check_threads(n).map_err(err)?;
+    noncirc::search::check_threads(n).map_err(lib_err)?;
     if n == 1 {
         return Ok(None);
     }
@@ -333,7 +343,7 @@ fn evaluate_batch<'py>(
     closure_rel_tol: Option<f64>,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let problem = SceneProblem::new(&scene.inner).map_err(err)?;
+    let problem = SceneProblem::new(&scene.inner).map_err(core_err)?;
     let d = problem.dim();
     let array = x.downcast::<PyArray2<f64>>().map_err(|_| {
         let dtype = x
@@ -473,10 +483,10 @@ fn optimise<'py>(
     }
     .apply(&mut s)
     .map_err(core_err)?;
-    let opts = RunOptions::new(threads).map_err(err)?;
+    let opts = RunOptions::new(threads).map_err(lib_err)?;
     let outcome = py
         .allow_threads(|| noncirc::search::run(&s, &opts, &mut []))
-        .map_err(err)?;
+        .map_err(lib_err)?;
     let summary = outcome.summary();
     let json = serde_json::to_string(&summary).map_err(err)?;
     let out = py

@@ -9,7 +9,6 @@ use noncirc::core::{Control, Observer};
 use noncirc::report::{EvaluationReport, GearReport};
 use noncirc::scene_file::{load_scene_with, BUILTIN};
 use noncirc::search::{RunOptions, SearchSettings};
-use noncirc::InputError;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -205,9 +204,10 @@ fn main() -> ExitCode {
         Err(e) if is_broken_pipe(e.as_ref()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
-            let input = e.is::<InputError>()
-                || e.is::<noncirc::scene_file::SceneError>()
-                || e.is::<noncirc::core::Error>();
+            let input = e.downcast_ref::<noncirc::Error>().map_or(
+                e.is::<noncirc::scene_file::SceneError>() || e.is::<noncirc::core::Error>(),
+                noncirc::Error::is_input,
+            );
             ExitCode::from(if input { EXIT_INPUT } else { EXIT_RUNTIME })
         }
     }
@@ -258,7 +258,7 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
         .filter_map(|(name, given)| given.then_some(name))
         .collect();
         if !ignored.is_empty() {
-            return Err(InputError(format!(
+            return Err(noncirc::Error::Input(format!(
                 "--resume continues the checkpoint's own scene and search; {} would be \
                  ignored (only --budget, --threads and the output options apply to a resume)",
                 ignored.join(", ")
@@ -279,7 +279,7 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
     if !(args.checkpoint_every.is_finite()
         && (0.0..=MAX_CHECKPOINT_EVERY_S).contains(&args.checkpoint_every))
     {
-        return Err(InputError(format!(
+        return Err(noncirc::Error::Input(format!(
             "--checkpoint-every {}: expected seconds from 0 to {MAX_CHECKPOINT_EVERY_S:e}",
             args.checkpoint_every
         ))
@@ -301,8 +301,7 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
         bar: None,
         show: !args.quiet && args.scene.format == Format::Table,
     };
-    let outcome = noncirc::search::run(&scene, &opts, &mut [&mut progress])
-        .map_err(|e| e as Box<dyn std::error::Error>)?;
+    let outcome = noncirc::search::run(&scene, &opts, &mut [&mut progress])?;
     if let Some(bar) = progress.bar {
         bar.finish_and_clear();
     }
@@ -310,15 +309,15 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
         eprintln!("warning: {failure} (the search went on)");
     }
     if let Some(dir) = &args.out {
-        outcome.write(dir).map_err(|e| e.to_string())?;
+        outcome.write(dir)?;
     }
     if let Some(dir) = &args.scene.plot {
-        for f in noncirc::plots::search_figures(&outcome, dir).map_err(|e| e.to_string())? {
+        for f in noncirc::plots::search_figures(&outcome, dir)? {
             eprintln!("wrote {}", f.display());
         }
     }
     let summary = outcome.summary();
-    noncirc::report::check_finite(&summary).map_err(|e| e as Box<dyn std::error::Error>)?;
+    noncirc::report::check_finite(&summary)?;
     match args.scene.format {
         Format::Json => out(&json(&summary)?)?,
         Format::Table => out(&noncirc::report::summary_table(&summary))?,
@@ -335,7 +334,7 @@ fn plot_evaluation(
     eval: &noncirc::core::Evaluation,
     dir: &std::path::Path,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    for f in noncirc::plots::evaluation_outputs(scene, eval, dir).map_err(|e| e.to_string())? {
+    for f in noncirc::plots::evaluation_outputs(scene, eval, dir)? {
         eprintln!("wrote {}", f.display());
     }
     Ok(())
@@ -346,9 +345,9 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
         Command::Gear(args) => {
             let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
             let (report, pair) = GearReport::from_scene(&scene)?;
-            noncirc::report::check_finite(&report).map_err(|e| e as Box<dyn std::error::Error>)?;
+            noncirc::report::check_finite(&report)?;
             for dir in [&args.export, &args.scene.plot].into_iter().flatten() {
-                for f in noncirc::export::export_gears(&pair, dir).map_err(|e| e.to_string())? {
+                for f in noncirc::export::export_gears(&pair, dir)? {
                     eprintln!("wrote {}", f.display());
                 }
             }
@@ -364,14 +363,13 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
                 &scene.train,
                 &scene.resolution,
             )?;
-            noncirc::figures::animate(&kin, &args.out, args.frames)
-                .map_err(|e| e as Box<dyn std::error::Error>)?;
+            noncirc::figures::animate(&kin, &args.out, args.frames)?;
             eprintln!("wrote {}", args.out.display());
         }
         Command::Evaluate(args) => {
             let scene = load_scene_with(args.scene.as_deref(), &args.set)?;
             let (report, eval) = EvaluationReport::from_scene(&scene)?;
-            noncirc::report::check_finite(&report).map_err(|e| e as Box<dyn std::error::Error>)?;
+            noncirc::report::check_finite(&report)?;
             if let Some(dir) = &args.plot {
                 plot_evaluation(&scene, &eval, dir)?;
             }
@@ -391,16 +389,14 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             }
             let (report, eval) = EvaluationReport::from_scene(&box_scene)?;
             let b = report.moving_box.ok_or("this scene has no moving box")?;
-            noncirc::report::check_finite(&b).map_err(|e| e as Box<dyn std::error::Error>)?;
+            noncirc::report::check_finite(&b)?;
             if let Some(dir) = &args.plot {
                 std::fs::create_dir_all(dir)?;
                 let fig = noncirc::figures::BoxFigure {
                     spec: &box_scene.moving_box,
                     report: &b,
                 };
-                for f in noncirc::figures::save(&fig, &dir.join("moving_box"))
-                    .map_err(|e| e.to_string())?
-                {
+                for f in noncirc::figures::save(&fig, &dir.join("moving_box"))? {
                     eprintln!("wrote {}", f.display());
                 }
                 let _ = eval;
@@ -431,12 +427,9 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
                 args.to,
                 args.steps,
                 &measures,
-            )
-            .map_err(|e| e as Box<dyn std::error::Error>)?;
+            )?;
             if let Some(dir) = &args.scene.plot {
-                for f in noncirc::plots::sweep_figures(&scene, &args.param, &rows, dir)
-                    .map_err(|e| e.to_string())?
-                {
+                for f in noncirc::plots::sweep_figures(&scene, &args.param, &rows, dir)? {
                     eprintln!("wrote {}", f.display());
                 }
             }

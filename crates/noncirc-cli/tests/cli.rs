@@ -163,7 +163,7 @@ fn a_resume_refuses_flags_it_would_ignore() {
 fn a_checkpoint_never_overwrites_another_file() {
     let dir = temp("overwrite");
     let scene = dir.join("ps.toml");
-    let text = include_str!("../scenes/paper-search.toml");
+    let text = include_str!("../../../scenes/paper-search.toml");
     std::fs::write(&scene, text).unwrap();
     let output = noncirc()
         .args(["optimise", "--quiet", "--budget", "200"])
