@@ -1,6 +1,7 @@
 """Type stubs of the compiled extension."""
 
-from typing import Any, Optional
+import os
+from typing import Any, Callable, Optional
 
 import numpy as np
 import numpy.typing as npt
@@ -59,7 +60,7 @@ def evaluate_batch(
     """An (n, d) batch in parallel, GIL released: values, violations, cv, goals, valid."""
 
 def optimise(
-    scene: Scene,
+    scene: Optional[Scene] = None,
     *,
     algorithm: Optional[str] = None,
     seed: Optional[int] = None,
@@ -67,5 +68,14 @@ def optimise(
     population: Optional[int] = None,
     threads: Optional[int] = None,
     screening_samples_per_turn: Optional[int] = None,
+    progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,
+    checkpoint: Optional[str | os.PathLike[str]] = None,
+    checkpoint_every: float = 10.0,
+    resume: Optional[str | os.PathLike[str]] = None,
 ) -> dict[str, Any]:
-    """A search: summary (feasible, best, violations, evaluations, ...), pareto, best_scene."""
+    """A search: summary (feasible, best, violations, evaluations, stopped_early, ...),
+    pareto, best_scene. `progress(info)` after every generation (info: generation,
+    evaluations, budget, best_violation, feasible; return False to stop). Ctrl-C stops
+    after the current generation and raises KeyboardInterrupt. `checkpoint` writes the
+    state every `checkpoint_every` s and at the end; `resume` continues one (its scene and
+    settings; `budget` may be raised)."""

@@ -4,7 +4,7 @@
 use noncirc::core::Algorithm;
 use noncirc::core::Measure;
 use noncirc::core::SceneProblem;
-use noncirc::core::{Evaluator, Resolution};
+use noncirc::core::{Control, Evaluator, Observer, Resolution, SearchState};
 use noncirc::scene_file::{apply_overrides, load_scene, parse_scene, BUILTIN};
 use noncirc::search::{RunOptions, SearchSettings};
 use numpy::ndarray::{Array1, Array2};
@@ -153,7 +153,9 @@ impl Scene {
 
     /// Names of the search goals (all minimised).
     fn goal_names(&self) -> PyResult<Vec<String>> {
-        Ok(SceneProblem::new(&self.inner).map_err(core_err)?.goal_names())
+        Ok(SceneProblem::new(&self.inner)
+            .map_err(core_err)?
+            .goal_names())
     }
 
     /// Names of the objectives this scene evaluates, in order.
@@ -455,23 +457,69 @@ fn evaluate_batch<'py>(
     Ok(out)
 }
 
+/// The Python side of a search, an observer of the core's executor: after every
+/// generation it takes the GIL for a moment to check for Ctrl-C and to call the progress
+/// callback. Either stops the search cleanly (the checkpoint, if asked, is written); the
+/// error is raised once the search has stopped.
+struct PythonObserver {
+    progress: Option<PyObject>,
+    error: Option<PyErr>,
+}
+
+impl Observer for PythonObserver {
+    fn poll(&mut self, state: &SearchState, budget: u64) -> Control {
+        Python::with_gil(|py| {
+            let outcome = py.check_signals().and_then(|()| match &self.progress {
+                None => Ok(true),
+                Some(callback) => {
+                    let info = PyDict::new(py);
+                    info.set_item("generation", state.generation)?;
+                    info.set_item("evaluations", state.evaluations)?;
+                    info.set_item("budget", budget)?;
+                    info.set_item("best_violation", state.best.as_ref().map(|b| b.fitness.cv))?;
+                    info.set_item("feasible", state.best_confirmed.is_some())?;
+                    // Returning False stops the search; None or anything else goes on.
+                    let answer = callback.call1(py, (info,))?;
+                    let stop = (answer.bind(py).downcast::<pyo3::types::PyBool>())
+                        .is_ok_and(|b| !b.is_true());
+                    Ok(!stop)
+                }
+            });
+            match outcome {
+                Ok(true) => Control::Continue,
+                Ok(false) => Control::Stop,
+                Err(e) => {
+                    self.error = Some(e);
+                    Control::Stop
+                }
+            }
+        })
+    }
+}
+
 /// Runs a search (GIL released) and returns its summary and confirmed Pareto set.
+/// `progress(info)` is called after every generation (return False to stop); Ctrl-C stops
+/// the search after the current generation and raises `KeyboardInterrupt`. With
+/// `checkpoint`, the state is written there every `checkpoint_every` seconds and at the
+/// end; `resume` continues a checkpoint (its scene and settings; `budget` may be raised).
 #[pyfunction]
-#[pyo3(signature = (scene, *, algorithm = None, seed = None, budget = None, population = None, threads = None, screening_samples_per_turn = None))]
+#[pyo3(signature = (scene = None, *, algorithm = None, seed = None, budget = None, population = None, threads = None, screening_samples_per_turn = None, progress = None, checkpoint = None, checkpoint_every = 10.0, resume = None))]
 #[allow(clippy::too_many_arguments)]
 fn optimise<'py>(
     py: Python<'py>,
-    scene: &Scene,
+    scene: Option<&Scene>,
     algorithm: Option<&str>,
     seed: Option<u64>,
     budget: Option<u64>,
     population: Option<usize>,
     threads: Option<usize>,
     screening_samples_per_turn: Option<usize>,
+    progress: Option<PyObject>,
+    checkpoint: Option<std::path::PathBuf>,
+    checkpoint_every: f64,
+    resume: Option<std::path::PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let mut s = scene.inner.clone();
-    // The keywords override the scene's search settings, so the summary states what ran.
-    SearchSettings {
+    let settings = SearchSettings {
         algorithm: algorithm
             .map(Algorithm::parse)
             .transpose()
@@ -480,13 +528,58 @@ fn optimise<'py>(
         population,
         seed,
         screening_samples_per_turn,
+    };
+    let s =
+        match (scene, &resume) {
+            (Some(scene), None) => {
+                let mut s = scene.inner.clone();
+                // The keywords override the scene's search settings, so the summary states
+                // what ran.
+                settings.apply(&mut s).map_err(core_err)?;
+                s
+            }
+            (None, Some(_))
+                if settings.algorithm.is_none()
+                    && population.is_none()
+                    && seed.is_none()
+                    && screening_samples_per_turn.is_none() =>
+            {
+                // The checkpoint holds the scene; this one is not used.
+                noncirc::core::Scene::default()
+            }
+            (None, Some(_)) => {
+                return Err(err(
+                    "resume continues the checkpoint's own scene and search: only budget, \
+                 threads, progress and the checkpoint options apply",
+                ))
+            }
+            (Some(_), Some(_)) => return Err(err(
+                "give a scene or resume=, not both: a resumed search uses the checkpoint's scene",
+            )),
+            (None, None) => return Err(err("optimise needs a scene, or resume= a checkpoint")),
+        };
+    if !(checkpoint_every.is_finite() && checkpoint_every >= 0.0) {
+        return Err(err(format!(
+            "checkpoint_every = {checkpoint_every}: expected seconds, 0 or more"
+        )));
     }
-    .apply(&mut s)
-    .map_err(core_err)?;
-    let opts = RunOptions::new(threads).map_err(lib_err)?;
+    let opts = RunOptions {
+        checkpoint,
+        checkpoint_every: std::time::Duration::from_secs_f64(checkpoint_every.min(3.2e7)),
+        resume_budget: resume.as_ref().and(budget),
+        resume,
+        ..RunOptions::new(threads).map_err(lib_err)?
+    };
+    let mut observer = PythonObserver {
+        progress,
+        error: None,
+    };
     let outcome = py
-        .allow_threads(|| noncirc::search::run(&s, &opts, &mut []))
+        .allow_threads(|| noncirc::search::run(&s, &opts, &mut [&mut observer]))
         .map_err(lib_err)?;
+    if let Some(e) = observer.error {
+        return Err(e);
+    }
     let summary = outcome.summary();
     let json = serde_json::to_string(&summary).map_err(err)?;
     let out = py

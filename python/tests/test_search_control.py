@@ -1,0 +1,74 @@
+"""Long searches from Python: progress, a clean stop (callback or Ctrl-C), checkpoint and resume."""
+
+import os
+import signal
+import threading
+import time
+
+import pytest
+
+from noncirc import NoncircError, Scene, UnknownNameError, optimise
+
+SETTINGS = dict(algorithm="de", seed=5, budget=2400, population=24, threads=2)
+
+
+def test_progress_is_reported_after_every_generation():
+    calls = []
+    r = optimise(Scene.builtin("paper-search"), progress=calls.append, **SETTINGS)
+    assert not r["stopped_early"]
+    # Once before the first generation, then after each of the 100 generations of 24.
+    assert len(calls) == 1 + 2400 // 24
+    assert [c["evaluations"] for c in calls] == [24 * g for g in range(len(calls))]
+    assert all(c["budget"] == 2400 for c in calls)
+    assert calls[0]["best_violation"] is None and calls[-1]["best_violation"] is not None
+    assert calls[-1]["feasible"] == (r["first_feasible_evaluations"] is not None)
+
+
+def test_returning_false_stops_and_a_checkpoint_resumes_to_the_uninterrupted_result(tmp_path):
+    scene = Scene.builtin("paper-search")
+    whole = optimise(scene, **SETTINGS)
+    ckpt = tmp_path / "run.ckpt"
+    part = optimise(scene, progress=lambda info: info["generation"] < 30, checkpoint=ckpt, **SETTINGS)
+    assert part["stopped_early"] and part["evaluations"] == 30 * 24
+    resumed = optimise(resume=ckpt, threads=1)
+    for key in ["best", "objectives", "evaluations", "confirmations", "first_feasible_evaluations"]:
+        assert resumed[key] == whole[key], key
+    # A resumed search runs the checkpoint's own settings: others are refused, not ignored.
+    with pytest.raises(NoncircError, match="only budget"):
+        optimise(resume=ckpt, seed=6)
+    with pytest.raises(NoncircError, match="not both"):
+        optimise(scene, resume=ckpt)
+
+
+def test_an_error_in_the_callback_stops_the_search_and_is_raised():
+    def broken(info):
+        if info["generation"] == 3:
+            raise RuntimeError("callback broke")
+
+    with pytest.raises(RuntimeError, match="callback broke"):
+        optimise(Scene.builtin("paper-search"), progress=broken, **SETTINGS)
+
+
+def test_ctrl_c_stops_after_the_current_generation_and_keeps_the_checkpoint(tmp_path):
+    ckpt = tmp_path / "run.ckpt"
+    sent = []
+
+    def interrupt():
+        time.sleep(0.3)
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    threading.Thread(target=interrupt).start()
+    with pytest.raises(KeyboardInterrupt):
+        optimise(Scene.builtin("paper-search"), checkpoint=ckpt, **{**SETTINGS, "budget": 10**8})
+    latency = time.monotonic() - sent[0]
+    # Generations take milliseconds: the stop is well within the promised half second
+    # (the bound here is loose so that a loaded machine does not fail it).
+    assert latency < 2.0, latency
+    resumed = optimise(resume=ckpt, budget=(24 * 10), threads=1)
+    assert resumed["evaluations"] >= 24
+
+
+def test_unknown_algorithm_is_an_unknown_name():
+    with pytest.raises(UnknownNameError, match="cmaes"):
+        optimise(Scene.builtin("paper-search"), algorithm="cmaez")
