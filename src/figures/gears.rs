@@ -1,0 +1,210 @@
+//! The train's pitch curves on the carrier at one carrier angle, and the mechanism turning (GIF).
+
+use super::*;
+
+fn place(outline: &[[f64; 2]], centre: [f64; 2], angle: f64) -> Vec<(f64, f64)> {
+    let (s, c) = angle.sin_cos();
+    outline
+        .iter()
+        .chain(outline.first())
+        .map(|p| {
+            (
+                centre[0] + c * p[0] - s * p[1],
+                centre[1] + s * p[0] + c * p[1],
+            )
+        })
+        .collect()
+}
+
+/// Sun outline in its own frame.
+fn sun_outline(curve: &PitchCurve, n: usize) -> Vec<[f64; 2]> {
+    (0..n)
+        .map(|j| {
+            let psi = TAU * j as f64 / n as f64;
+            let r = curve.eval(psi).rho;
+            [r * psi.cos(), r * psi.sin()]
+        })
+        .collect()
+}
+
+/// Gears on the carrier at carrier angle `theta`, with the ratio and attitude over the cycle.
+pub struct GearsFigure<'a> {
+    pub kin: &'a Kinematics,
+    pub theta: f64,
+}
+
+impl Figure for GearsFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        (1200, 600)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        let kin = self.kin;
+        root.fill(&WHITE).map_err(err)?;
+        let (left, right) = root.split_horizontally(600);
+        let (top, bottom) = right.split_vertically(300);
+        draw_train(
+            &left,
+            kin,
+            self.theta,
+            &format!(
+                "Pitch curves on the carrier at θ = {:.0}°",
+                self.theta.to_degrees()
+            ),
+        )?;
+        let n = kin.len();
+        let ratio: Vec<(f64, f64)> = (0..n)
+            .map(|j| {
+                let r = kin.pair().samples()[j].rho;
+                (kin.theta(j).to_degrees(), (kin.centre_distance() - r) / r)
+            })
+            .collect();
+        let rmax = ratio.iter().map(|p| p.1).fold(0.0, f64::max);
+        let mut c = ChartBuilder::on(&top)
+            .caption(
+                "Transmission ratio i12 = (a − ρ)/ρ at the sun mesh",
+                (FONT, 16),
+            )
+            .margin(8)
+            .x_label_area_size(30)
+            .y_label_area_size(45)
+            .build_cartesian_2d(0.0..360.0, 0.0..rmax * 1.05)
+            .map_err(err)?;
+        c.configure_mesh()
+            .x_desc("carrier angle (°)")
+            .label_style((FONT, 12))
+            .draw()
+            .map_err(err)?;
+        c.draw_series(LineSeries::new(ratio, BLUE.stroke_width(2)))
+            .map_err(err)?;
+        let attitude: Vec<(f64, f64)> = (0..n)
+            .map(|j| {
+                (
+                    kin.theta(j).to_degrees(),
+                    noncirc_core::attitude_deg(kin.pusher_angle(kin.planet_angles()[j])),
+                )
+            })
+            .collect();
+        let mut c = ChartBuilder::on(&bottom)
+            .caption(
+                "Arm attitude (dip of the pusher axis below horizontal)",
+                (FONT, 16),
+            )
+            .margin(8)
+            .x_label_area_size(30)
+            .y_label_area_size(45)
+            .build_cartesian_2d(0.0..360.0, -90.0..90.0)
+            .map_err(err)?;
+        c.configure_mesh()
+            .x_desc("carrier angle (°)")
+            .y_desc("°")
+            .label_style((FONT, 12))
+            .draw()
+            .map_err(err)?;
+        c.draw_series(LineSeries::new(attitude, RED.stroke_width(2)))
+            .map_err(err)?;
+        Ok(())
+    }
+}
+
+/// Draws the sun, the three intermediates and planets, and the arms at carrier angle `theta`.
+fn draw_train<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    kin: &Kinematics,
+    theta: f64,
+    caption: &str,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let curve = kin.curve();
+    let sun = sun_outline(curve, kin.len());
+    let inter = kin.pair().driven_points();
+    let mut shapes: Vec<(Vec<(f64, f64)>, RGBColor)> = vec![(
+        place(&sun, [0.0, 0.0], kin.spec().sun_angle()),
+        RGBColor(60, 60, 60),
+    )];
+    let mut arms = Vec::new();
+    for (k, &colour) in ARM_COLOURS.iter().enumerate() {
+        let st = kin.state_at(theta - k as f64 * TAU / 3.0);
+        shapes.push((place(&inter, st.o2, st.theta2), colour));
+        shapes.push((place(&sun, st.o3, st.theta3), colour));
+        arms.push(([st.o3, st.tip], colour));
+    }
+    let pts = shapes
+        .iter()
+        .flat_map(|(s, _)| s.iter().map(|p| [p.0, p.1]))
+        .chain(arms.iter().flat_map(|(a, _)| a.iter().copied()));
+    let (w, h) = (
+        area.dim_in_pixel().0 as f64 - 70.0,
+        area.dim_in_pixel().1 as f64 - 80.0,
+    );
+    let ((x0, x1), (y0, y1)) = equal_ranges(pts, w, h, 10.0);
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, (FONT, 18))
+        .margin(10)
+        .x_label_area_size(30)
+        .y_label_area_size(45)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("x (mm)")
+        .y_desc("y (mm)")
+        .label_style((FONT, 12))
+        .draw()
+        .map_err(err)?;
+    for (shape, colour) in shapes {
+        chart
+            .draw_series(LineSeries::new(shape, colour.stroke_width(2)))
+            .map_err(err)?;
+    }
+    for ([a, b], colour) in arms {
+        chart
+            .draw_series(LineSeries::new(
+                [(a[0], a[1]), (b[0], b[1])],
+                colour.stroke_width(5),
+            ))
+            .map_err(err)?;
+        chart
+            .draw_series(std::iter::once(Circle::new(
+                (b[0], b[1]),
+                4,
+                colour.filled(),
+            )))
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// Most frames of an animation (a frame per 0.1° of carrier turn).
+pub const MAX_FRAMES: usize = 3600;
+
+/// `noncirc animate`: the mechanism turning, gears and arms drawn, as a GIF.
+pub fn animate(kin: &Kinematics, path: &Path, frames: usize) -> Result<()> {
+    if !(2..=MAX_FRAMES).contains(&frames) {
+        return Err(Error::Input(format!(
+            "--frames {frames}: expected 2 to {MAX_FRAMES}"
+        )));
+    }
+    register_font()?;
+    // Open the file first: plotters reports a failure as a debug dump.
+    std::fs::File::create(path).map_err(|e| Error::file("write", path, e))?;
+    let root = BitMapBackend::gif(path, (640, 640), 60)
+        .map_err(err)?
+        .into_drawing_area();
+    for f in 0..frames {
+        let theta = TAU * f as f64 / frames as f64;
+        root.fill(&WHITE).map_err(err)?;
+        draw_train(
+            &root,
+            kin,
+            theta,
+            &format!("θ = {:5.1}°", theta.to_degrees()),
+        )?;
+        root.present().map_err(err)?;
+    }
+    Ok(())
+}

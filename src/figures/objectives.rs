@@ -1,0 +1,86 @@
+//! Every objective's value against its admissible range.
+
+use super::*;
+
+/// Each objective as a bar against its bounds (the paper's progress bars).
+pub struct ObjectivesFigure<'a> {
+    pub objectives: &'a [ObjectiveValue],
+    pub scene: &'a Scene,
+}
+
+impl Figure for ObjectivesFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        (1000, 80 + 60 * self.objectives.len() as u32)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE).map_err(err)?;
+        let m = self.objectives.len().max(1) as f64;
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                "Objectives against their bounds (bound = 0; two-sided ranges span 0..1)",
+                (FONT, 18),
+            )
+            .margin(12)
+            .x_label_area_size(35)
+            .y_label_area_size(10)
+            .build_cartesian_2d(-1.5..2.5, 0.0..m)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .disable_y_mesh()
+            .disable_y_axis()
+            .x_desc("position relative to the bounds")
+            .label_style((FONT, 12))
+            .draw()
+            .map_err(err)?;
+        for (i, o) in self.objectives.iter().enumerate() {
+            let y = m - i as f64 - 0.5;
+            let scale = noncirc_core::scale(o.kind, &self.scene.bounds);
+            let (lo, hi, x) = match (o.lower, o.upper) {
+                (Some(l), Some(u)) => (0.0, 1.0, (o.value - l) / (u - l)),
+                (Some(l), None) => (0.0, 2.5, (o.value - l) / (scale * 10.0)),
+                (None, Some(u)) => (-1.5, 0.0, (o.value - u) / (scale * 10.0)),
+                (None, None) => (-1.5, 2.5, 0.0),
+            };
+            let x = x.clamp(-1.45, 2.45);
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(lo, y - 0.3), (hi, y + 0.3)],
+                    RGBColor(210, 235, 210).filled(),
+                )))
+                .map_err(err)?;
+            let colour = if o.violation == 0.0 {
+                RGBColor(30, 140, 50)
+            } else {
+                RGBColor(200, 30, 30)
+            };
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x - 0.02, y - 0.35), (x + 0.02, y + 0.35)],
+                    colour.filled(),
+                )))
+                .map_err(err)?;
+            let status = if o.violation == 0.0 {
+                "met".to_string()
+            } else {
+                format!("missed by {:.2}", o.violation)
+            };
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    format!(
+                        "{}: {:.2} {} ({status})",
+                        o.kind.label(),
+                        o.value,
+                        o.kind.unit()
+                    ),
+                    (-1.45, y + 0.42),
+                    (FONT, 14),
+                )))
+                .map_err(err)?;
+        }
+        Ok(())
+    }
+}
