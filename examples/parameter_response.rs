@@ -99,7 +99,7 @@ fn main() -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
                     .tips()
                     .iter()
                     .chain(kin.tips().first())
-                    .map(|t| (t[0], t[1]))
+                    .map(|&t| t.into())
                     .collect();
                 series.push((format!("{name} = {v:.1}"), pts));
             }

@@ -1,7 +1,7 @@
 //! Export for CAD and multibody tools: pitch curves as CSV, SVG and DXF (mm, each gear in
 //! its own frame, centre at the origin), and the tip trajectory as CSV.
 
-use noncirc_core::{GearPair, Kinematics};
+use noncirc_core::{GearPair, Kinematics, Vec2};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -11,7 +11,7 @@ use crate::Result;
 /// A named closed polyline in mm.
 pub struct Outline {
     pub name: &'static str,
-    pub points: Vec<[f64; 2]>,
+    pub points: Vec<Vec2>,
 }
 
 /// The driving gear (sun and planets) and the driven gear (intermediates), each in its own
@@ -39,7 +39,7 @@ pub fn dxf(outlines: &[Outline]) -> String {
             "0\nPOLYLINE\n8\n{}\n66\n1\n70\n1\n10\n0.0\n20\n0.0\n30\n0.0\n",
             o.name
         );
-        for [x, y] in &o.points {
+        for &Vec2 { x, y } in &o.points {
             let _ = write!(
                 s,
                 "0\nVERTEX\n8\n{}\n10\n{x:.9}\n20\n{y:.9}\n30\n0.0\n",
@@ -60,10 +60,10 @@ pub fn svg(outlines: &[Outline]) -> String {
         f64::NEG_INFINITY,
     );
     for p in outlines.iter().flat_map(|o| &o.points) {
-        x0 = x0.min(p[0]);
-        x1 = x1.max(p[0]);
-        y0 = y0.min(p[1]);
-        y1 = y1.max(p[1]);
+        x0 = x0.min(p.x);
+        x1 = x1.max(p.x);
+        y0 = y0.min(p.y);
+        y1 = y1.max(p.y);
     }
     let gap = 0.1 * (x1 - x0);
     let width: f64 = outlines.len() as f64 * (x1 - x0 + gap);
@@ -76,7 +76,7 @@ pub fn svg(outlines: &[Outline]) -> String {
         let d: Vec<String> = o
             .points
             .iter()
-            .map(|[x, y]| format!("{:.6},{:.6}", x + dx, y1 - y))
+            .map(|Vec2 { x, y }| format!("{:.6},{:.6}", x + dx, y1 - y))
             .collect();
         let _ = writeln!(
             s,
@@ -88,9 +88,9 @@ pub fn svg(outlines: &[Outline]) -> String {
     s + "</svg>\n"
 }
 
-fn csv(points: &[[f64; 2]]) -> String {
+fn csv(points: &[Vec2]) -> String {
     let mut s = String::from("x_mm,y_mm\n");
-    for [x, y] in points {
+    for Vec2 { x, y } in points {
         let _ = writeln!(s, "{x:.9},{y:.9}");
     }
     s
@@ -135,10 +135,10 @@ pub fn export_trajectory(kin: &Kinematics, dir: &Path) -> Result<PathBuf> {
             s,
             "{:.6},{:.9},{:.9},{:.9},{:.9},{:.9},{:.9}",
             kin.theta(j).to_degrees(),
-            t[0],
-            t[1],
-            o[0],
-            o[1],
+            t.x,
+            t.y,
+            o.x,
+            o.y,
             th.to_degrees(),
             att
         );

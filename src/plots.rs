@@ -117,7 +117,7 @@ pub fn sweep_figures(
                 .tips()
                 .iter()
                 .chain(kin.tips().first())
-                .map(|t| (t[0], t[1]))
+                .map(|&t| t.into())
                 .collect();
             series.push((format!("{param} = {:.3}", r.value), pts));
         }

@@ -187,8 +187,8 @@ impl From<&Events> for EventsRow {
         Self {
             picking_carrier_deg: e.picking.carrier_rad.to_degrees(),
             planting_carrier_deg: e.planting.carrier_rad.to_degrees(),
-            picking_tip_mm: e.picking.tip_mm,
-            planting_tip_mm: e.planting.tip_mm,
+            picking_tip_mm: e.picking.tip_mm.into(),
+            planting_tip_mm: e.planting.tip_mm.into(),
             picking_attitude_deg: e.picking.attitude_deg,
             planting_attitude_deg: e.planting.attitude_deg,
             picking_window_deg: [

@@ -97,14 +97,14 @@ fn dxf_reads_back_the_pitch_curves() {
             .points
             .iter()
             .zip(pts)
-            .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+            .map(|(&a, &b)| (a - b.into()).hypot())
             .fold(0.0, f64::max);
         assert!(worst < 1e-6, "{}: {worst} mm", o.name);
     }
     // The driven outline is the conjugate: its radius at each node is a − ρ.
     let a = pair.centre_distance();
     for (p, q) in pair.samples().iter().zip(&expected[1].points) {
-        assert!((q[0].hypot(q[1]) - (a - p.rho)).abs() < 1e-9);
+        assert!((q.hypot() - (a - p.rho)).abs() < 1e-9);
     }
     check_file(&dir.join("pitch_curves.svg"));
     std::fs::remove_dir_all(dir).ok();

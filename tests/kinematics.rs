@@ -3,10 +3,10 @@
 //! contact point on the line of centres; the curves are tangent there; the material points'
 //! velocities agree. Run for both rotation senses, both sun frames and several designs.
 
-use noncirc::core::unit;
-use noncirc::core::{CurveSpec, PitchCurve};
-use noncirc::core::{GearPair, Resolution};
-use noncirc::core::{Kinematics, Rotation, SunFrame, TrainSpec};
+use noncirc::core::{
+    unit, CurveSpec, GearPair, Kinematics, PitchCurve, Resolution, Rotation, SunFrame, TrainSpec,
+    Vec2,
+};
 use std::f64::consts::{PI, TAU};
 
 /// The intermediate's own pitch curve: the material point of sun parameter ψ at own angle
@@ -51,9 +51,9 @@ fn mesh_errors(spec: &CurveSpec, train: &TrainSpec, samples: usize) -> (f64, f64
     for j in 0..kin.len() {
         let theta = kin.theta(j) + 0.37 * TAU / kin.len() as f64;
         let s = kin.state_at(theta);
-        let dir = |p: [f64; 2], q: [f64; 2]| (q[1] - p[1]).atan2(q[0] - p[0]);
+        let dir = |p: Vec2, q: Vec2| (q.y - p.y).atan2(q.x - p.x);
         // Mesh 1: sun (fixed, turned by sun_angle) and intermediate, on the line O1 O2.
-        let phi_h = dir([0.0, 0.0], s.o2);
+        let phi_h = dir(Vec2::ZERO, s.o2);
         let chi1 = phi_h + PI - s.theta2;
         let r_sun = sun.eval(phi_h - sun_angle).rho;
         let r_int = inter.eval(chi1).rho;
@@ -71,19 +71,11 @@ fn mesh_errors(spec: &CurveSpec, train: &TrainSpec, samples: usize) -> (f64, f64
         let t_p = tangent(&sun, s.theta3, chi3);
         tang = tang.max(wrap(2.0 * (t_i - t_p)).abs() / 2.0);
         // Velocities of the two material points at the mesh-2 contact (central differences).
-        let c = [
-            s.o2[0] + ri * unit(toward_o3)[0],
-            s.o2[1] + ri * unit(toward_o3)[1],
-        ];
+        let c = s.o2 + unit(toward_o3) * ri;
         let h = 1e-5;
         // Where the material point now at `c` is when its body sits at (centre2, angle2).
-        let moved = |centre: [f64; 2], angle: f64, centre2: [f64; 2], angle2: f64| {
-            let rel = [c[0] - centre[0], c[1] - centre[1]];
-            let rot = unit(angle2 - angle);
-            [
-                centre2[0] + rot[0] * rel[0] - rot[1] * rel[1],
-                centre2[1] + rot[1] * rel[0] + rot[0] * rel[1],
-            ]
+        let moved = |centre: Vec2, angle: f64, centre2: Vec2, angle2: f64| {
+            centre2 + (c - centre).rotated(unit(angle2 - angle))
         };
         let (sp, sm) = (kin.state_at(theta + h), kin.state_at(theta - h));
         let vi = {
@@ -91,28 +83,22 @@ fn mesh_errors(spec: &CurveSpec, train: &TrainSpec, samples: usize) -> (f64, f64
                 moved(s.o2, s.theta2, sp.o2, sp.theta2),
                 moved(s.o2, s.theta2, sm.o2, sm.theta2),
             );
-            [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)]
+            (p - m) * (0.5 / h)
         };
         let vp = {
             let (p, m) = (
                 moved(s.o3, s.theta3, sp.o3, sp.theta3),
                 moved(s.o3, s.theta3, sm.o3, sm.theta3),
             );
-            [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)]
+            (p - m) * (0.5 / h)
         };
-        vel = vel.max((vi[0] - vp[0]).hypot(vi[1] - vp[1]));
+        vel = vel.max((vi - vp).hypot());
         // Mesh 1 velocity: the intermediate's point at C1 must be at rest (the sun is fixed).
-        let c1 = [r_sun * unit(phi_h)[0], r_sun * unit(phi_h)[1]];
-        let moved1 = |st: &noncirc::core::ArmState| {
-            let rel = [c1[0] - s.o2[0], c1[1] - s.o2[1]];
-            let rot = unit(st.theta2 - s.theta2);
-            [
-                st.o2[0] + rot[0] * rel[0] - rot[1] * rel[1],
-                st.o2[1] + rot[1] * rel[0] + rot[0] * rel[1],
-            ]
-        };
+        let c1 = unit(phi_h) * r_sun;
+        let moved1 =
+            |st: &noncirc::core::ArmState| st.o2 + (c1 - s.o2).rotated(unit(st.theta2 - s.theta2));
         let (p, m) = (moved1(&sp), moved1(&sm));
-        vel = vel.max(((p[0] - m[0]) / (2.0 * h)).hypot((p[1] - m[1]) / (2.0 * h)));
+        vel = vel.max(((p - m) * (0.5 / h)).hypot());
     }
     (radius, tang, vel)
 }
@@ -203,7 +189,7 @@ fn the_train_pair_is_the_gear_pair_on_the_carrier_grid() {
     for (j, (p, q)) in pair.samples().iter().zip(&ours).enumerate() {
         let k = (n - j) % n;
         assert!((p.rho - standard.samples()[k].rho).abs() < 1e-12);
-        let gap = (q[0] - theirs[k][0]).hypot(q[1] - theirs[k][1]);
+        let gap = (*q - theirs[k]).hypot();
         assert!(gap < 1e-8, "node {j}: driven points {gap:e} mm apart");
     }
     // The module read from the train is the gear command's module.

@@ -195,7 +195,7 @@ fn groove_development_is_the_rotated_sine() {
     let period = TAU / spec.omega();
     for m in 0..4 {
         let t = m as f64 * period / 2.0;
-        let [x, y] = spec.groove_point(t);
+        let noncirc::core::Vec2 { x, y } = spec.groove_point(t);
         assert!((x - t * s).abs() < 1e-12 && (y - t * c).abs() < 1e-12);
     }
 }

@@ -78,7 +78,7 @@ fn events_are_located_to_sub_sample_accuracy() {
             f.carrier_rad
         );
         assert!((c.attitude_deg - f.attitude_deg).abs() < 0.01);
-        assert!((c.tip_mm[0] - f.tip_mm[0]).hypot(c.tip_mm[1] - f.tip_mm[1]) < 0.01);
+        assert!((c.tip_mm - f.tip_mm).hypot() < 0.01);
     }
     // At the refined planting point the tip's vertical velocity vanishes.
     let kin = Kinematics::solve(
@@ -88,7 +88,7 @@ fn events_are_located_to_sub_sample_accuracy() {
     )
     .unwrap();
     let ev = events(&kin, &Agronomy::default());
-    assert!(kin.state_at(ev.planting.carrier_rad).tip_d1[1].abs() < 1e-6);
+    assert!(kin.state_at(ev.planting.carrier_rad).tip_d1.y.abs() < 1e-6);
 }
 
 /// Both rotation senses trace the same closed trajectory, in opposite directions.
@@ -108,7 +108,7 @@ fn rotation_senses_trace_one_curve_backwards() {
     let n = cw.len();
     for j in 0..n {
         let (p, q) = (cw.tips()[j], ccw.tips()[(n - j) % n]);
-        assert!((p[0] - q[0]).hypot(p[1] - q[1]) < 1e-6, "node {j}");
+        assert!((p - q).hypot() < 1e-6, "node {j}");
     }
 }
 

@@ -106,15 +106,15 @@ fn phi0_only_turns_the_trajectory() {
     let base = e0.kinematics.as_ref().unwrap().tips();
     for (s, e, _) in &rows[1..] {
         let delta = (s.train.phi0_deg - s0.train.phi0_deg).to_radians();
-        let (c, sn) = (delta.cos(), delta.sin());
+        let turn = noncirc::core::unit(delta);
         let tips = e.kinematics.as_ref().unwrap().tips();
         // The same carrier angle after the turn: the trajectories are the same set of
         // points, so compare each turned base point with the nearest of the other.
         for p in base.iter().step_by(7) {
-            let q = [c * p[0] - sn * p[1], sn * p[0] + c * p[1]];
+            let q = p.rotated(turn);
             let nearest = tips
                 .iter()
-                .map(|t| (t[0] - q[0]).hypot(t[1] - q[1]))
+                .map(|&t| (t - q).hypot())
                 .fold(f64::INFINITY, f64::min);
             let spacing = 2.0 * std::f64::consts::PI * 300.0 / tips.len() as f64;
             assert!(nearest < spacing, "Φ0 {}: {nearest} mm", s.train.phi0_deg);
@@ -146,7 +146,7 @@ fn s_moves_the_trajectory_away_from_the_mechanism() {
         .iter()
         .map(|(_, e, _)| {
             let tips = e.kinematics.as_ref().unwrap().tips();
-            tips.iter().map(|t| t[0].hypot(t[1])).collect()
+            tips.iter().map(|t| t.hypot()).collect()
         })
         .collect();
     let mean: Vec<f64> = distances

@@ -44,7 +44,7 @@ fn the_default_design_picks_where_a_machine_can() {
     // The tip is outside the gearbox: farther from the carrier axis than the housing.
     let kin = eval.kinematics.as_ref().unwrap();
     let tip = ev.picking.tip_mm;
-    assert!(tip[0].hypot(tip[1]) > housing_radius(kin, &s.agronomy) + 15.0);
+    assert!(tip.hypot() > housing_radius(kin, &s.agronomy) + 15.0);
     let pins = [
         (ObjectiveKind::PickingAdmissible, 51.9908, 0.01),
         (ObjectiveKind::PickingAngle, 0.2970, 1e-3),
@@ -155,7 +155,7 @@ fn path_length(eval: &Evaluation) -> f64 {
     (0..n)
         .map(|j| {
             let (p, q) = (tips[j], tips[(j + 1) % n]);
-            (q[0] - p[0]).hypot(q[1] - p[1])
+            (q - p).hypot()
         })
         .sum()
 }
@@ -248,13 +248,13 @@ fn planting_ground_speed_matches_finite_differences() {
     let t = eval.events.unwrap().planting.carrier_rad;
     let h = 1e-5;
     let advance = 3.0 * s.agronomy.plant_spacing_mm / std::f64::consts::TAU;
-    let forward = -kin.state_at(t).tip_d1[0].signum();
+    let forward = -kin.state_at(t).tip_d1.x.signum();
     let ground = |u: f64| {
         let p = kin.state_at(u).tip;
-        [forward * p[0] + advance * u, p[1]]
+        noncirc::core::Vec2::new(forward * p.x + advance * u, p.y)
     };
     let (p, q) = (ground(t + h), ground(t - h));
-    let speed = ((p[0] - q[0]).hypot(p[1] - q[1]) / (2.0 * h)) * kin.carrier_speed() / 1000.0;
+    let speed = ((p - q).hypot() / (2.0 * h)) * kin.carrier_speed() / 1000.0;
     assert!(
         (speed - a.planting_ground_speed_m_s).abs() < 1e-6,
         "{speed} vs {}",

@@ -2,27 +2,20 @@
 
 use super::*;
 
-fn place(outline: &[[f64; 2]], centre: [f64; 2], angle: f64) -> Vec<(f64, f64)> {
+fn place(outline: &[Vec2], centre: Vec2, angle: f64) -> Vec<(f64, f64)> {
     let (s, c) = angle.sin_cos();
-    outline
-        .iter()
-        .chain(outline.first())
-        .map(|p| {
-            (
-                centre[0] + c * p[0] - s * p[1],
-                centre[1] + s * p[0] + c * p[1],
-            )
-        })
+    (outline.iter().chain(outline.first()))
+        .map(|p| (centre.x + c * p.x - s * p.y, centre.y + s * p.x + c * p.y))
         .collect()
 }
 
 /// Sun outline in its own frame.
-fn sun_outline(curve: &PitchCurve, n: usize) -> Vec<[f64; 2]> {
+fn sun_outline(curve: &PitchCurve, n: usize) -> Vec<Vec2> {
     (0..n)
         .map(|j| {
             let psi = TAU * j as f64 / n as f64;
             let r = curve.eval(psi).rho;
-            [r * psi.cos(), r * psi.sin()]
+            Vec2::new(r * psi.cos(), r * psi.sin())
         })
         .collect()
 }
@@ -123,7 +116,7 @@ where
     let sun = sun_outline(curve, kin.len());
     let inter = kin.pair().driven_points();
     let mut shapes: Vec<(Vec<(f64, f64)>, RGBColor)> = vec![(
-        place(&sun, [0.0, 0.0], kin.spec().sun_angle()),
+        place(&sun, Vec2::ZERO, kin.spec().sun_angle()),
         RGBColor(60, 60, 60),
     )];
     let mut arms = Vec::new();
@@ -135,7 +128,7 @@ where
     }
     let pts = shapes
         .iter()
-        .flat_map(|(s, _)| s.iter().map(|p| [p.0, p.1]))
+        .flat_map(|(s, _)| s.iter().map(|&(x, y)| Vec2::new(x, y)))
         .chain(arms.iter().flat_map(|(a, _)| a.iter().copied()));
     let (w, h) = (
         area.dim_in_pixel().0 as f64 - 70.0,
@@ -164,16 +157,12 @@ where
     for ([a, b], colour) in arms {
         chart
             .draw_series(LineSeries::new(
-                [(a[0], a[1]), (b[0], b[1])],
+                [a.into(), b.into()],
                 colour.stroke_width(5),
             ))
             .map_err(err)?;
         chart
-            .draw_series(std::iter::once(Circle::new(
-                (b[0], b[1]),
-                4,
-                colour.filled(),
-            )))
+            .draw_series(std::iter::once(Circle::new(b.into(), 4, colour.filled())))
             .map_err(err)?;
     }
     Ok(())

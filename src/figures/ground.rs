@@ -15,7 +15,7 @@ fn travel_sign(kin: &Kinematics, ev: &Events, travel: Travel) -> f64 {
         Travel::PlusX => 1.0,
         Travel::MinusX => -1.0,
         Travel::Auto => {
-            if kin.state_at(ev.planting.carrier_rad).tip_d1[0] > 0.0 {
+            if kin.state_at(ev.planting.carrier_rad).tip_d1.x > 0.0 {
                 -1.0
             } else {
                 1.0
@@ -40,11 +40,11 @@ impl Figure for GroundFigure<'_> {
         let turns = 2usize;
         let mut curves = Vec::new();
         for k in 0..3 {
-            let pts: Vec<[f64; 2]> = (0..=turns * n)
+            let pts: Vec<Vec2> = (0..=turns * n)
                 .map(|j| {
                     let theta = TAU * j as f64 / n as f64;
                     let p = kin.tips()[kin.arm_node(k, j % n)];
-                    [p[0] + sign * advance * theta, p[1]]
+                    p + Vec2::new(sign * advance * theta, 0.0)
                 })
                 .collect();
             curves.push(pts);
@@ -82,7 +82,7 @@ impl Figure for GroundFigure<'_> {
         for (k, pts) in curves.iter().enumerate() {
             chart
                 .draw_series(LineSeries::new(
-                    pts.iter().map(|p| (p[0], p[1])),
+                    pts.iter().map(|&p| p.into()),
                     ARM_COLOURS[k].stroke_width(2),
                 ))
                 .map_err(err)?
@@ -97,10 +97,10 @@ impl Figure for GroundFigure<'_> {
             if theta > turns as f64 * TAU {
                 continue;
             }
-            let x = ev.planting.tip_mm[0] + sign * advance * theta;
+            let x = ev.planting.tip_mm.x + sign * advance * theta;
             let (bottom, top) = (
-                ev.planting.tip_mm[1],
-                ev.planting.tip_mm[1] + agro.seedling_height_mm,
+                ev.planting.tip_mm.y,
+                ev.planting.tip_mm.y + agro.seedling_height_mm,
             );
             chart
                 .draw_series(LineSeries::new(

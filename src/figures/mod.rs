@@ -1,14 +1,10 @@
 //! Figures (SVG and PNG, plotters) and the animation (GIF). Text uses DejaVu Sans, embedded
 //! in the binary, so rendering needs no system font or package.
 
-use noncirc_core::unit;
-use noncirc_core::Events;
-use noncirc_core::Kinematics;
-use noncirc_core::PitchCurve;
-use noncirc_core::Travel;
-use noncirc_core::{anatomy, Section};
-use noncirc_core::{box_curves, BoxReport, BoxSpec};
-use noncirc_core::{Evaluation, ObjectiveValue, Scene};
+use noncirc_core::{
+    anatomy, box_curves, unit, BoxReport, BoxSpec, Evaluation, Events, Kinematics, ObjectiveValue,
+    PitchCurve, Scene, Section, Travel, Vec2,
+};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -101,7 +97,7 @@ pub fn save(fig: &impl Figure, base: &Path) -> Result<Vec<PathBuf>> {
 
 /// Axis ranges with equal scale in x and y for a plot area of `w × h` pixels.
 fn equal_ranges(
-    points: impl Iterator<Item = [f64; 2]>,
+    points: impl Iterator<Item = Vec2>,
     w: f64,
     h: f64,
     pad: f64,
@@ -112,7 +108,7 @@ fn equal_ranges(
         f64::INFINITY,
         f64::NEG_INFINITY,
     );
-    for [x, y] in points {
+    for Vec2 { x, y } in points {
         x0 = x0.min(x);
         x1 = x1.max(x);
         y0 = y0.min(y);

@@ -10,7 +10,7 @@ fn section_points(kin: &Kinematics, span_deg: [f64; 2]) -> Vec<(f64, f64)> {
         .map(|i| {
             let deg = span_deg[0] + (span_deg[1] - span_deg[0]) * i as f64 / steps as f64;
             let tip = kin.state_at(deg.to_radians()).tip;
-            (tip[0], tip[1])
+            tip.into()
         })
         .collect()
 }
@@ -33,7 +33,7 @@ impl Figure for TrajectoryFigure<'_> {
         root.fill(&WHITE).map_err(err)?;
         let tips = kin.tips();
         let ((x0, x1), (y0, y1)) =
-            equal_ranges(tips.iter().copied().chain([[0.0, 0.0]]), 800.0, 600.0, 40.0);
+            equal_ranges(tips.iter().copied().chain([Vec2::ZERO]), 800.0, 600.0, 40.0);
         let mut chart = ChartBuilder::on(root)
             .caption(
                 "Tip trajectory relative to the machine (three arms)",
@@ -66,17 +66,11 @@ impl Figure for TrajectoryFigure<'_> {
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(120, 80, 40)));
         let n = unit(agro.tray_normal_deg.to_radians());
         let p = ev.picking.tip_mm;
-        let s = [
-            p[0] - agro.tray_depth_mm * n[0],
-            p[1] - agro.tray_depth_mm * n[1],
-        ];
-        let t = [-n[1], n[0]];
+        let s = p - n * agro.tray_depth_mm;
+        let t = n.turn_90();
         chart
             .draw_series(LineSeries::new(
-                [
-                    (s[0] - 120.0 * t[0], s[1] - 120.0 * t[1]),
-                    (s[0] + 120.0 * t[0], s[1] + 120.0 * t[1]),
-                ],
+                [(s - t * 120.0).into(), (s + t * 120.0).into()],
                 RGBColor(90, 90, 90).stroke_width(2),
             ))
             .map_err(err)?
@@ -107,7 +101,7 @@ impl Figure for TrajectoryFigure<'_> {
                 let st = kin.state_at(theta);
                 chart
                     .draw_series(LineSeries::new(
-                        [(st.o3[0], st.o3[1]), (st.tip[0], st.tip[1])],
+                        [st.o3.into(), st.tip.into()],
                         colour.mix(0.55).stroke_width(2),
                     ))
                     .map_err(err)?;
@@ -130,7 +124,7 @@ impl Figure for TrajectoryFigure<'_> {
             .draw_series(std::iter::once(Circle::new((0.0, 0.0), 4, BLACK.filled())))
             .map_err(err)?;
         for (label, e) in [("picking", &ev.picking), ("planting", &ev.planting)] {
-            let (x, y) = (e.tip_mm[0], e.tip_mm[1]);
+            let Vec2 { x, y } = e.tip_mm;
             chart
                 .draw_series(std::iter::once(Circle::new((x, y), 6, MAGENTA.filled())))
                 .map_err(err)?;

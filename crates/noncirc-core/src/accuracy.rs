@@ -48,7 +48,7 @@ pub fn compare(eval: &Evaluation, reference: &Evaluation, probes: usize) -> Erro
             .map(|i| {
                 let t = TAU * (i as f64 + 0.5) / probes as f64;
                 let (p, q) = (k.state_at(t).tip, r.state_at(t).tip);
-                (p[0] - q[0]).hypot(p[1] - q[1])
+                (p - q).hypot()
             })
             .fold(0.0, f64::max),
         _ => 0.0,

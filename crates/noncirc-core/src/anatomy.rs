@@ -18,6 +18,7 @@ use crate::curve::{parabola_vertex, TAU};
 use crate::events::{span_where, Events};
 use crate::objectives::{advance_per_rad, travel_sign, Agronomy};
 use crate::planetary::Kinematics;
+use crate::vec2::Vec2;
 use serde::Serialize;
 
 /// The four sections, in the order of motion.
@@ -121,15 +122,14 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
     let tips = kin.tips();
     let node = |t: f64| ((t / h).round() as usize) % n;
     let normal = unit(agro.tray_normal_deg.to_radians());
-    let dot = |p: [f64; 2]| p[0] * normal[0] + p[1] * normal[1];
     let zone = ev.check.tray_surface_mm - agro.tray_depth_mm;
     let ground = ev.y_min_mm + agro.planting_depth_mm;
     let tp = ev.picking.carrier_rad;
     let tl = ev.planting.carrier_rad;
     // Each zone contains its own event's node (an extreme lies within it by construction);
     // a tray the tip does not reach leaves a removal section of the picking instant alone.
-    let [r0, r1] = span_where(n, node(tp), |j| dot(tips[j]) - zone).unwrap_or([tp, tp]);
-    let [p0, p1] = span_where(n, node(tl), |j| ground - tips[j][1]).unwrap_or([tl, tl]);
+    let [r0, r1] = span_where(n, node(tp), |j| tips[j].dot(normal) - zone).unwrap_or([tp, tp]);
+    let [p0, p1] = span_where(n, node(tl), |j| ground - tips[j].y).unwrap_or([tl, tl]);
     // Planting after removal, within one turn of its start.
     let turns = ((p0 - r0) / TAU).floor() * TAU;
     let (p0, p1) = (p0 - turns, p1 - turns);
@@ -137,10 +137,7 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
     let plant = [p0.max(r1).min(end), p1.max(r1).min(end)];
     let spans = [[r0, r1], [r1, plant[0]], plant, [plant[1], end]];
     let speeds: Vec<f64> = (0..n)
-        .map(|j| {
-            let d = kin.state_at(kin.theta(j)).tip_d1;
-            d[0].hypot(d[1])
-        })
+        .map(|j| kin.state_at(kin.theta(j)).tip_d1.hypot())
         .collect();
     let sections = std::array::from_fn(|i| {
         let [t0, t1] = spans[i];
@@ -148,20 +145,18 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
     });
     let removal: &SectionMeasures = &sections[0];
     let planted = kin.state_at(tl);
-    let ground_velocity = [
-        travel_sign(kin, agro, ev) * planted.tip_d1[0] + advance_per_rad(agro),
-        planted.tip_d1[1],
-    ];
+    let ground_velocity = Vec2::new(
+        travel_sign(kin, agro, ev) * planted.tip_d1.x + advance_per_rad(agro),
+        planted.tip_d1.y,
+    );
     Anatomy {
         loop_width_mm: removal.x_max_mm - removal.x_min_mm,
         loop_height_mm: removal.y_max_mm - removal.y_min_mm,
-        picking_height_mm: ev.picking.tip_mm[1],
-        planting_height_mm: ev.planting.tip_mm[1],
+        picking_height_mm: ev.picking.tip_mm.y,
+        planting_height_mm: ev.planting.tip_mm.y,
         return_height_mm: sections[3].y_max_mm,
-        picking_to_planting_height_mm: ev.picking.tip_mm[1] - ev.planting.tip_mm[1],
-        planting_ground_speed_m_s: ground_velocity[0].hypot(ground_velocity[1])
-            * kin.carrier_speed()
-            / 1000.0,
+        picking_to_planting_height_mm: ev.picking.tip_mm.y - ev.planting.tip_mm.y,
+        planting_ground_speed_m_s: ground_velocity.hypot() * kin.carrier_speed() / 1000.0,
         sections,
     }
 }
@@ -182,12 +177,12 @@ fn measure_section(
     let tips = kin.tips();
     let at = |k: i64| k.rem_euclid(n as i64) as usize;
     let (a, b) = (kin.state_at(t0), kin.state_at(t1));
-    let speed = |s: &crate::planetary::ArmState| s.tip_d1[0].hypot(s.tip_d1[1]);
+    let speed = |s: &crate::planetary::ArmState| s.tip_d1.hypot();
     // Nodes strictly inside (t0, t1).
     let (first, last) = ((t0 / h).floor() as i64 + 1, (t1 / h).ceil() as i64 - 1);
     let mut length = 0.0;
-    let mut extent = [a.tip[0].min(b.tip[0]), a.tip[0].max(b.tip[0])];
-    let mut heights = [a.tip[1].min(b.tip[1]), a.tip[1].max(b.tip[1])];
+    let mut extent = [a.tip.x.min(b.tip.x), a.tip.x.max(b.tip.x)];
+    let mut heights = [a.tip.y.min(b.tip.y), a.tip.y.max(b.tip.y)];
     if first > last {
         length = 0.5 * (speed(&a) + speed(&b)) * (t1 - t0);
     } else {
@@ -198,8 +193,10 @@ fn measure_section(
         }
         for k in first..=last {
             let (m, c, p) = (tips[at(k - 1)], tips[at(k)], tips[at(k + 1)]);
-            for (axis, range) in [(0, &mut extent), (1, &mut heights)] {
-                let (m, c, p) = (m[axis], c[axis], p[axis]);
+            for ([m, c, p], range) in [
+                ([m.x, c.x, p.x], &mut extent),
+                ([m.y, c.y, p.y], &mut heights),
+            ] {
                 // The parabola refines a node only where it is a local extreme.
                 let low = if c <= m && c <= p {
                     parabola_vertex(m, c, p)

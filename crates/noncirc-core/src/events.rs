@@ -15,13 +15,14 @@ use crate::angle::unit;
 use crate::curve::{parabola_vertex, TAU};
 use crate::objectives::Agronomy;
 use crate::planetary::{ArmState, Kinematics};
+use crate::vec2::Vec2;
 use serde::Serialize;
 
 /// A located event: carrier angle (rad) and the tip there.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Event {
     pub carrier_rad: f64,
-    pub tip_mm: [f64; 2],
+    pub tip_mm: Vec2,
     /// Arm attitude: the pusher direction's dip below the horizontal (deg).
     pub attitude_deg: f64,
 }
@@ -132,9 +133,9 @@ pub fn attitude_deg(pusher_angle: f64) -> f64 {
 /// Refines the extreme of `t ↦ D(t)·dir` near node `j` by Newton on the derivative,
 /// using the exact tip derivatives; `max` chooses maximum or minimum. Returns the arm's
 /// state there (`state.theta` is the carrier angle) and the extreme value.
-fn refine_extreme(kin: &Kinematics, dir: [f64; 2], j: usize, max: bool) -> (ArmState, f64) {
+fn refine_extreme(kin: &Kinematics, dir: Vec2, j: usize, max: bool) -> (ArmState, f64) {
     let h = TAU / kin.len() as f64;
-    let dot = |v: [f64; 2]| v[0] * dir[0] + v[1] * dir[1];
+    let dot = |v: Vec2| v.dot(dir);
     let start = kin.theta(j);
     let mut t = start;
     let at_node = kin.state_at(t);
@@ -169,9 +170,9 @@ fn refine_extreme(kin: &Kinematics, dir: [f64; 2], j: usize, max: bool) -> (ArmS
 
 /// The node of the largest `D·dir`, and the sub-sample value of the largest other local
 /// maximum (another branch), if the trajectory has one.
-fn extreme_and_runner_up(tips: &[[f64; 2]], dir: [f64; 2]) -> (usize, Option<f64>) {
+fn extreme_and_runner_up(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
     let n = tips.len();
-    let v = |j: usize| tips[j][0] * dir[0] + tips[j][1] * dir[1];
+    let v = |j: usize| tips[j].dot(dir);
     let mut best = 0;
     for j in 1..n {
         if v(j) > v(best) {
@@ -212,29 +213,28 @@ pub fn housing_radius(kin: &Kinematics, agro: &Agronomy) -> f64 {
 pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
     let tips = kin.tips();
     let normal = unit(agro.tray_normal_deg.to_radians());
-    let dot = |p: [f64; 2]| p[0] * normal[0] + p[1] * normal[1];
     let (jp, picking_runner_up) = extreme_and_runner_up(tips, normal);
     let (picked, depth) = refine_extreme(kin, normal, jp, true);
-    let down = [0.0, -1.0];
+    let down = Vec2::new(0.0, -1.0);
     let (jl, planting_runner_up) = extreme_and_runner_up(tips, down);
     let (planted, neg_low) = refine_extreme(kin, down, jl, true);
     // The highest node (no runner-up needed: no event hangs on it).
     let jh = (0..tips.len())
-        .max_by(|&a, &b| tips[a][1].total_cmp(&tips[b][1]))
+        .max_by(|&a, &b| tips[a].y.total_cmp(&tips[b].y))
         .unwrap_or(0);
-    let (_, y_max) = refine_extreme(kin, [0.0, 1.0], jh, true);
+    let (_, y_max) = refine_extreme(kin, Vec2::new(0.0, 1.0), jh, true);
     let event = |s: &ArmState| Event {
         carrier_rad: s.theta.rem_euclid(TAU),
         tip_mm: s.tip,
         attitude_deg: attitude_deg(s.pusher_angle),
     };
     let picking = event(&picked);
-    let speed = picked.tip_d1[0].hypot(picked.tip_d1[1]) * kin.carrier_speed() / 1000.0;
+    let speed = picked.tip_d1.hypot() * kin.carrier_speed() / 1000.0;
     let surface = agro.tray_distance_mm.unwrap_or(depth - agro.tray_depth_mm);
     let check = picking_check(kin, agro, &picked, surface, picking_runner_up);
     // Window: the run of nodes around the picking node with the tip beyond the surface.
     let n = kin.len();
-    let [w0, w1] = span_where(n, jp, |j| dot(tips[j]) - surface)
+    let [w0, w1] = span_where(n, jp, |j| tips[j].dot(normal) - surface)
         // A tray the tip does not reach (placed by distance): an empty window at picking.
         .unwrap_or([picking.carrier_rad; 2]);
     let shift = (w0 / TAU).floor() * TAU;
@@ -289,10 +289,10 @@ fn picking_check(
     runner_up: Option<f64>,
 ) -> PickingCheck {
     let normal = unit(agro.tray_normal_deg.to_radians());
-    let dot = |p: [f64; 2]| p[0] * normal[0] + p[1] * normal[1];
+    let dot = |p: Vec2| p.dot(normal);
     let s = kin.spec().arm_length_mm;
     let tip_depth = dot(picked.tip) - surface;
-    let arm = [picked.tip[0] - picked.o3[0], picked.tip[1] - picked.o3[1]];
+    let arm = picked.tip - picked.o3;
     // Arms II and III lag arm I by 120° and 240°: their states are arm I's at θ − 120°, θ − 240°.
     let other_arms_behind = [1.0, 2.0]
         .iter()
@@ -331,13 +331,16 @@ mod tests {
     fn runner_up_is_another_local_maximum() {
         // Two bumps along x: the larger at node 2, the smaller (a branch) at node 7.
         let xs = [0.0, 2.0, 5.0, 2.0, 0.0, 0.0, 1.0, 3.0, 2.0, 0.0];
-        let tips: Vec<[f64; 2]> = xs.iter().map(|&x| [x, 0.0]).collect();
-        let (best, runner) = extreme_and_runner_up(&tips, [1.0, 0.0]);
+        let tips: Vec<Vec2> = xs.iter().map(|&x| Vec2::new(x, 0.0)).collect();
+        let (best, runner) = extreme_and_runner_up(&tips, Vec2::new(1.0, 0.0));
         assert_eq!(best, 2);
         assert_eq!(runner, Some(-parabola_vertex(-1.0, -3.0, -2.0)));
         assert!(runner.unwrap() > 3.0);
         // One bump: no runner-up.
-        let tips: Vec<[f64; 2]> = [0.0, 1.0, 2.0, 1.0].iter().map(|&x| [x, 0.0]).collect();
-        assert_eq!(extreme_and_runner_up(&tips, [1.0, 0.0]), (2, None));
+        let tips: Vec<Vec2> = [0.0, 1.0, 2.0, 1.0]
+            .iter()
+            .map(|&x| Vec2::new(x, 0.0))
+            .collect();
+        assert_eq!(extreme_and_runner_up(&tips, Vec2::new(1.0, 0.0)), (2, None));
     }
 }

@@ -4,6 +4,7 @@ use crate::curve::{parabola_vertex, PitchCurve, Polar, TAU};
 use crate::error::{positive, Error, Result};
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
+use crate::vec2::Vec2;
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 use std::sync::OnceLock;
@@ -517,24 +518,24 @@ impl GearPair {
     }
 
     /// The driver's pitch curve in its own frame (mm), at the grid's nodes.
-    pub fn driver_points(&self) -> Vec<[f64; 2]> {
+    pub fn driver_points(&self) -> Vec<Vec2> {
         (self.samples.iter().enumerate())
             .map(|(j, p)| {
                 let psi = self.psi(j);
-                [p.rho * psi.cos(), p.rho * psi.sin()]
+                Vec2::new(p.rho * psi.cos(), p.rho * psi.sin())
             })
             .collect()
     }
 
     /// The driven gear's pitch curve in its own frame (mm): the point that meets the driver's
     /// node `j` sits at radius `a − ρ_j` and own angle `−sense·phi2_j`, angle 0 meeting node 0.
-    pub fn driven_points(&self) -> Vec<[f64; 2]> {
+    pub fn driven_points(&self) -> Vec<Vec2> {
         let a = self.centre_distance();
         let sense = self.grid.sense;
         (self.samples.iter().zip(&self.phi2_nodes))
             .map(|(p, phi2)| {
                 let (s, c) = (-sense * phi2).sin_cos();
-                [(a - p.rho) * c, (a - p.rho) * s]
+                Vec2::new((a - p.rho) * c, (a - p.rho) * s)
             })
             .collect()
     }

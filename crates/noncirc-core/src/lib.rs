@@ -21,6 +21,7 @@ mod quadrature;
 mod resolution;
 mod scene;
 mod search;
+mod vec2;
 
 // The scene: what is designed and asked, and at which resolution.
 pub use curve::{
@@ -45,6 +46,7 @@ pub use measures::{nearest, Measure};
 pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
 pub use objectives::{evaluate_all, travel_sign, ObjectiveValue, Travel};
 pub use planetary::{ArmState, Kinematics};
+pub use vec2::Vec2;
 
 // Evaluation and its accuracy.
 pub use accuracy::{compare, observed_order, ErrorRow};

@@ -244,10 +244,10 @@ impl Measure {
                 Scalar::PickingTipSpeed => ev.map(|e| e.picking_tip_speed_m_s),
                 Scalar::PickingBranchGap => ev.and_then(|e| e.picking_branch_gap_mm),
                 Scalar::PlantingBranchGap => ev.and_then(|e| e.planting_branch_gap_mm),
-                Scalar::PickingHeight => ev.map(|e| e.picking.tip_mm[1]),
-                Scalar::PlantingHeight => ev.map(|e| e.planting.tip_mm[1]),
+                Scalar::PickingHeight => ev.map(|e| e.picking.tip_mm.y),
+                Scalar::PlantingHeight => ev.map(|e| e.planting.tip_mm.y),
                 Scalar::PickingToPlantingHeight => {
-                    ev.map(|e| e.picking.tip_mm[1] - e.planting.tip_mm[1])
+                    ev.map(|e| e.picking.tip_mm.y - e.planting.tip_mm.y)
                 }
                 Scalar::PlantingGroundSpeed => anatomy.map(|a| a.planting_ground_speed_m_s),
                 Scalar::ReturnHeight => anatomy.map(|a| a.return_height_mm),

@@ -6,6 +6,7 @@ use crate::error::{finite, length, positive, Error, Result};
 use crate::gear::GearPair;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
+use crate::vec2::Vec2;
 use serde::{Deserialize, Serialize};
 
 const G: f64 = 9.806_65;
@@ -266,14 +267,14 @@ impl BoxSpec {
 
     /// Groove development of the sinusoidal spiral shaft (paper eqs. 3–5): the sine curve
     /// `S' = κ sin(ωt)` rotated by `π/2 − φs`, with `κ = Δv/ω` (mm); returns `(X, Y)`.
-    pub fn groove_point(&self, t: f64) -> [f64; 2] {
+    pub fn groove_point(&self, t: f64) -> Vec2 {
         let (_, dv, w) = self.sinusoid();
         let kappa = dv / w;
         let (s, c) = self.spiral_angle_deg.to_radians().sin_cos();
-        [
+        Vec2::new(
             t * s - kappa * (w * t).sin() * c,
             t * c + kappa * (w * t).sin() * s,
-        ]
+        )
     }
 
     /// Largest box acceleration over the input turn, elliptical drive (m/s²; the least is

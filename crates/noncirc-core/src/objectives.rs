@@ -6,6 +6,7 @@ use crate::error::{finite, finite_with, length, Error, Result};
 use crate::events::{events, housing_radius, Events};
 use crate::gear::{ModuleReport, ModuleRule};
 use crate::planetary::Kinematics;
+use crate::vec2::Vec2;
 use serde::{Deserialize, Serialize};
 
 /// Which way the machine travels over the field.
@@ -299,58 +300,58 @@ impl ObjectiveValue {
 /// A segment `a→b` ready for repeated distance queries.
 #[derive(Debug, Clone, Copy)]
 struct Segment {
-    a: [f64; 2],
-    ab: [f64; 2],
+    a: Vec2,
+    ab: Vec2,
     /// `1/|ab|²`, or 0 for a degenerate segment.
     inv_len2: f64,
 }
 
 impl Segment {
     #[cfg(test)]
-    fn new(a: [f64; 2], b: [f64; 2]) -> Self {
-        let ab = [b[0] - a[0], b[1] - a[1]];
-        let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+    fn new(a: Vec2, b: Vec2) -> Self {
+        let len2 = (b - a).hypot2();
         Self::with_inv_len2(a, b, if len2 > 0.0 { 1.0 / len2 } else { 0.0 })
     }
 
     /// The segment `a→b` whose `1/|ab|²` is known (an arm: `1/S²`), without a division.
     #[inline]
-    fn with_inv_len2(a: [f64; 2], b: [f64; 2], inv_len2: f64) -> Self {
-        let ab = [b[0] - a[0], b[1] - a[1]];
-        Self { a, ab, inv_len2 }
+    fn with_inv_len2(a: Vec2, b: Vec2, inv_len2: f64) -> Self {
+        Self {
+            a,
+            ab: b - a,
+            inv_len2,
+        }
     }
 
     /// Midpoint (mm).
     #[inline]
-    fn midpoint(&self) -> [f64; 2] {
-        [self.a[0] + 0.5 * self.ab[0], self.a[1] + 0.5 * self.ab[1]]
+    fn midpoint(&self) -> Vec2 {
+        self.a + self.ab * 0.5
     }
 
     /// Squared distance from `p` (mm²): compare these, take one square root.
     #[inline]
-    fn distance_sq(&self, p: [f64; 2]) -> f64 {
-        let ap = [p[0] - self.a[0], p[1] - self.a[1]];
-        let t = ((ap[0] * self.ab[0] + ap[1] * self.ab[1]) * self.inv_len2).clamp(0.0, 1.0);
-        let (dx, dy) = (ap[0] - t * self.ab[0], ap[1] - t * self.ab[1]);
-        dx * dx + dy * dy
+    fn distance_sq(&self, p: Vec2) -> f64 {
+        let ap = p - self.a;
+        let t = (ap.dot(self.ab) * self.inv_len2).clamp(0.0, 1.0);
+        (ap - self.ab * t).hypot2()
     }
 
     /// Squared distance to another segment (mm²).
     #[inline]
     fn distance_sq_to(&self, other: &Segment) -> f64 {
-        let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
         let (r, s) = (self.ab, other.ab);
-        let d = [other.a[0] - self.a[0], other.a[1] - self.a[1]];
-        let denom = cross(r, s);
+        let d = other.a - self.a;
+        let denom = r.cross(s);
         if denom != 0.0 {
             // Crossing at t = cross(d, s)/denom, u = cross(d, r)/denom, both in [0, 1].
             let sign = denom.signum();
-            let (t, u, scale) = (sign * cross(d, s), sign * cross(d, r), denom.abs());
+            let (t, u, scale) = (sign * d.cross(s), sign * d.cross(r), denom.abs());
             if (0.0..=scale).contains(&t) && (0.0..=scale).contains(&u) {
                 return 0.0;
             }
         }
-        let end = |g: &Segment| [g.a[0] + g.ab[0], g.a[1] + g.ab[1]];
+        let end = |g: &Segment| g.a + g.ab;
         self.distance_sq(other.a)
             .min(self.distance_sq(end(other)))
             .min(other.distance_sq(self.a))
@@ -390,7 +391,7 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     // The margin covers rounding in |O3D| = S.
     let half = 0.5 * s * (1.0 + 1e-12);
     let beyond = |d2: f64, reach: f64| reach > 0.0 && d2 >= reach * reach;
-    let dist_sq = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+    let dist_sq = |p: Vec2, q: Vec2| (p - q).hypot2();
     // The least clearance node; a NaN (numerical breakdown) loses to any number.
     let (mut j, mut least) = (0, clearance(0));
     for k in 1..n {
@@ -425,7 +426,7 @@ pub fn travel_sign(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
         Travel::PlusX => 1.0,
         Travel::MinusX => -1.0,
         Travel::Auto => {
-            if kin.state_at(ev.planting.carrier_rad).tip_d1[0] > 0.0 {
+            if kin.state_at(ev.planting.carrier_rad).tip_d1.x > 0.0 {
                 -1.0
             } else {
                 1.0
@@ -448,8 +449,8 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     let advance = advance_per_rad(agro);
     let tp = ev.planting.carrier_rad;
     let forward = travel_sign(kin, agro, ev);
-    let top = ev.planting.tip_mm[1] + agro.seedling_height_mm;
-    let ahead = |x: f64, t: f64| forward * (x - ev.planting.tip_mm[0]) + advance * (t - tp);
+    let top = ev.planting.tip_mm.y + agro.seedling_height_mm;
+    let ahead = |x: f64, t: f64| forward * (x - ev.planting.tip_mm.x) + advance * (t - tp);
     let first = (tp / h).floor() as usize + 1;
     // The largest positive excursion ahead, with its neighbours along the path for the
     // parabola (`before` is set only with a positive `worst`).
@@ -457,10 +458,10 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     let mut previous = None;
     for k in first..first + n {
         let p = kin.tips()[k % n];
-        if p[1] > top {
+        if p.y > top {
             break;
         }
-        let v = ahead(p[0], k as f64 * h);
+        let v = ahead(p.x, k as f64 * h);
         if before.is_some() && after.is_none() {
             after = Some(v);
         }
@@ -563,9 +564,9 @@ mod tests {
 
     #[test]
     fn segment_distances() {
-        let between = |p0, p1, q0, q1| {
-            Segment::new(p0, p1)
-                .distance_sq_to(&Segment::new(q0, q1))
+        let between = |p0: [f64; 2], p1: [f64; 2], q0: [f64; 2], q1: [f64; 2]| {
+            Segment::new(p0.into(), p1.into())
+                .distance_sq_to(&Segment::new(q0.into(), q1.into()))
                 .sqrt()
         };
         assert_eq!(
@@ -573,8 +574,8 @@ mod tests {
             0.0
         );
         assert!((between([0.0, 0.0], [1.0, 0.0], [0.0, 2.0], [1.0, 2.0]) - 2.0).abs() < 1e-15);
-        let degenerate = Segment::new([0.0, 0.0], [0.0, 0.0]);
-        assert!((degenerate.distance_sq([3.0, 4.0]).sqrt() - 5.0).abs() < 1e-15);
+        let degenerate = Segment::new(Vec2::ZERO, Vec2::ZERO);
+        assert!((degenerate.distance_sq(Vec2::new(3.0, 4.0)).sqrt() - 5.0).abs() < 1e-15);
     }
 
     #[test]

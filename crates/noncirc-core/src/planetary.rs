@@ -7,6 +7,7 @@ use crate::error::{finite, length, positive, Error, Result};
 use crate::gear::{GearPair, SampleGrid};
 use crate::quadrature::{DriftInverse, MonotoneDrift, SpectralIntegrator};
 use crate::resolution::Resolution;
+use crate::vec2::Vec2;
 use serde::{Deserialize, Serialize};
 
 /// Sense in which the carrier turns, seen in the frame with `y` up.
@@ -145,9 +146,9 @@ pub struct ArmState {
     /// Carrier angle θ (rad).
     pub theta: f64,
     /// Intermediate centre `O2`.
-    pub o2: [f64; 2],
+    pub o2: Vec2,
     /// Planet centre `O3`.
-    pub o3: [f64; 2],
+    pub o3: Vec2,
     /// Planet orientation `theta3` (rad).
     pub theta3: f64,
     /// Intermediate orientation (rad). Its own pitch curve carries the material point of sun
@@ -156,11 +157,11 @@ pub struct ArmState {
     /// Sun own-frame parameter of the intermediate's material point now at the planet mesh (rad).
     pub psi_planet_mesh: f64,
     /// Arm tip `D`.
-    pub tip: [f64; 2],
+    pub tip: Vec2,
     /// `dD/dθ` (mm/rad).
-    pub tip_d1: [f64; 2],
+    pub tip_d1: Vec2,
     /// `d²D/dθ²` (mm/rad²).
-    pub tip_d2: [f64; 2],
+    pub tip_d2: Vec2,
     /// Pusher-axis direction angle (rad), pointing from the arm towards the tip.
     pub pusher_angle: f64,
 }
@@ -196,8 +197,8 @@ pub struct Kinematics {
     /// Per node: `θ_s`, planet orientation, planet centre, tip.
     theta_s: Vec<f64>,
     theta3: Vec<f64>,
-    o3: Vec<[f64; 2]>,
-    tip: Vec<[f64; 2]>,
+    o3: Vec<Vec2>,
+    tip: Vec<Vec2>,
 }
 
 impl Kinematics {
@@ -262,8 +263,8 @@ impl Kinematics {
             phi_period,
             theta_s: Vec::new(),
             theta3: vec![0.0; n],
-            o3: vec![[0.0; 2]; n],
-            tip: vec![[0.0; 2]; n],
+            o3: vec![Vec2::ZERO; n],
+            tip: vec![Vec2::ZERO; n],
         };
         // θ_s at every node: sorted targets, so each cell search starts at the last cell.
         let inverse = kin.phi_inverse();
@@ -279,25 +280,15 @@ impl Kinematics {
         // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
         let step = unit(sigma * h);
         let (mut e1, mut e2) = (unit(kin.phi0), unit(kin.phi0 + gamma0));
-        let rotate = |e: [f64; 2]| {
-            [
-                e[0] * step[0] - e[1] * step[1],
-                e[0] * step[1] + e[1] * step[0],
-            ]
-        };
         for j in 0..n {
             let theta = h * j as f64;
             let ts = kin.theta_s[j];
-            let o3 = [a * (e1[0] + e2[0]), a * (e1[1] + e2[1])];
-            (e1, e2) = (rotate(e1), rotate(e2));
+            let o3 = (e1 + e2) * a;
+            (e1, e2) = (e1.rotated(step), e2.rotated(step));
             let theta3 = kin.sun_angle + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
             kin.theta3[j] = theta3;
             kin.o3[j] = o3;
-            let u = unit(theta3 + beta0);
-            kin.tip[j] = [
-                o3[0] + spec.arm_length_mm * u[0],
-                o3[1] + spec.arm_length_mm * u[1],
-            ];
+            kin.tip[j] = o3 + unit(theta3 + beta0) * spec.arm_length_mm;
         }
         Ok(kin)
     }
@@ -373,12 +364,12 @@ impl Kinematics {
     }
 
     /// Tip of arm I at the nodes (mm).
-    pub fn tips(&self) -> &[[f64; 2]] {
+    pub fn tips(&self) -> &[Vec2] {
         &self.tip
     }
 
     /// Planet centres of arm I at the nodes (mm).
-    pub fn planet_centres(&self) -> &[[f64; 2]] {
+    pub fn planet_centres(&self) -> &[Vec2] {
         &self.o3
     }
 
@@ -440,18 +431,15 @@ impl Kinematics {
         let th2 = -sigma * ts2;
         let phi_h = self.phi0 + sigma * theta;
         let (e1, e2) = (unit(phi_h), unit(phi_h + gamma0));
-        let o2 = [a * e1[0], a * e1[1]];
-        let o3 = [a * (e1[0] + e2[0]), a * (e1[1] + e2[1])];
+        let o2 = e1 * a;
+        let o3 = (e1 + e2) * a;
         let u = unit(theta3 + beta0);
-        let tip = [o3[0] + s * u[0], o3[1] + s * u[1]];
+        let tip = o3 + u * s;
         // O3' = σ a (e1⊥ + e2⊥), O3'' = −a (e1 + e2); u' = θ3' u⊥.
-        let o3_d1 = [-sigma * a * (e1[1] + e2[1]), sigma * a * (e1[0] + e2[0])];
-        let o3_d2 = [-a * (e1[0] + e2[0]), -a * (e1[1] + e2[1])];
-        let tip_d1 = [o3_d1[0] - s * th1 * u[1], o3_d1[1] + s * th1 * u[0]];
-        let tip_d2 = [
-            o3_d2[0] - s * th2 * u[1] - s * th1 * th1 * u[0],
-            o3_d2[1] + s * th2 * u[0] - s * th1 * th1 * u[1],
-        ];
+        let o3_d1 = (e1 + e2).turn_90() * (sigma * a);
+        let o3_d2 = (e1 + e2) * -a;
+        let tip_d1 = o3_d1 + u.turn_90() * (s * th1);
+        let tip_d2 = o3_d2 + u.turn_90() * (s * th2) - u * (s * th1 * th1);
         // Intermediate: the material point of sun parameter ψ sits at its own angle
         // χ(ψ) = −∫_{ψ_start}^{ψ} g = −σΦ(θ) and meets the sun at the absolute direction φH + π.
         let theta2 = phi_h + std::f64::consts::PI + sigma * big_phi;

@@ -197,8 +197,11 @@ fn resolution(
     Ok(r)
 }
 
-fn points(list: &[[f64; 2]]) -> Array2<f64> {
-    Array2::from_shape_fn((list.len(), 2), |(i, j)| list[i][j])
+fn points(list: &[noncirc::core::Vec2]) -> Array2<f64> {
+    Array2::from_shape_fn(
+        (list.len(), 2),
+        |(i, j)| if j == 0 { list[i].x } else { list[i].y },
+    )
 }
 
 /// Evaluates one design: objectives as a dict, trajectory and pitch curves as arrays.

@@ -2,6 +2,7 @@
 
 use crate::curve::{Polar, TAU};
 use crate::error::{Error, Result};
+use crate::vec2::Vec2;
 
 /// Which closed Cartesian construction the control points feed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,7 +26,7 @@ impl CartesianKind {
 #[derive(Debug, Clone, PartialEq)]
 pub struct CartesianCurve {
     kind: CartesianKind,
-    points: Vec<[f64; 2]>,
+    points: Vec<Vec2>,
     /// Parameter range `[0, t_end)`: n for the B-spline, 1 for the Bézier curve.
     t_end: f64,
     /// Monotone table `(t, unwrapped psi)` used to bracket the inversion.
@@ -35,9 +36,9 @@ pub struct CartesianCurve {
 
 /// Position and first two parameter derivatives of a Cartesian curve.
 struct Jet {
-    p: [f64; 2],
-    d1: [f64; 2],
-    d2: [f64; 2],
+    p: Vec2,
+    d1: Vec2,
+    d2: Vec2,
 }
 
 /// Table samples per B-spline segment (and `8 n` for the Bézier curve) used to bracket `t(psi)`.
@@ -45,7 +46,7 @@ const TABLE_PER_SEGMENT: usize = 32;
 
 impl CartesianCurve {
     /// Builds the curve from control points `(x, y)` in mm, checking star-shapedness.
-    pub fn new(kind: CartesianKind, points: Vec<[f64; 2]>) -> Result<Self> {
+    pub fn new(kind: CartesianKind, points: Vec<Vec2>) -> Result<Self> {
         let n = points.len();
         if n < 4 {
             return Err(Error::TooFewPoints {
@@ -70,9 +71,9 @@ impl CartesianCurve {
         for j in 0..=m {
             let t = t_end * j as f64 / m as f64;
             let jet = curve.jet(t);
-            let [x, y] = jet.p;
-            let r2 = x * x + y * y;
-            let psi_t = (x * jet.d1[1] - y * jet.d1[0]) / r2;
+            let Vec2 { x, y } = jet.p;
+            let r2 = jet.p.hypot2();
+            let psi_t = jet.p.cross(jet.d1) / r2;
             if r2 == 0.0 || psi_t.is_nan() || psi_t <= 0.0 {
                 return Err(Error::NotStarShaped {
                     kind: kind.name(),
@@ -98,7 +99,7 @@ impl CartesianCurve {
         }
         let winding = curve.table_psi[m] - curve.table_psi[0];
         if (winding - TAU).abs() > 1e-9 {
-            let [x, y] = curve.jet(0.0).p;
+            let Vec2 { x, y } = curve.jet(0.0).p;
             return Err(Error::NotStarShaped {
                 kind: kind.name(),
                 x_mm: x,
@@ -135,9 +136,9 @@ impl CartesianCurve {
         ];
         let ddb = [1.0 - u, 3.0 * u - 2.0, -3.0 * u + 1.0, u];
         let mut jet = Jet {
-            p: [0.0; 2],
-            d1: [0.0; 2],
-            d2: [0.0; 2],
+            p: Vec2::ZERO,
+            d1: Vec2::ZERO,
+            d2: Vec2::ZERO,
         };
         for k in 0..4 {
             let q = self.points[(i + k + n - 1) % n];
@@ -151,7 +152,7 @@ impl CartesianCurve {
     fn bezier_jet(&self, t: f64) -> Jet {
         // Control polygon P_0..P_{n-1}, P_n = P_0; de Casteljau down to degree 2 gives the jet.
         let n = self.points.len();
-        let mut q: Vec<[f64; 2]> = self
+        let mut q: Vec<Vec2> = self
             .points
             .iter()
             .copied()
@@ -167,12 +168,12 @@ impl CartesianCurve {
         // q[0..3] now span the last quadratic stage.
         let (a, b, d) = (q[0], q[1], q[2]);
         let (l0, l1) = (lerp(a, b, t), lerp(b, d, t));
-        let second = axpy(-2.0, b, [a[0] + d[0], a[1] + d[1]]);
+        let second = axpy(-2.0, b, a + d);
         let scale = degree * (degree - 1.0);
         Jet {
             p: lerp(l0, l1, t),
-            d1: [degree * (l1[0] - l0[0]), degree * (l1[1] - l0[1])],
-            d2: [scale * second[0], scale * second[1]],
+            d1: (l1 - l0) * degree,
+            d2: second * scale,
         }
     }
 
@@ -191,8 +192,8 @@ impl CartesianCurve {
         let unwrap = psi_lo - psi_lo.rem_euclid(TAU);
         for _ in 0..60 {
             let jet = self.jet(t);
-            let [x, y] = jet.p;
-            let r2 = x * x + y * y;
+            let Vec2 { x, y } = jet.p;
+            let r2 = jet.p.hypot2();
             let mut psi_t_val = y.atan2(x).rem_euclid(TAU) + unwrap;
             if psi_t_val < psi_lo - std::f64::consts::PI {
                 psi_t_val += TAU;
@@ -208,7 +209,7 @@ impl CartesianCurve {
             } else {
                 lo = t;
             }
-            let psi_t = (x * jet.d1[1] - y * jet.d1[0]) / r2;
+            let psi_t = jet.p.cross(jet.d1) / r2;
             let mut next = t - f / psi_t;
             if !(next > lo && next < hi) {
                 next = 0.5 * (lo + hi);
@@ -223,23 +224,23 @@ impl CartesianCurve {
     }
 }
 
-/// `s x + y` for 2-vectors.
+/// `s x + y`.
 #[inline]
-fn axpy(s: f64, x: [f64; 2], y: [f64; 2]) -> [f64; 2] {
-    [s * x[0] + y[0], s * x[1] + y[1]]
+fn axpy(s: f64, x: Vec2, y: Vec2) -> Vec2 {
+    x * s + y
 }
 
-/// `(1 - t) a + t b` for 2-vectors.
+/// `(1 - t) a + t b`.
 #[inline]
-fn lerp(a: [f64; 2], b: [f64; 2], t: f64) -> [f64; 2] {
-    [(1.0 - t) * a[0] + t * b[0], (1.0 - t) * a[1] + t * b[1]]
+fn lerp(a: Vec2, b: Vec2, t: f64) -> Vec2 {
+    a * (1.0 - t) + b * t
 }
 
 /// Polar `(rho, rho', rho'')` from a Cartesian jet, by the chain rule in `t`.
 fn polar_from_jet(jet: &Jet) -> Polar {
-    let [x, y] = jet.p;
-    let [dx, dy] = jet.d1;
-    let [ddx, ddy] = jet.d2;
+    let Vec2 { x, y } = jet.p;
+    let Vec2 { x: dx, y: dy } = jet.d1;
+    let Vec2 { x: ddx, y: ddy } = jet.d2;
     let r = x.hypot(y);
     let r2 = r * r;
     let psi_t = (x * dy - y * dx) / r2;
@@ -257,11 +258,11 @@ fn polar_from_jet(jet: &Jet) -> Polar {
 mod tests {
     use super::*;
 
-    fn polygon(n: usize, r: f64) -> Vec<[f64; 2]> {
+    fn polygon(n: usize, r: f64) -> Vec<Vec2> {
         (0..n)
             .map(|i| {
                 let a = TAU * i as f64 / n as f64;
-                [r * a.cos(), r * a.sin()]
+                Vec2::new(r * a.cos(), r * a.sin())
             })
             .collect()
     }
@@ -298,9 +299,9 @@ mod tests {
 
     #[test]
     fn centre_outside_is_not_star_shaped() {
-        let pts: Vec<[f64; 2]> = polygon(8, 10.0)
+        let pts: Vec<Vec2> = polygon(8, 10.0)
             .iter()
-            .map(|p| [p[0] + 30.0, p[1]])
+            .map(|&p| p + Vec2::new(30.0, 0.0))
             .collect();
         assert!(matches!(
             CartesianCurve::new(CartesianKind::BSpline, pts),

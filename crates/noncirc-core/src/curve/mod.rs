@@ -124,7 +124,7 @@ impl CurveSpec {
                     positive_with(|| format!("{name} radius {i} (mm)"), r)?;
                     finite_with(|| format!("{name} angle {i} (deg)"), a)?;
                     let t = a.to_radians();
-                    points.push([r * t.cos(), r * t.sin()]);
+                    points.push(crate::vec2::Vec2::new(r * t.cos(), r * t.sin()));
                 }
                 let psi: Vec<f64> = angles_deg.iter().map(|d| d.to_radians()).collect();
                 spline::check_angles(&psi)?;
@@ -355,7 +355,7 @@ impl Ellipse {
 
     pub fn eval(&self, psi: f64) -> Polar {
         let c = self.semi_major * (1.0 - self.k * self.k);
-        let [co, s] = crate::angle::unit(psi);
+        let crate::vec2::Vec2 { x: co, y: s } = crate::angle::unit(psi);
         let d = 1.0 - self.k * co;
         let (d1, d2) = (self.k * s, self.k * co);
         Polar {
