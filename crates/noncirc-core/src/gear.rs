@@ -269,23 +269,6 @@ pub fn module_max(
     }
 }
 
-/// Pitch perimeter from uniform samples over one turn: trapezoid rule of `√(ρ² + ρ'²)` (mm).
-pub fn perimeter(samples: &[Polar]) -> f64 {
-    samples
-        .iter()
-        .map(|p| (p.rho * p.rho + p.d1 * p.d1).sqrt())
-        .sum::<f64>()
-        * TAU
-        / samples.len() as f64
-}
-
-/// Signed curvature `κ = 1/R_c` (1/mm): positive on convex arcs, smooth through inflections.
-#[inline]
-pub fn curvature(p: Polar) -> f64 {
-    let s = p.rho * p.rho + p.d1 * p.d1;
-    (p.rho * p.rho + 2.0 * p.d1 * p.d1 - p.rho * p.d2) / (s * s.sqrt())
-}
-
 /// Least convex and least concave |R_c| of the driver and its conjugate at the given
 /// uniform samples, each refined by the parabola through the extreme sample of the
 /// curvature and its neighbours. One pass, no allocation.
@@ -294,7 +277,7 @@ pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     // `j` is at most 2n − 1 here: a subtraction wraps it (no integer division per sample).
     let kappa = |driven: bool, j: usize| {
         let p = samples[if j < n { j } else { j - n }];
-        curvature(if driven { conjugate_polar(p, a) } else { p })
+        (if driven { conjugate_polar(p, a) } else { p }).curvature()
     };
     let mut convex = f64::INFINITY;
     let mut concave = f64::INFINITY;
@@ -548,7 +531,7 @@ impl GearPair {
 
     /// Driver pitch perimeter (mm); the driven gear's is equal.
     pub fn perimeter(&self) -> f64 {
-        perimeter(&self.samples)
+        self.curve.perimeter(&self.samples)
     }
 
     /// Largest admissible module over the pair's teeth.

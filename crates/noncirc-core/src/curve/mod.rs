@@ -19,6 +19,22 @@ pub struct Polar {
     pub d2: f64,
 }
 
+impl Polar {
+    /// Signed curvature `κ = (ρ² + 2ρ'² − ρρ'')/(ρ² + ρ'²)^{3/2}` (1/mm): positive on convex
+    /// arcs, smooth through inflections.
+    #[inline]
+    pub fn curvature(self) -> f64 {
+        let s = self.rho * self.rho + self.d1 * self.d1;
+        (self.rho * self.rho + 2.0 * self.d1 * self.d1 - self.rho * self.d2) / (s * s.sqrt())
+    }
+
+    /// Arc length per radian of ψ, `ds/dψ = √(ρ² + ρ'²)` (mm/rad).
+    #[inline]
+    pub fn arc_rate(self) -> f64 {
+        (self.rho * self.rho + self.d1 * self.d1).sqrt()
+    }
+}
+
 /// How a pitch curve is specified (the serialisable form, angles in degrees).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
@@ -185,6 +201,12 @@ impl PitchCurve {
             PitchCurve::Spline(s) => s.sample_uniform(start, step, n),
             _ => (0..n).map(|j| self.eval(start + step * j as f64)).collect(),
         }
+    }
+
+    /// Perimeter (mm) from `samples` of this curve, uniform over one turn in either sense:
+    /// the trapezoid rule of `ds/dψ`, spectrally accurate for a smooth periodic curve.
+    pub fn perimeter(&self, samples: &[Polar]) -> f64 {
+        samples.iter().map(|p| p.arc_rate()).sum::<f64>() * TAU / samples.len() as f64
     }
 
     /// `(min, max)` of `rho` (mm): exact for the spline and the ellipse, Newton-refined for
