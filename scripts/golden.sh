@@ -43,6 +43,19 @@ for algorithm in guided de cmaes nsga2 nsga3; do
   run "optimise-$algorithm" optimise --algorithm "$algorithm" --budget 3000 --seed 3 --threads 2
 done
 run optimise-de-1-thread optimise --budget 3000 --seed 3 --threads 1
+# CAD exports: the gear command's, and those of evaluate --plot (the train's own pair) for
+# both sun frames and rotation senses; the figures themselves are left out (slow to draw).
+"$bin" gear paper --export "$out/export-gear" >/dev/null 2>>"$out/export.err"
+for set in "train.rotation=\"clockwise\"" "train.rotation=\"counterclockwise\"" \
+  "train.sun_frame=\"ground\""; do
+  name=$(echo "$set" | tr -cd 'a-z_=')
+  tmp=$(mktemp -d)
+  "$bin" evaluate paper --set "$set" --plot "$tmp" >/dev/null 2>>"$out/export.err"
+  mkdir -p "$out/export-$name"
+  cp "$tmp"/*.csv "$tmp"/pitch_curves.dxf "$tmp"/pitch_curves.svg "$out/export-$name/"
+  rm -rf "$tmp"
+done
+sed -i '/^wrote /d' "$out/export.err"
 # Wall-clock times are the one thing allowed to differ.
 python3 - "$out"/optimise-*.json <<'PY'
 import json, sys

@@ -44,12 +44,17 @@ pub enum Error {
 }
 
 impl Error {
-    /// Whether the caller can fix it by changing what they asked (the CLI exits with 2),
-    /// rather than a failure while carrying it out (exit 1).
+    /// Whether the caller can fix it by changing what they asked (the CLI exits with 2):
+    /// a value, a scene, a request, a file they named that cannot be read or holds the
+    /// wrong thing; rather than a failure while carrying it out, such as a write (exit 1).
     pub fn is_input(&self) -> bool {
         matches!(
             self,
-            Error::Core(_) | Error::Scene(_) | Error::Input(_) | Error::Content { .. }
+            Error::Core(_)
+                | Error::Scene(_)
+                | Error::Input(_)
+                | Error::Content { .. }
+                | Error::File { action: "read", .. }
         )
     }
 

@@ -1,7 +1,7 @@
 //! Export for CAD and multibody tools: pitch curves as CSV, SVG and DXF (mm, each gear in
 //! its own frame, centre at the origin), and the tip trajectory as CSV.
 
-use noncirc_core::{GearPair, Kinematics, Vec2};
+use noncirc_core::{GearPair, Kinematics, Rotation, Vec2};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -15,17 +15,25 @@ pub struct Outline {
 }
 
 /// The driving gear (sun and planets) and the driven gear (intermediates), each in its own
-/// frame: driver points at `ψ`, driven points at its own angle `χ = −φ2(ψ)`, radius `a − ρ`,
-/// in the order of the pair's sample grid.
+/// frame: driver points at `ψ`, ascending from the pair's first sample (ψ = 0 for a gear
+/// scene and a train with the sun installed, `Φ0` for a train in the ground frame); driven
+/// points at its own angle `χ = −(φ2(ψ) − φ2(ψ₀))`, radius `a − ρ`, the angle 0 meeting the
+/// first sample.
 pub fn outlines(pair: &GearPair) -> Vec<Outline> {
+    // A clockwise grid (a clockwise train's) read backwards from node 0.
+    let n = pair.samples().len();
+    let ascending = |points: Vec<Vec2>| match pair.grid().sense {
+        Rotation::Counterclockwise => points,
+        Rotation::Clockwise => (0..n).map(|j| points[(n - j) % n]).collect(),
+    };
     vec![
         Outline {
             name: "driver",
-            points: pair.driver_points(),
+            points: ascending(pair.driver_points()),
         },
         Outline {
             name: "driven",
-            points: pair.driven_points(),
+            points: ascending(pair.driven_points()),
         },
     ]
 }

@@ -14,7 +14,9 @@ pub fn evaluation_outputs(scene: &Scene, eval: &Evaluation, dir: &Path) -> Resul
     let mut files = evaluation_figures(scene, eval, dir)?;
     if let Some(kin) = &eval.kinematics {
         files.push(export_trajectory(kin, dir)?);
-        files.extend(export_gears(kin.pair(), dir)?);
+    }
+    if let Some(pair) = eval.pair() {
+        files.extend(export_gears(pair, dir)?);
     }
     Ok(files)
 }

@@ -36,7 +36,7 @@ impl GearReport {
         let module = pair.module(&scene.gear.module);
         let a = pair.centre_distance();
         // The curve's own extremes (exact for the spline), not the sample extremes.
-        let (rmin, rmax) = pair.curve().radius_range(pair.samples());
+        let (rmin, rmax) = pair.radius_range();
         let kind = serde_json::to_value(&scene.gear.curve)
             .ok()
             .and_then(|v| v.get("kind").and_then(|k| k.as_str().map(String::from)))

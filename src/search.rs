@@ -147,6 +147,37 @@ impl SearchSettings {
             .unwrap_or(search.screening.samples_per_turn);
         scene.validate_search()
     }
+
+    /// The settings given that a resumed search would ignore (it runs the checkpoint's own
+    /// scene and settings; only the budget applies), by name: a front end refuses them.
+    pub fn ignored_by_resume(&self) -> Vec<&'static str> {
+        [
+            ("algorithm", self.algorithm.is_some()),
+            ("population", self.population.is_some()),
+            ("seed", self.seed.is_some()),
+            (
+                "screening samples per turn",
+                self.screening_samples_per_turn.is_some(),
+            ),
+        ]
+        .into_iter()
+        .filter_map(|(name, given)| given.then_some(name))
+        .collect()
+    }
+}
+
+/// Largest interval between checkpoints (s): a year.
+pub const MAX_CHECKPOINT_EVERY_S: f64 = 3.2e7;
+
+/// The interval between checkpoints, from seconds (0 to [`MAX_CHECKPOINT_EVERY_S`]).
+pub fn checkpoint_interval(seconds: f64) -> Result<Duration> {
+    if seconds.is_finite() && (0.0..=MAX_CHECKPOINT_EVERY_S).contains(&seconds) {
+        Ok(Duration::from_secs_f64(seconds))
+    } else {
+        Err(Error::Input(format!(
+            "checkpoint interval {seconds} s: expected seconds from 0 to {MAX_CHECKPOINT_EVERY_S:e}"
+        )))
+    }
 }
 
 /// How to run a search (what to search is the scene's: its `[search]` table).
@@ -166,15 +197,23 @@ pub struct RunOptions {
     pub max_generations: Option<u64>,
 }
 
+/// A thread count given or, for `None`, one per core; checked as [`check_threads`] does.
+pub fn threads_or_all(threads: Option<usize>) -> Result<usize> {
+    check_threads(
+        threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
+    )
+}
+
+/// The interval between checkpoints unless the caller sets one (s).
+pub const DEFAULT_CHECKPOINT_EVERY_S: f64 = 10.0;
+
 impl RunOptions {
     /// A run on `threads` threads (`None`: every core), without checkpoints.
     pub fn new(threads: Option<usize>) -> Result<Self> {
-        let threads =
-            threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
         Ok(Self {
-            threads: check_threads(threads)?,
+            threads: threads_or_all(threads)?,
             checkpoint: None,
-            checkpoint_every: Duration::from_secs(600),
+            checkpoint_every: Duration::from_secs_f64(DEFAULT_CHECKPOINT_EVERY_S),
             resume: None,
             resume_budget: None,
             stop: Arc::new(AtomicBool::new(false)),
@@ -215,7 +254,7 @@ impl Confirmed {
         let base = problem.base();
         let mut ev = Evaluator::new();
         let mut scratch = base.clone();
-        let reported = state.best_confirmed.as_ref().or(state.best.as_ref());
+        let reported = state.reported();
         let mut best = None;
         let mut members: Vec<Candidate> = state.solver.front();
         if members.is_empty() {
@@ -412,14 +451,6 @@ pub struct Summary {
 }
 
 impl Outcome {
-    /// The design to report: the best confirmed-feasible one, else the best screened.
-    pub fn reported(&self) -> Option<&Candidate> {
-        self.state
-            .best_confirmed
-            .as_ref()
-            .or(self.state.best.as_ref())
-    }
-
     /// Summary with the reported design confirmed at the scene's resolution.
     pub fn summary(&self) -> Summary {
         let base = self.problem.base();
@@ -427,7 +458,7 @@ impl Outcome {
         let mut violations = BTreeMap::new();
         let mut objectives = BTreeMap::new();
         let mut feasible = false;
-        if let Some(c) = self.reported() {
+        if let Some(c) = self.state.reported() {
             for (name, x) in self.problem.names().iter().zip(self.problem.decode(&c.u)) {
                 best.insert(name.to_string(), x);
             }

@@ -182,7 +182,7 @@ fn the_train_pair_is_the_gear_pair_on_the_carrier_grid() {
     let standard = GearPair::solve(sun, res).unwrap();
     let pair = kin.pair();
     let n = pair.samples().len();
-    assert_eq!(pair.grid().sense, -1.0);
+    assert_eq!(pair.grid().sense, Rotation::Clockwise);
     let a = standard.centre_distance();
     assert!((pair.centre_distance() - a).abs() < 1e-9 * a);
     let (ours, theirs) = (pair.driven_points(), standard.driven_points());
@@ -196,4 +196,41 @@ fn the_train_pair_is_the_gear_pair_on_the_carrier_grid() {
     let rule = noncirc::core::ModuleRule::default();
     let (m1, m2) = (pair.module(&rule), standard.module(&rule));
     assert!((m1.module_max_mm - m2.module_max_mm).abs() < 1e-9);
+}
+
+/// On any carrier grid (either sense, the sun installed or in the ground frame) the pair's
+/// driven outline is the conjugate read from the standard-grid pair: the point meeting the
+/// sun's parameter ψ sits at radius a − ρ(ψ) and own angle −(φ2(ψ) − φ2(ψ_start)).
+#[test]
+fn the_train_pair_has_the_conjugate_on_every_grid() {
+    let sun = CurveSpec::paper().build().unwrap();
+    let res = Resolution::DEFAULT.with_samples(720);
+    let standard = GearPair::solve(sun.clone(), res).unwrap();
+    for (rotation, sun_frame) in [
+        (Rotation::Counterclockwise, SunFrame::Installed),
+        (Rotation::Counterclockwise, SunFrame::Ground),
+        (Rotation::Clockwise, SunFrame::Ground),
+    ] {
+        let train = TrainSpec {
+            rotation,
+            sun_frame,
+            ..TrainSpec::default()
+        };
+        let kin = Kinematics::solve(&sun, &train, &res).unwrap();
+        let pair = kin.pair();
+        let (a, start) = (pair.centre_distance(), train.psi_start());
+        assert_eq!(pair.psi(0), start);
+        let points = pair.driven_points();
+        for j in (0..pair.samples().len()).step_by(37) {
+            let psi = pair.psi(j);
+            let expected = -(standard.phi2(psi) - standard.phi2(start));
+            let p = points[j];
+            let angle_gap = (p.y.atan2(p.x) - expected + PI).rem_euclid(TAU) - PI;
+            assert!(
+                angle_gap.abs() < 1e-9,
+                "{rotation:?} {sun_frame:?} node {j}: {angle_gap:e}"
+            );
+            assert!((p.hypot() - (a - sun.eval(psi).rho)).abs() < 1e-9);
+        }
+    }
 }

@@ -11,7 +11,7 @@ echo "== the core builds for the browser (wasm32-unknown-unknown)"
 if command -v rustup >/dev/null; then rustup target add wasm32-unknown-unknown >/dev/null 2>&1 || true; fi
 cargo build -p noncirc-core --target wasm32-unknown-unknown
 echo "== the library builds without figures; the Python extension without the CLI's crates"
-cargo check -p noncirc --no-default-features
+cargo check -p noncirc --no-default-features --all-targets
 if cargo tree -p noncirc-py -e normal | grep -E "^[^a-z]*(clap|indicatif|ctrlc|plotters) "; then
   echo "the Python extension must not depend on the crates above" >&2
   exit 1

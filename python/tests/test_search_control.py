@@ -34,8 +34,10 @@ def test_returning_false_stops_and_a_checkpoint_resumes_to_the_uninterrupted_res
     for key in ["best", "objectives", "evaluations", "confirmations", "first_feasible_evaluations"]:
         assert resumed[key] == whole[key], key
     # A resumed search runs the checkpoint's own settings: others are refused, not ignored.
-    with pytest.raises(NoncircError, match="only budget"):
+    with pytest.raises(NoncircError, match="seed would be ignored"):
         optimise(resume=ckpt, seed=6)
+    with pytest.raises(NoncircError, match="checkpoint interval"):
+        optimise(resume=ckpt, checkpoint_every=float("inf"))
     with pytest.raises(NoncircError, match="not both"):
         optimise(scene, resume=ckpt)
 
@@ -58,15 +60,19 @@ def test_ctrl_c_stops_after_the_current_generation_and_keeps_the_checkpoint(tmp_
         sent.append(time.monotonic())
         os.kill(os.getpid(), signal.SIGINT)
 
+    seen = []
     threading.Thread(target=interrupt).start()
     with pytest.raises(KeyboardInterrupt):
-        optimise(Scene.builtin("paper-search"), checkpoint=ckpt, **{**SETTINGS, "budget": 10**8})
+        optimise(Scene.builtin("paper-search"), checkpoint=ckpt, progress=seen.append,
+                 **{**SETTINGS, "budget": 10**8})
     latency = time.monotonic() - sent[0]
     # Generations take milliseconds: the stop is well within the promised half second
     # (the bound here is loose so that a loaded machine does not fail it).
     assert latency < 2.0, latency
-    resumed = optimise(resume=ckpt, budget=(24 * 10), threads=1)
-    assert resumed["evaluations"] >= 24
+    # The checkpoint holds the state the search stopped in: ten more generations from it.
+    stopped_at = seen[-1]["evaluations"]
+    resumed = optimise(resume=ckpt, budget=stopped_at + 240, threads=1)
+    assert resumed["evaluations"] == stopped_at + 240
 
 
 def test_unknown_algorithm_is_an_unknown_name():

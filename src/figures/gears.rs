@@ -9,17 +9,6 @@ fn place(outline: &[Vec2], centre: Vec2, angle: f64) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Sun outline in its own frame.
-fn sun_outline(curve: &PitchCurve, n: usize) -> Vec<Vec2> {
-    (0..n)
-        .map(|j| {
-            let psi = TAU * j as f64 / n as f64;
-            let r = curve.eval(psi).rho;
-            Vec2::new(r * psi.cos(), r * psi.sin())
-        })
-        .collect()
-}
-
 /// Gears on the carrier at carrier angle `theta`, with the ratio and attitude over the cycle.
 pub struct GearsFigure<'a> {
     pub kin: &'a Kinematics,
@@ -112,8 +101,7 @@ fn draw_train<DB: DrawingBackend>(
 where
     DB::ErrorType: 'static,
 {
-    let curve = kin.curve();
-    let sun = sun_outline(curve, kin.len());
+    let sun = kin.pair().driver_points();
     let inter = kin.pair().driven_points();
     let mut shapes: Vec<(Vec<(f64, f64)>, RGBColor)> = vec![(
         place(&sun, Vec2::ZERO, kin.spec().sun_angle()),

@@ -9,21 +9,6 @@ pub struct GroundFigure<'a> {
     pub scene: &'a Scene,
 }
 
-/// The machine's travel sign (+1: towards +x) as the seedling-push objective uses it.
-fn travel_sign(kin: &Kinematics, ev: &Events, travel: Travel) -> f64 {
-    match travel {
-        Travel::PlusX => 1.0,
-        Travel::MinusX => -1.0,
-        Travel::Auto => {
-            if kin.state_at(ev.planting.carrier_rad).tip_d1.x > 0.0 {
-                -1.0
-            } else {
-                1.0
-            }
-        }
-    }
-}
-
 impl Figure for GroundFigure<'_> {
     fn size(&self) -> (u32, u32) {
         (1100, 600)
@@ -34,8 +19,9 @@ impl Figure for GroundFigure<'_> {
     {
         let (kin, ev, agro) = (self.kin, self.events, &self.scene.agronomy);
         root.fill(&WHITE).map_err(err)?;
-        let sign = travel_sign(kin, ev, agro.travel);
-        let advance = 3.0 * agro.plant_spacing_mm / TAU;
+        // As the seedling-push objective moves the machine.
+        let sign = travel_sign(kin, agro, ev);
+        let advance = advance_per_rad(agro);
         let n = kin.len();
         let turns = 2usize;
         let mut curves = Vec::new();

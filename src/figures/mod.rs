@@ -2,8 +2,8 @@
 //! in the binary, so rendering needs no system font or package.
 
 use noncirc_core::{
-    anatomy, box_curves, unit, BoxReport, BoxSpec, Evaluation, Events, Kinematics, ObjectiveValue,
-    PitchCurve, Scene, Section, Travel, Vec2,
+    advance_per_rad, anatomy, box_curves, travel_sign, unit, BoxReport, BoxSpec, Evaluation,
+    Events, Kinematics, ObjectiveValue, Scene, Section, Vec2,
 };
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -12,7 +12,6 @@ use noncirc::search::{RunOptions, SearchSettings};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
-use std::time::Duration;
 
 #[derive(Parser)]
 #[command(
@@ -71,7 +70,7 @@ struct OptimiseArgs {
     #[arg(long, value_name = "FILE")]
     checkpoint: Option<std::path::PathBuf>,
     /// Seconds between checkpoints.
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, default_value_t = noncirc::search::DEFAULT_CHECKPOINT_EVERY_S)]
     checkpoint_every: f64,
     /// Resume from a checkpoint file (its scene and settings are used).
     #[arg(long, value_name = "FILE")]
@@ -240,23 +239,31 @@ fn json(value: &impl serde::Serialize) -> Result<String, Box<dyn std::error::Err
     Ok(serde_json::to_string_pretty(value)? + "\n")
 }
 
-/// Largest `--checkpoint-every` (s): a year.
-const MAX_CHECKPOINT_EVERY_S: f64 = 3.2e7;
-
 fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> {
+    let settings = SearchSettings {
+        algorithm: args.algorithm,
+        budget: args.budget,
+        population: args.population,
+        seed: args.seed,
+        screening_samples_per_turn: None,
+    };
     if args.resume.is_some() {
         // The checkpoint carries the scene and the search settings: a flag that would
         // change them is refused rather than silently ignored.
-        let ignored: Vec<&str> = [
+        let mut ignored: Vec<String> = [
             ("a scene argument", args.scene.scene.is_some()),
             ("--set", !args.scene.set.is_empty()),
-            ("--algorithm", args.algorithm.is_some()),
-            ("--population", args.population.is_some()),
-            ("--seed", args.seed.is_some()),
         ]
         .into_iter()
-        .filter_map(|(name, given)| given.then_some(name))
+        .filter(|&(_, given)| given)
+        .map(|(name, _)| name.to_string())
         .collect();
+        ignored.extend(
+            settings
+                .ignored_by_resume()
+                .iter()
+                .map(|n| format!("--{n}")),
+        );
         if !ignored.is_empty() {
             return Err(noncirc::Error::Input(format!(
                 "--resume continues the checkpoint's own scene and search; {} would be \
@@ -268,30 +275,15 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
     }
     let name = args.scene.scene.as_deref().unwrap_or("paper-search");
     let mut scene = load_scene_with(Some(name), &args.scene.set)?;
-    SearchSettings {
-        algorithm: args.algorithm,
-        budget: args.budget,
-        population: args.population,
-        seed: args.seed,
-        screening_samples_per_turn: None,
-    }
-    .apply(&mut scene)?;
-    if !(args.checkpoint_every.is_finite()
-        && (0.0..=MAX_CHECKPOINT_EVERY_S).contains(&args.checkpoint_every))
-    {
-        return Err(noncirc::Error::Input(format!(
-            "--checkpoint-every {}: expected seconds from 0 to {MAX_CHECKPOINT_EVERY_S:e}",
-            args.checkpoint_every
-        ))
-        .into());
-    }
+    settings.apply(&mut scene)?;
+    let checkpoint_every = noncirc::search::checkpoint_interval(args.checkpoint_every)?;
     // SIGINT, SIGTERM and SIGHUP all stop the search after the current generation.
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();
     ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))?;
     let opts = RunOptions {
         checkpoint: args.checkpoint,
-        checkpoint_every: Duration::from_secs_f64(args.checkpoint_every),
+        checkpoint_every,
         resume: args.resume,
         resume_budget: args.budget,
         stop: stop.clone(),
@@ -387,11 +379,11 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             if box_scene.kind != SceneKind::Transplanter {
                 box_scene.kind = SceneKind::MovingBox;
             }
-            let (report, eval) = EvaluationReport::from_scene(&box_scene)?;
+            let (report, _) = EvaluationReport::from_scene(&box_scene)?;
             let b = report.moving_box.ok_or("this scene has no moving box")?;
             noncirc::report::check_finite(&b)?;
             if let Some(dir) = &args.plot {
-                std::fs::create_dir_all(dir)?;
+                noncirc::files::create_dir(dir)?;
                 let fig = noncirc::figures::BoxFigure {
                     spec: &box_scene.moving_box,
                     report: &b,
@@ -399,7 +391,6 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
                 for f in noncirc::figures::save(&fig, &dir.join("moving_box"))? {
                     eprintln!("wrote {}", f.display());
                 }
-                let _ = eval;
             }
             match args.format {
                 Format::Json => out(&json(&b)?)?,

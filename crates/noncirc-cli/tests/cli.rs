@@ -31,6 +31,10 @@ fn exit_codes_tell_bad_input_from_runtime_failure() {
     );
     assert_eq!(code(&["optimise", "--checkpoint-every", "inf"]), Some(2));
     assert_eq!(code(&["evaluate", "no-such-file.toml"]), Some(2));
+    assert_eq!(
+        code(&["optimise", "--resume", "no-such-checkpoint.json"]),
+        Some(2)
+    );
     // A runtime failure: the output directory cannot be created under a file.
     let dir = temp("runtime");
     let file = dir.join("file");

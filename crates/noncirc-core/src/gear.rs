@@ -2,6 +2,7 @@
 
 use crate::curve::{parabola_vertex, PitchCurve, Polar, TAU};
 use crate::error::{positive, Error, Result};
+use crate::planetary::Rotation;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use crate::vec2::Vec2;
@@ -310,7 +311,7 @@ pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     (convex, concave)
 }
 
-/// Where a gear pair samples its driver: `psi_j = start + sense·j·2π/N`. The gear command
+/// Where a gear pair samples its driver: `psi_j = start ± j·2π/N` (+ counter-clockwise). The gear command
 /// uses [`SampleGrid::STANDARD`]; the planetary train samples the sun on its carrier grid
 /// (its start and its rotation sense), so one solved pair serves the motion, the module and
 /// the outlines.
@@ -318,15 +319,15 @@ pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
 pub struct SampleGrid {
     /// Driver parameter of node 0 (rad).
     pub start: f64,
-    /// +1: nodes advance counter-clockwise in ψ; −1: clockwise.
-    pub sense: f64,
+    /// The sense in which the nodes advance in ψ.
+    pub sense: Rotation,
 }
 
 impl SampleGrid {
     /// `psi_j = j·2π/N`.
     pub const STANDARD: SampleGrid = SampleGrid {
         start: 0.0,
-        sense: 1.0,
+        sense: Rotation::Counterclockwise,
     };
 }
 
@@ -382,14 +383,16 @@ impl GearPair {
     ) -> Result<Self> {
         resolution.validate()?;
         let n = resolution.samples_per_turn;
-        let samples = curve.sample_uniform(grid.start, grid.sense * TAU / n as f64, n);
+        let sense = grid.sense.sign();
+        let samples = curve.sample_uniform(grid.start, sense * TAU / n as f64, n);
         if let Some((j, p)) = samples
             .iter()
             .enumerate()
             .find(|(_, p)| !(p.rho > 0.0 && p.d1.is_finite() && p.d2.is_finite()))
         {
             return Err(Error::NonPositiveRadius {
-                psi_deg: grid.start.to_degrees() + grid.sense * 360.0 * j as f64 / n as f64,
+                psi_deg: (grid.start.to_degrees() + sense * 360.0 * j as f64 / n as f64)
+                    .rem_euclid(360.0),
                 rho_mm: p.rho,
             });
         }
@@ -451,9 +454,9 @@ impl GearPair {
         self.grid
     }
 
-    /// Driver parameter of node `j` (rad): `start + sense·j·2π/N`.
+    /// Driver parameter of node `j` (rad): `start ± j·2π/N`, not wrapped.
     pub fn psi(&self, j: usize) -> f64 {
-        self.grid.start + self.grid.sense * TAU * j as f64 / self.samples.len() as f64
+        self.grid.start + self.grid.sense.sign() * TAU * j as f64 / self.samples.len() as f64
     }
 
     /// Driver samples at the grid's nodes.
@@ -514,7 +517,7 @@ impl GearPair {
     /// node `j` sits at radius `a − ρ_j` and own angle `−sense·phi2_j`, angle 0 meeting node 0.
     pub fn driven_points(&self) -> Vec<Vec2> {
         let a = self.centre_distance();
-        let sense = self.grid.sense;
+        let sense = self.grid.sense.sign();
         (self.samples.iter().zip(&self.phi2_nodes))
             .map(|(p, phi2)| {
                 let (s, c) = (-sense * phi2).sin_cos();
@@ -523,7 +526,8 @@ impl GearPair {
             .collect()
     }
 
-    /// Transmission ratio `i12 = ω1/ω2 = (a - ρ)/ρ` at `psi`.
+    /// Transmission ratio `i12 = ω1/ω2 = (a - ρ)/ρ` at the driver parameter `psi` (rad,
+    /// absolute: not a turn along the grid as for [`GearPair::phi2`]).
     pub fn ratio(&self, psi: f64) -> f64 {
         let r = self.curve.eval(psi).rho;
         (self.centre_distance() - r) / r

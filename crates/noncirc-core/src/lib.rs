@@ -44,7 +44,7 @@ pub use gear::{
 };
 pub use measures::{nearest, Measure};
 pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
-pub use objectives::{evaluate_all, travel_sign, ObjectiveValue, Travel};
+pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue, Travel};
 pub use planetary::{ArmState, Kinematics};
 pub use vec2::Vec2;
 

@@ -225,7 +225,7 @@ impl Kinematics {
         let sigma = spec.rotation.sign();
         let grid = SampleGrid {
             start: spec.psi_start(),
-            sense: sigma,
+            sense: spec.rotation,
         };
         let pair = GearPair::solve_on(curve, *resolution, grid, integrator)?;
         let n = resolution.samples_per_turn;

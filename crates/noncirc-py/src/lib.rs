@@ -1,5 +1,8 @@
-//! The `noncirc._noncirc` extension: a thin layer over the `noncirc` facade. Every error
-//! becomes `noncirc.NoncircError` (a `ValueError`), and heavy work runs with the GIL released.
+//! The `noncirc._noncirc` extension: a thin layer over the `noncirc` library. Input and model
+//! errors become `noncirc.NoncircError` (a `ValueError`; unknown names its subclass
+//! `UnknownNameError`), files that cannot be read or written `OSError` (with its errno
+//! subclass, e.g. `FileNotFoundError`); heavy work runs with the GIL released, and a
+//! search stopped by Ctrl-C raises `KeyboardInterrupt`.
 
 use noncirc::core::Algorithm;
 use noncirc::core::Measure;
@@ -48,7 +51,20 @@ fn lib_err(e: noncirc::Error) -> PyErr {
     match e {
         noncirc::Error::Core(e) => core_err(e),
         noncirc::Error::Scene(e) => scene_err(e),
-        e @ noncirc::Error::File { .. } => pyo3::exceptions::PyOSError::new_err(e.to_string()),
+        noncirc::Error::File {
+            action,
+            path,
+            source,
+        } => {
+            // OSError(errno, message, filename) becomes FileNotFoundError and its kin.
+            let message = format!("cannot {action}: {source}");
+            match source.raw_os_error() {
+                Some(errno) => pyo3::exceptions::PyOSError::new_err((errno, message, path)),
+                None => {
+                    pyo3::exceptions::PyOSError::new_err(format!("{message}: {}", path.display()))
+                }
+            }
+        }
         other => err(other),
     }
 }
@@ -292,7 +308,9 @@ fn evaluate<'py>(
             "planet_centres",
             points(kin.planet_centres()).into_pyarray(py),
         )?;
-        let outlines = noncirc::export::outlines(kin.pair());
+    }
+    if let Some(pair) = eval.pair() {
+        let outlines = noncirc::export::outlines(pair);
         out.set_item("driver_curve", points(&outlines[0].points).into_pyarray(py))?;
         out.set_item("driven_curve", points(&outlines[1].points).into_pyarray(py))?;
     }
@@ -316,8 +334,7 @@ fn measures(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 /// Rayon pools by thread count, built once; `None` for one thread (the caller's own).
 fn pool(threads: Option<usize>) -> PyResult<Option<Arc<rayon::ThreadPool>>> {
     static POOLS: OnceLock<Mutex<HashMap<usize, Arc<rayon::ThreadPool>>>> = OnceLock::new();
-    let n = threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    noncirc::search::check_threads(n).map_err(lib_err)?;
+    let n = noncirc::search::threads_or_all(threads).map_err(lib_err)?;
     if n == 1 {
         return Ok(None);
     }
@@ -472,22 +489,24 @@ struct PythonObserver {
 impl Observer for PythonObserver {
     fn poll(&mut self, state: &SearchState, budget: u64) -> Control {
         Python::with_gil(|py| {
-            let outcome = py.check_signals().and_then(|()| match &self.progress {
-                None => Ok(true),
-                Some(callback) => {
-                    let info = PyDict::new(py);
-                    info.set_item("generation", state.generation)?;
-                    info.set_item("evaluations", state.evaluations)?;
-                    info.set_item("budget", budget)?;
-                    info.set_item("best_violation", state.best.as_ref().map(|b| b.fitness.cv))?;
-                    info.set_item("feasible", state.best_confirmed.is_some())?;
-                    // Returning False stops the search; None or anything else goes on.
-                    let answer = callback.call1(py, (info,))?;
-                    let stop = (answer.bind(py).downcast::<pyo3::types::PyBool>())
-                        .is_ok_and(|b| !b.is_true());
-                    Ok(!stop)
-                }
-            });
+            // The callback first, so that it sees the state the search stops in.
+            let progress = || -> PyResult<bool> {
+                let Some(callback) = &self.progress else {
+                    return Ok(true);
+                };
+                let info = PyDict::new(py);
+                info.set_item("generation", state.generation)?;
+                info.set_item("evaluations", state.evaluations)?;
+                info.set_item("budget", budget)?;
+                info.set_item("best_violation", state.best.as_ref().map(|b| b.fitness.cv))?;
+                info.set_item("feasible", state.best_confirmed.is_some())?;
+                // Returning False stops the search; None or anything else goes on.
+                let answer = callback.call1(py, (info,))?;
+                let stop =
+                    (answer.bind(py).downcast::<pyo3::types::PyBool>()).is_ok_and(|b| !b.is_true());
+                Ok(!stop)
+            };
+            let outcome = progress().and_then(|go_on| py.check_signals().map(|()| go_on));
             match outcome {
                 Ok(true) => Control::Continue,
                 Ok(false) => Control::Stop,
@@ -541,34 +560,26 @@ fn optimise<'py>(
                 settings.apply(&mut s).map_err(core_err)?;
                 s
             }
-            (None, Some(_))
-                if settings.algorithm.is_none()
-                    && population.is_none()
-                    && seed.is_none()
-                    && screening_samples_per_turn.is_none() =>
-            {
-                // The checkpoint holds the scene; this one is not used.
+            // The checkpoint holds the scene; this one is not used.
+            (None, Some(_)) if settings.ignored_by_resume().is_empty() => {
                 noncirc::core::Scene::default()
             }
             (None, Some(_)) => {
-                return Err(err(
-                    "resume continues the checkpoint's own scene and search: only budget, \
-                 threads, progress and the checkpoint options apply",
-                ))
+                return Err(err(format!(
+                    "resume continues the checkpoint's own scene and search; {} would be ignored \
+                 (only budget, threads, progress and the checkpoint options apply)",
+                    settings.ignored_by_resume().join(", ")
+                )))
             }
             (Some(_), Some(_)) => return Err(err(
                 "give a scene or resume=, not both: a resumed search uses the checkpoint's scene",
             )),
             (None, None) => return Err(err("optimise needs a scene, or resume= a checkpoint")),
         };
-    if !(checkpoint_every.is_finite() && checkpoint_every >= 0.0) {
-        return Err(err(format!(
-            "checkpoint_every = {checkpoint_every}: expected seconds, 0 or more"
-        )));
-    }
     let opts = RunOptions {
         checkpoint,
-        checkpoint_every: std::time::Duration::from_secs_f64(checkpoint_every.min(3.2e7)),
+        checkpoint_every: noncirc::search::checkpoint_interval(checkpoint_every)
+            .map_err(lib_err)?,
         resume_budget: resume.as_ref().and(budget),
         resume,
         ..RunOptions::new(threads).map_err(lib_err)?

@@ -270,6 +270,11 @@ pub struct SearchState {
 }
 
 impl SearchState {
+    /// The design to report: the best confirmed-feasible one, else the best screened.
+    pub fn reported(&self) -> Option<&Candidate> {
+        self.best_confirmed.as_ref().or(self.best.as_ref())
+    }
+
     pub fn new(
         algorithm: Algorithm,
         dim: usize,
