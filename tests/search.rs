@@ -217,7 +217,7 @@ fn fingerprint(state: &SearchState) -> String {
 
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
-    for algorithm in Algorithm::ALL {
+    for &algorithm in Algorithm::ALL {
         let scene = short_search(algorithm);
         let one = run(&scene, &options(1, None, None, None)).unwrap();
         let two = run(&scene, &options(2, None, None, None)).unwrap();

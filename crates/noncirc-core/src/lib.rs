@@ -58,5 +58,5 @@ pub use search::{
     das_dennis, execute, non_dominated_fronts, scale, stop_after_generations, Algorithm,
     BatchEvaluator, Candidate, Checkpoint, Cmaes, Control, DifferentialEvolution, Ending, Fitness,
     Goal, HistoryRow, Nsga, Observer, ParameterGuided, Rng, SceneProblem, SearchState, Solver,
-    Survival, CHECKPOINT_FORMAT, INVALID_CV,
+    SolverState, Survival, CHECKPOINT_FORMAT, INVALID_CV,
 };

@@ -1,7 +1,7 @@
 //! CMA-ES (Hansen's (μ/μ_w, λ) with rank-one and rank-μ updates) in the unit cube, ranking
 //! by Deb's feasibility-first rule, with restarts from a random mean when it stalls.
 
-use super::{check_len, evaluate_all, state_error, BatchEvaluator, Candidate, Rng};
+use super::{check_len, evaluate_all, state_error, BatchEvaluator, Candidate, Rng, SolverState};
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
@@ -44,8 +44,20 @@ impl Cmaes {
         }
     }
 
+    fn restart(&mut self) {
+        self.mean = self.rng.point(self.dim);
+        self.sigma = START_SIGMA;
+        self.cov = identity(self.dim);
+        self.path_sigma = vec![0.0; self.dim];
+        self.path_c = vec![0.0; self.dim];
+        self.best_merit = None;
+        self.stall = 0;
+    }
+}
+
+impl SolverState for Cmaes {
     /// Checks a resumed state: sizes, a finite positive step, a finite covariance.
-    pub fn check(&self, dim: usize) -> crate::Result<()> {
+    fn check(&self, dim: usize, _goals: usize) -> crate::Result<()> {
         check_len("cmaes: dimension", self.dim, dim)?;
         check_len("cmaes: mean", self.mean.len(), dim)?;
         check_len("cmaes: covariance", self.cov.len(), dim * dim)?;
@@ -67,17 +79,7 @@ impl Cmaes {
         Ok(())
     }
 
-    fn restart(&mut self) {
-        self.mean = self.rng.point(self.dim);
-        self.sigma = START_SIGMA;
-        self.cov = identity(self.dim);
-        self.path_sigma = vec![0.0; self.dim];
-        self.path_c = vec![0.0; self.dim];
-        self.best_merit = None;
-        self.stall = 0;
-    }
-
-    pub fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
+    fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
         let d = self.dim;
         let df = d as f64;
         let mu = self.lambda / 2;

@@ -2,6 +2,7 @@
 
 use super::{
     check_candidate, check_len, evaluate_all, state_error, BatchEvaluator, Candidate, Rng,
+    SolverState,
 };
 use serde::{Deserialize, Serialize};
 
@@ -24,9 +25,11 @@ impl DifferentialEvolution {
             rng,
         }
     }
+}
 
+impl SolverState for DifferentialEvolution {
     /// Checks a resumed state: mutation needs four distinct members, so at least 5.
-    pub fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
+    fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
         check_len("de: dimension", self.dim, dim)?;
         if self.size < 5 {
             return Err(state_error(format!(
@@ -49,7 +52,7 @@ impl DifferentialEvolution {
         Ok(())
     }
 
-    pub fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
+    fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
         if self.population.is_empty() {
             let points = (0..self.size).map(|_| self.rng.point(self.dim)).collect();
             self.population = evaluate_all(eval, points);

@@ -4,7 +4,7 @@
 
 use super::{
     check_candidate, check_len, clamp_unit, evaluate_all, state_error, BatchEvaluator, Candidate,
-    Rng,
+    Rng, SolverState,
 };
 use serde::{Deserialize, Serialize};
 
@@ -32,8 +32,18 @@ impl ParameterGuided {
         }
     }
 
+    fn restart(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
+        self.steps = vec![START_STEP; self.dim];
+        self.stall = 0;
+        let start = evaluate_all(eval, vec![self.rng.point(self.dim)]);
+        self.current = start.first().cloned();
+        start
+    }
+}
+
+impl SolverState for ParameterGuided {
     /// Checks a resumed state.
-    pub fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
+    fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
         check_len("guided: dimension", self.dim, dim)?;
         check_len("guided: steps", self.steps.len(), dim)?;
         if let Some(s) = self.steps.iter().find(|s| !(s.is_finite() && **s >= 0.0)) {
@@ -45,15 +55,7 @@ impl ParameterGuided {
         Ok(())
     }
 
-    fn restart(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
-        self.steps = vec![START_STEP; self.dim];
-        self.stall = 0;
-        let start = evaluate_all(eval, vec![self.rng.point(self.dim)]);
-        self.current = start.first().cloned();
-        start
-    }
-
-    pub fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
+    fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
         let Some(current) = self.current.clone() else {
             return self.restart(eval);
         };

@@ -105,63 +105,6 @@ pub trait BatchEvaluator {
     }
 }
 
-/// The algorithms. In scene files and on the command line by name (`de`, `cmaes`, …).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(try_from = "String", into = "String")]
-pub enum Algorithm {
-    /// The papers' parameter-guided heuristic.
-    Guided,
-    /// Differential evolution (rand/1/bin, dithered F).
-    De,
-    /// CMA-ES with restarts.
-    Cmaes,
-    /// NSGA-II with constraint domination.
-    Nsga2,
-    /// NSGA-III with constraint domination, for more than three goals.
-    Nsga3,
-}
-
-impl Algorithm {
-    /// Every algorithm, in the order `noncirc optimise --help` lists them.
-    pub const ALL: [Algorithm; 5] = [
-        Algorithm::Guided,
-        Algorithm::De,
-        Algorithm::Cmaes,
-        Algorithm::Nsga2,
-        Algorithm::Nsga3,
-    ];
-
-    /// Parses a name: `guided`, `de`, `cmaes`, `nsga2`, `nsga3` (or `parameter-guided`,
-    /// `cma-es`, `nsga-ii`, `nsga-iii`); an unknown name is [`Error::UnknownName`].
-    pub fn parse(name: &str) -> crate::error::Result<Self> {
-        match name {
-            "guided" | "parameter-guided" => Ok(Algorithm::Guided),
-            "de" => Ok(Algorithm::De),
-            "cmaes" | "cma-es" => Ok(Algorithm::Cmaes),
-            "nsga2" | "nsga-ii" => Ok(Algorithm::Nsga2),
-            "nsga3" | "nsga-iii" => Ok(Algorithm::Nsga3),
-            _ => Err(Error::UnknownName {
-                what: "algorithm",
-                name: name.to_string(),
-                nearest: crate::measures::nearest(
-                    name,
-                    &Algorithm::ALL.map(|a| a.name().to_string()),
-                ),
-            }),
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Algorithm::Guided => "guided",
-            Algorithm::De => "de",
-            Algorithm::Cmaes => "cmaes",
-            Algorithm::Nsga2 => "nsga2",
-            Algorithm::Nsga3 => "nsga3",
-        }
-    }
-}
-
 impl TryFrom<String> for Algorithm {
     type Error = Error;
     fn try_from(name: String) -> crate::error::Result<Self> {
@@ -182,61 +125,142 @@ impl std::str::FromStr for Algorithm {
     }
 }
 
-/// A solver's resumable state.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub enum Solver {
-    Guided(ParameterGuided),
-    De(DifferentialEvolution),
-    Cmaes(Cmaes),
-    Nsga2(Nsga),
-    Nsga3(Nsga),
+/// What every algorithm's state does. Each algorithm lives in its own file (its state and
+/// this trait) and is registered once, in [`algorithms!`] below.
+pub trait SolverState {
+    /// One generation (or probe round); returns the candidates it evaluated.
+    fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate>;
+    /// Checks a state read from outside against a problem of `dim` parameters and `goals`
+    /// goals.
+    fn check(&self, dim: usize, goals: usize) -> crate::Result<()>;
+    /// The current non-dominated feasible set (multi-objective solvers).
+    fn front(&self) -> Vec<Candidate> {
+        Vec::new()
+    }
+}
+
+/// The registry of algorithms: each line gives the variant, its state's type, its name and
+/// aliases, its description and how to start it from `(dim, goals, population, rng)`. It
+/// makes `Algorithm` (names, parsing) and `Solver` (the resumable state, serialised by
+/// variant name) and the dispatch between them.
+macro_rules! algorithms {
+    ($(
+        $(#[doc = $doc:literal])*
+        $variant:ident($state:ty) = $name:literal $(| $alias:literal)*,
+        |$dim:ident, $goals:ident, $population:ident, $rng:ident| $new:expr;
+    )*) => {
+        /// The algorithms. In scene files and on the command line by name (`de`, `cmaes`, …).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+        #[serde(try_from = "String", into = "String")]
+        pub enum Algorithm {
+            $($(#[doc = $doc])* $variant,)*
+        }
+
+        impl Algorithm {
+            /// Every algorithm, in the order `noncirc optimise --help` lists them.
+            pub const ALL: &'static [Algorithm] = &[$(Algorithm::$variant),*];
+
+            /// Parses a name or an alias; an unknown name is [`Error::UnknownName`] with the
+            /// nearest names.
+            pub fn parse(name: &str) -> crate::error::Result<Self> {
+                match name {
+                    $($name $(| $alias)* => Ok(Algorithm::$variant),)*
+                    _ => Err(Error::UnknownName {
+                        what: "algorithm",
+                        name: name.to_string(),
+                        nearest: crate::measures::nearest(
+                            name,
+                            &[$($name.to_string()),*],
+                        ),
+                    }),
+                }
+            }
+
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(Algorithm::$variant => $name,)*
+                }
+            }
+        }
+
+        /// A solver's resumable state.
+        #[derive(Debug, Clone, Serialize, Deserialize)]
+        pub enum Solver {
+            $($variant($state),)*
+        }
+
+        impl Solver {
+            /// A fresh solver for `dim` parameters and `goals` goals.
+            pub fn new(
+                algorithm: Algorithm,
+                dim: usize,
+                goals: usize,
+                population: usize,
+                seed: u64,
+            ) -> Self {
+                let rng = Rng::new(seed);
+                match algorithm {
+                    $(Algorithm::$variant => {
+                        let ($dim, $goals, $population, $rng) = (dim, goals, population, rng);
+                        Solver::$variant($new)
+                    })*
+                }
+            }
+
+            /// The algorithm this state belongs to.
+            pub fn algorithm(&self) -> Algorithm {
+                match self {
+                    $(Solver::$variant(_) => Algorithm::$variant,)*
+                }
+            }
+
+            fn state(&self) -> &dyn SolverState {
+                match self {
+                    $(Solver::$variant(s) => s,)*
+                }
+            }
+
+            fn state_mut(&mut self) -> &mut dyn SolverState {
+                match self {
+                    $(Solver::$variant(s) => s,)*
+                }
+            }
+        }
+    };
+}
+
+algorithms! {
+    /// The papers' parameter-guided heuristic.
+    Guided(ParameterGuided) = "guided" | "parameter-guided",
+        |dim, _goals, _population, rng| ParameterGuided::new(dim, rng);
+    /// Differential evolution (rand/1/bin, dithered F).
+    De(DifferentialEvolution) = "de",
+        |dim, _goals, population, rng| DifferentialEvolution::new(dim, population, rng);
+    /// CMA-ES with restarts.
+    Cmaes(Cmaes) = "cmaes" | "cma-es",
+        |dim, _goals, population, rng| Cmaes::new(dim, population, rng);
+    /// NSGA-II with constraint domination.
+    Nsga2(Nsga) = "nsga2" | "nsga-ii",
+        |dim, _goals, population, rng| Nsga::nsga2(dim, population, rng);
+    /// NSGA-III with constraint domination, for more than three goals.
+    Nsga3(Nsga) = "nsga3" | "nsga-iii",
+        |dim, goals, population, rng| Nsga::nsga3(dim, population, goals, rng);
 }
 
 impl Solver {
-    /// A fresh solver for `dim` parameters and `goals` goals.
-    pub fn new(
-        algorithm: Algorithm,
-        dim: usize,
-        goals: usize,
-        population: usize,
-        seed: u64,
-    ) -> Self {
-        let rng = Rng::new(seed);
-        match algorithm {
-            Algorithm::Guided => Solver::Guided(ParameterGuided::new(dim, rng)),
-            Algorithm::De => Solver::De(DifferentialEvolution::new(dim, population, rng)),
-            Algorithm::Cmaes => Solver::Cmaes(Cmaes::new(dim, population, rng)),
-            Algorithm::Nsga2 => Solver::Nsga2(Nsga::nsga2(dim, population, rng)),
-            Algorithm::Nsga3 => Solver::Nsga3(Nsga::nsga3(dim, population, goals, rng)),
-        }
-    }
-
     /// One generation (or probe round); returns the candidates it evaluated.
     pub fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
-        match self {
-            Solver::Guided(s) => s.step(eval),
-            Solver::De(s) => s.step(eval),
-            Solver::Cmaes(s) => s.step(eval),
-            Solver::Nsga2(s) | Solver::Nsga3(s) => s.step(eval),
-        }
+        self.state_mut().step(eval)
     }
 
     /// Checks the state against a problem of `dim` parameters and `goals` goals.
     pub fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
-        match self {
-            Solver::Guided(s) => s.check(dim, goals),
-            Solver::De(s) => s.check(dim, goals),
-            Solver::Cmaes(s) => s.check(dim),
-            Solver::Nsga2(s) | Solver::Nsga3(s) => s.check(dim, goals),
-        }
+        self.state().check(dim, goals)
     }
 
     /// The current non-dominated feasible set (multi-objective solvers), if any.
     pub fn front(&self) -> Vec<Candidate> {
-        match self {
-            Solver::Nsga2(s) | Solver::Nsga3(s) => s.front(),
-            _ => Vec::new(),
-        }
+        self.state().front()
     }
 }
 
@@ -299,13 +323,7 @@ impl SearchState {
     /// parameters and `goals` goals: every length, every point in the unit cube, counters
     /// in order. A state that passes cannot panic or loop in [`SearchState::step`].
     pub fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
-        let algorithm = match &self.solver {
-            Solver::Guided(_) => Algorithm::Guided,
-            Solver::De(_) => Algorithm::De,
-            Solver::Cmaes(_) => Algorithm::Cmaes,
-            Solver::Nsga2(_) => Algorithm::Nsga2,
-            Solver::Nsga3(_) => Algorithm::Nsga3,
-        };
+        let algorithm = self.solver.algorithm();
         if algorithm != self.algorithm {
             return Err(state_error(format!(
                 "the state names algorithm '{}' but holds a '{}' solver",

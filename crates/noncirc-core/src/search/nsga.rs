@@ -7,6 +7,7 @@
 
 use super::{
     check_candidate, check_len, evaluate_all, state_error, BatchEvaluator, Candidate, Rng,
+    SolverState,
 };
 use serde::{Deserialize, Serialize};
 
@@ -62,45 +63,6 @@ impl Nsga {
         }
     }
 
-    /// Checks a resumed state: an even population of at least 4, ranks and crowding per
-    /// member, reference directions with one coordinate per goal.
-    pub fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
-        check_len("nsga: dimension", self.dim, dim)?;
-        if self.size < 4 || self.size % 2 == 1 {
-            return Err(state_error(format!(
-                "nsga: population size {} (even, at least 4)",
-                self.size
-            )));
-        }
-        if !self.population.is_empty() {
-            check_len("nsga: population", self.population.len(), self.size)?;
-        }
-        check_len("nsga: ranks", self.rank.len(), self.population.len())?;
-        check_len("nsga: crowding", self.crowding.len(), self.population.len())?;
-        if let Survival::ReferenceDirections(directions) = &self.survival {
-            if directions.is_empty() {
-                return Err(state_error("nsga3: no reference directions".into()));
-            }
-            for d in directions {
-                check_len("nsga3: reference direction", d.len(), goals)?;
-            }
-        }
-        for (i, c) in self.population.iter().enumerate() {
-            check_candidate(&format!("nsga: member {i}"), c, dim, goals)?;
-        }
-        Ok(())
-    }
-
-    /// The feasible first front of the current population.
-    pub fn front(&self) -> Vec<Candidate> {
-        self.population
-            .iter()
-            .zip(&self.rank)
-            .filter(|(c, &r)| r == 0 && c.fitness.feasible())
-            .map(|(c, _)| c.clone())
-            .collect()
-    }
-
     fn tournament(&mut self) -> usize {
         let (a, b) = (
             self.rng.below(self.population.len()),
@@ -150,7 +112,67 @@ impl Nsga {
         }
     }
 
-    pub fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
+    fn rank_and_crowd(&mut self) {
+        let n = self.population.len();
+        self.rank = vec![0; n];
+        self.crowding = vec![0.0; n];
+        for (r, front) in non_dominated_fronts(&self.population)
+            .into_iter()
+            .enumerate()
+        {
+            let crowd = match self.survival {
+                Survival::Crowding => crowding(&self.population, &front),
+                Survival::ReferenceDirections(_) => vec![0.0; front.len()],
+            };
+            for (k, &i) in front.iter().enumerate() {
+                self.rank[i] = r;
+                self.crowding[i] = crowd[k];
+            }
+        }
+    }
+}
+
+impl SolverState for Nsga {
+    /// Checks a resumed state: an even population of at least 4, ranks and crowding per
+    /// member, reference directions with one coordinate per goal.
+    fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
+        check_len("nsga: dimension", self.dim, dim)?;
+        if self.size < 4 || self.size % 2 == 1 {
+            return Err(state_error(format!(
+                "nsga: population size {} (even, at least 4)",
+                self.size
+            )));
+        }
+        if !self.population.is_empty() {
+            check_len("nsga: population", self.population.len(), self.size)?;
+        }
+        check_len("nsga: ranks", self.rank.len(), self.population.len())?;
+        check_len("nsga: crowding", self.crowding.len(), self.population.len())?;
+        if let Survival::ReferenceDirections(directions) = &self.survival {
+            if directions.is_empty() {
+                return Err(state_error("nsga3: no reference directions".into()));
+            }
+            for d in directions {
+                check_len("nsga3: reference direction", d.len(), goals)?;
+            }
+        }
+        for (i, c) in self.population.iter().enumerate() {
+            check_candidate(&format!("nsga: member {i}"), c, dim, goals)?;
+        }
+        Ok(())
+    }
+
+    /// The feasible first front of the current population.
+    fn front(&self) -> Vec<Candidate> {
+        self.population
+            .iter()
+            .zip(&self.rank)
+            .filter(|(c, &r)| r == 0 && c.fitness.feasible())
+            .map(|(c, _)| c.clone())
+            .collect()
+    }
+
+    fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
         if self.population.is_empty() {
             let points = (0..self.size).map(|_| self.rng.point(self.dim)).collect();
             self.population = evaluate_all(eval, points);
@@ -204,25 +226,6 @@ impl Nsga {
         self.population = next.into_iter().map(|i| merged[i].clone()).collect();
         self.rank_and_crowd();
         offspring
-    }
-
-    fn rank_and_crowd(&mut self) {
-        let n = self.population.len();
-        self.rank = vec![0; n];
-        self.crowding = vec![0.0; n];
-        for (r, front) in non_dominated_fronts(&self.population)
-            .into_iter()
-            .enumerate()
-        {
-            let crowd = match self.survival {
-                Survival::Crowding => crowding(&self.population, &front),
-                Survival::ReferenceDirections(_) => vec![0.0; front.len()],
-            };
-            for (k, &i) in front.iter().enumerate() {
-                self.rank[i] = r;
-                self.crowding[i] = crowd[k];
-            }
-        }
     }
 }
 
