@@ -513,6 +513,18 @@ impl GearPair {
             .collect()
     }
 
+    /// Computes the spectrum [`GearPair::phi2`] interpolates with the caller's planned
+    /// transforms (of the pair's sample count), so that a caller evaluating many pairs does
+    /// not plan one per pair.
+    pub fn prepare_phi2(&self, integrator: &mut SpectralIntegrator) {
+        self.ratio_coeffs.get_or_init(|| {
+            if integrator.len() != self.ratio_nodes.len() {
+                *integrator = SpectralIntegrator::new(self.ratio_nodes.len());
+            }
+            integrator.coefficients(&self.ratio_nodes)
+        });
+    }
+
     /// The driven gear's pitch curve in its own frame (mm): the point that meets the driver's
     /// node `j` sits at radius `a − ρ_j` and own angle `−sense·phi2_j`, angle 0 meeting node 0.
     pub fn driven_points(&self) -> Vec<Vec2> {

@@ -416,6 +416,7 @@ pub fn evaluate_box_with(
     )?;
     let semi_major =
         spec.module_mm * std::f64::consts::PI * spec.teeth as f64 / unit_pair.perimeter();
+    unit_pair.prepare_phi2(integrator);
     let numeric = spec.pot_pitch_mm / TAU * (unit_pair.phi2(b) - unit_pair.phi2(a));
     // Best window centre for this width: golden-section search of the travel.
     let width = b - a;
