@@ -69,6 +69,21 @@ pub enum Error {
     /// stand there, or empty where it must not be; `problem` names the entry.
     #[error("{list}: {problem}")]
     BadList { list: &'static str, problem: String },
+    /// Teeth that cannot be cut on this pitch curve with these settings: where and why.
+    #[error("{gear} gear, tooth {tooth} (pitch arc {arc_mm:.3} mm): {why}")]
+    Teeth {
+        gear: &'static str,
+        tooth: usize,
+        arc_mm: f64,
+        why: String,
+    },
+    /// A toothed outline that crosses itself, and where.
+    #[error("{gear} gear: the toothed outline crosses itself near ({x_mm:.4}, {y_mm:.4}) mm")]
+    OutlineCrossing {
+        gear: &'static str,
+        x_mm: f64,
+        y_mm: f64,
+    },
     /// A design that cannot be manufactured (e.g. a module of zero).
     #[error("{0}")]
     Infeasible(String),

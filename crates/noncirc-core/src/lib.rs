@@ -21,6 +21,7 @@ mod quadrature;
 mod resolution;
 mod scene;
 mod search;
+mod teeth;
 mod vec2;
 
 // The scene: what is designed and asked, and at which resolution.
@@ -46,6 +47,10 @@ pub use measures::{nearest, Measure};
 pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
 pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue, Travel};
 pub use planetary::{ArmState, Kinematics};
+pub use teeth::{
+    signed_area, Cutter, GearTeethReport, Member, MeshReport, PairTrack, Side, TeethReport, Tooth,
+    ToothSpec, ToothedGear, ToothedPair, Undercut, OVERLAP_TOLERANCE_MM,
+};
 pub use vec2::Vec2;
 
 // Evaluation and its accuracy.

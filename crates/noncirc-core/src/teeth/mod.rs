@@ -1,0 +1,425 @@
+//! Teeth: conjugate tooth outlines for both gears of a ratio-1 pair (and so for every gear
+//! of the three-arm train), cut by a rack or a shaper rolling on the pitch curves, with
+//! the checks that decide whether they can be made and will run: undercut, pointed or thin
+//! tips, and a whole-cycle mesh check (least clearance, backlash, contact ratio).
+//!
+//! Units: mm and radians; proportions of the tool (addendum, dedendum, tip radius, shift)
+//! in modules, as on a drawing.
+
+mod mesh;
+mod polyline;
+mod profile;
+mod track;
+
+pub use mesh::MeshReport;
+pub use polyline::signed_area;
+pub use profile::{Side, Tooth, ToothedGear, Undercut};
+pub use track::{Member, PairTrack};
+
+use crate::curve::PitchCurve;
+use crate::error::{positive, Error, Result};
+use profile::{Cut, Tool};
+use serde::{Deserialize, Serialize};
+
+/// The cutting tool: a rack, or a pinion-type shaper cutter for pitch curves with concave
+/// arcs (its pitch radius must stay below their least radius of curvature).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Cutter {
+    #[default]
+    Rack,
+    Shaper {
+        /// Teeth of the shaper (its pitch radius is `m·teeth/2`).
+        teeth: u32,
+    },
+}
+
+/// How teeth are cut and checked (`[gear.teeth]` in a scene). Heights and radii in
+/// modules; the tooth count is the module rule's (`gear.module.teeth`, or the largest
+/// admissible module's).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ToothSpec {
+    /// Pressure angle of the tool (degrees).
+    pub pressure_angle_deg: f64,
+    /// Addendum: tip height above the pitch curve (× m).
+    pub addendum: f64,
+    /// Dedendum: root depth below the pitch curve (× m).
+    pub dedendum: f64,
+    /// Radius of the tool's tip rounding, which cuts the root fillet (× m).
+    pub tip_radius: f64,
+    /// Circumferential backlash of a pair on the pitch curve (mm), half from each gear.
+    pub backlash_mm: f64,
+    /// Profile shift of the driver (sun, planets) (× m); the intermediates take the
+    /// opposite, so the centre distance stays.
+    pub profile_shift: f64,
+    pub cutter: Cutter,
+    /// Segments per flank of the outline (accuracy: see docs/teeth.md).
+    pub flank_samples: usize,
+    /// Segments per root fillet.
+    pub fillet_samples: usize,
+    /// Mesh positions per pitch in the whole-cycle check.
+    pub mesh_steps_per_pitch: usize,
+    /// Panels per turn of the arc-length tables.
+    pub arc_panels: usize,
+    /// Least tip land (× m) below which a tooth is too thin at the tip.
+    pub min_tip_land: f64,
+    /// Whether undercut is accepted (it weakens the tooth and shortens the contact).
+    pub allow_undercut: bool,
+}
+
+impl Default for ToothSpec {
+    fn default() -> Self {
+        Self {
+            pressure_angle_deg: 20.0,
+            addendum: 1.0,
+            dedendum: 1.25,
+            tip_radius: 0.38,
+            backlash_mm: 0.0,
+            profile_shift: 0.0,
+            cutter: Cutter::Rack,
+            flank_samples: 24,
+            fillet_samples: 12,
+            mesh_steps_per_pitch: 4,
+            arc_panels: 256,
+            min_tip_land: 0.25,
+            allow_undercut: false,
+        }
+    }
+}
+
+/// Largest overlap of tooth bodies the mesh check tolerates (mm).
+pub const OVERLAP_TOLERANCE_MM: f64 = 1e-3;
+
+impl ToothSpec {
+    /// Whether every setting is the default (a scene then leaves the table out).
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// Checks every setting, naming the bad one.
+    pub fn validate(&self) -> Result<()> {
+        let angle = self.pressure_angle_deg;
+        if !(angle > 5.0 && angle < 45.0) {
+            return Err(Error::OutOfRange {
+                name: "gear.teeth.pressure_angle_deg".into(),
+                value: angle,
+                expected: "between 5 and 45 degrees".into(),
+            });
+        }
+        positive("gear.teeth.addendum", self.addendum)?;
+        positive("gear.teeth.dedendum", self.dedendum)?;
+        positive("gear.teeth.tip_radius", self.tip_radius)?;
+        if !(self.min_tip_land >= 0.0 && self.min_tip_land.is_finite()) {
+            return Err(Error::OutOfRange {
+                name: "gear.teeth.min_tip_land".into(),
+                value: self.min_tip_land,
+                expected: "zero or more".into(),
+            });
+        }
+        if !(self.backlash_mm >= 0.0 && self.backlash_mm.is_finite()) {
+            return Err(Error::OutOfRange {
+                name: "gear.teeth.backlash_mm".into(),
+                value: self.backlash_mm,
+                expected: "zero or more".into(),
+            });
+        }
+        if !self.profile_shift.is_finite() || self.profile_shift.abs() >= self.addendum {
+            return Err(Error::OutOfRange {
+                name: "gear.teeth.profile_shift".into(),
+                value: self.profile_shift,
+                expected: "less than the addendum in size".into(),
+            });
+        }
+        for (name, value, least) in [
+            ("gear.teeth.flank_samples", self.flank_samples, 2),
+            ("gear.teeth.fillet_samples", self.fillet_samples, 2),
+            (
+                "gear.teeth.mesh_steps_per_pitch",
+                self.mesh_steps_per_pitch,
+                1,
+            ),
+            ("gear.teeth.arc_panels", self.arc_panels, 16),
+        ] {
+            if value < least || value > 100_000 {
+                return Err(Error::OutOfRange {
+                    name: name.into(),
+                    value: value as f64,
+                    expected: format!("between {least} and 100000"),
+                });
+            }
+        }
+        if let Cutter::Shaper { teeth } = self.cutter {
+            if teeth < 6 {
+                return Err(Error::OutOfRange {
+                    name: "gear.teeth.cutter.teeth".into(),
+                    value: f64::from(teeth),
+                    expected: "at least 6".into(),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Both toothed gears of a ratio-1 pair, and what the checks found.
+#[derive(Debug, Clone)]
+pub struct ToothedPair {
+    pub track: PairTrack,
+    pub spec: ToothSpec,
+    /// Teeth per gear.
+    pub teeth: u32,
+    /// Module (mm): the perimeter over `π·teeth`.
+    pub module_mm: f64,
+    /// The driver (sun and planets) and the driven gear (intermediates), each in its own
+    /// frame (the driver's tooth 0 centred at `ψ = 0`; the driven gear's angle 0 meets it).
+    pub gears: [ToothedGear; 2],
+    pub report: TeethReport,
+}
+
+/// One gear's verdicts.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GearTeethReport {
+    pub name: &'static str,
+    /// Teeth with an undercut flank.
+    pub undercut_teeth: usize,
+    /// Largest flank height lost to undercut (mm).
+    pub undercut_lost_height_mm: f64,
+    /// Every undercut flank: where and how deep.
+    pub undercuts: Vec<Undercut>,
+    /// Least tip land (mm).
+    pub tip_land_min_mm: f64,
+    /// Teeth ending in a point.
+    pub pointed_teeth: usize,
+    /// Points of the closed outline.
+    pub outline_points: usize,
+}
+
+/// The checks of a toothed pair.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TeethReport {
+    pub teeth: u32,
+    pub module_mm: f64,
+    pub pressure_angle_deg: f64,
+    pub centre_distance_mm: f64,
+    pub perimeter_mm: f64,
+    pub gears: [GearTeethReport; 2],
+    pub mesh: MeshReport,
+    /// Sum of the normalised shortfalls (0: the teeth pass every check).
+    pub violation: f64,
+    /// What fails, in words (empty: every check passes).
+    pub failures: Vec<String>,
+}
+
+impl ToothedPair {
+    /// Cuts both gears of the pair of `curve` with `teeth` teeth each (the centre distance
+    /// re-closed from `centre_distance_guess`, mm) and runs every check.
+    pub fn cut(
+        curve: &PitchCurve,
+        centre_distance_guess: f64,
+        teeth: u32,
+        spec: &ToothSpec,
+    ) -> Result<Self> {
+        spec.validate()?;
+        if teeth < 3 {
+            return Err(Error::OutOfRange {
+                name: "gear.module.teeth".into(),
+                value: f64::from(teeth),
+                expected: "at least 3 teeth".into(),
+            });
+        }
+        let track = PairTrack::new(curve, centre_distance_guess, spec.arc_panels)?;
+        let pitch = track.perimeter() / f64::from(teeth);
+        let m = pitch / std::f64::consts::PI;
+        check_concave(&track, spec, m)?;
+        let alpha = spec.pressure_angle_deg.to_radians();
+        let thick =
+            |shift: f64| 0.5 * pitch + 2.0 * shift * m * alpha.tan() - 0.5 * spec.backlash_mm;
+        let x = spec.profile_shift;
+        for (shift, name) in [(x, "driver"), (-x, "driven")] {
+            if thick(shift) <= 0.0 {
+                return Err(Error::OutOfRange {
+                    name: "gear.teeth.backlash_mm".into(),
+                    value: spec.backlash_mm,
+                    expected: format!("less than leaves the {name}'s teeth a thickness"),
+                });
+            }
+        }
+        let cut = |member, shift: f64, phase: f64, name| -> Result<ToothedGear> {
+            Cut {
+                track: &track,
+                member,
+                tool: Tool::new(spec, m, shift, thick(shift))?,
+                pitch,
+                phase,
+                teeth: teeth as usize,
+                flank_samples: spec.flank_samples,
+                fillet_samples: spec.fillet_samples,
+                name,
+            }
+            .run()
+        };
+        let gears = [
+            cut(Member::Driver, x, 0.0, "driver")?,
+            cut(Member::Driven, -x, 0.5 * pitch, "driven")?,
+        ];
+        let mesh = mesh::check(
+            &track,
+            &gears,
+            pitch,
+            alpha.sin_cos(),
+            spec.mesh_steps_per_pitch,
+        );
+        let report = verdict(&track, &gears, &mesh, spec, teeth, m);
+        Ok(Self {
+            track,
+            spec: *spec,
+            teeth,
+            module_mm: m,
+            gears,
+            report,
+        })
+    }
+}
+
+/// A concave pitch arc cannot be cut by a rack (its straight pitch line would cut into the
+/// arc's neighbours), only by a shaper whose pitch radius is below the arc's least radius
+/// of curvature (spec §1.4).
+fn check_concave(track: &PairTrack, spec: &ToothSpec, m: f64) -> Result<()> {
+    let n = 8 * spec.arc_panels;
+    for (member, name) in [(Member::Driver, "driver"), (Member::Driven, "driven")] {
+        let (mut least, mut at) = (0.0_f64, 0.0);
+        for k in 0..n {
+            let psi = std::f64::consts::TAU * k as f64 / n as f64;
+            let kappa = track.frame(member, psi).curvature;
+            if kappa < least {
+                (least, at) = (kappa, psi);
+            }
+        }
+        if least >= 0.0 {
+            continue;
+        }
+        let radius = -1.0 / least;
+        let fits = match spec.cutter {
+            Cutter::Rack => false,
+            Cutter::Shaper { teeth } => 0.5 * m * f64::from(teeth) < radius,
+        };
+        if !fits {
+            let largest = (2.0 * radius / m).ceil() as u32 - 1;
+            return Err(Error::Teeth {
+                gear: name,
+                tooth: 0,
+                arc_mm: track.arc(at),
+                why: format!(
+                    "the pitch curve is concave here with |R| = {radius:.3} mm: {}; {}",
+                    match spec.cutter {
+                        Cutter::Rack => "a rack cannot cut a concave arc".to_string(),
+                        Cutter::Shaper { teeth } =>
+                            format!("the {teeth}-tooth shaper is too large"),
+                    },
+                    if largest >= 6 {
+                        format!(
+                            "a shaper of at most {largest} teeth (pitch radius below |R| at \
+                             module {m:.4} mm) can cut it (gear.teeth.cutter = \
+                             {{ kind = \"shaper\", teeth = N }})"
+                        )
+                    } else {
+                        format!(
+                            "no shaper (6 teeth or more) is that small at module {m:.4} mm: \
+                             more teeth (a smaller module) or a gentler pitch curve"
+                        )
+                    }
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+fn verdict(
+    track: &PairTrack,
+    gears: &[ToothedGear; 2],
+    mesh: &MeshReport,
+    spec: &ToothSpec,
+    teeth: u32,
+    m: f64,
+) -> TeethReport {
+    let gear_report = |g: &ToothedGear, name: &'static str| {
+        let undercuts: Vec<Undercut> = g
+            .teeth
+            .iter()
+            .flat_map(|t| t.undercut.iter().flatten().copied())
+            .collect();
+        GearTeethReport {
+            name,
+            undercut_teeth: g
+                .teeth
+                .iter()
+                .filter(|t| t.undercut.iter().any(Option::is_some))
+                .count(),
+            undercut_lost_height_mm: undercuts.iter().fold(0.0, |a, u| a.max(u.lost_height_mm)),
+            undercuts,
+            tip_land_min_mm: g
+                .teeth
+                .iter()
+                .fold(f64::INFINITY, |a, t| a.min(t.tip_land_mm)),
+            pointed_teeth: g.teeth.iter().filter(|t| t.pointed).count(),
+            outline_points: g.outline.len(),
+        }
+    };
+    let reports = [
+        gear_report(&gears[0], "driver"),
+        gear_report(&gears[1], "driven"),
+    ];
+    let mut violation = 0.0;
+    let mut failures = Vec::new();
+    for r in &reports {
+        if !spec.allow_undercut && r.undercut_teeth > 0 {
+            violation += r.undercut_lost_height_mm / m;
+            failures.push(format!(
+                "{}: {} teeth undercut, up to {:.4} mm of flank lost",
+                r.name, r.undercut_teeth, r.undercut_lost_height_mm
+            ));
+        }
+        let least_land = spec.min_tip_land * m;
+        if r.tip_land_min_mm < least_land {
+            violation += (least_land - r.tip_land_min_mm) / m;
+            failures.push(format!(
+                "{}: tip land {:.4} mm (least {:.4} mm){}",
+                r.name,
+                r.tip_land_min_mm,
+                least_land,
+                if r.pointed_teeth > 0 {
+                    format!(", {} pointed teeth", r.pointed_teeth)
+                } else {
+                    String::new()
+                }
+            ));
+        }
+    }
+    if mesh.least_clearance_mm < -OVERLAP_TOLERANCE_MM {
+        violation += (-mesh.least_clearance_mm - OVERLAP_TOLERANCE_MM) / m;
+        failures.push(format!(
+            "the teeth overlap by {:.4} mm at pitch arc {:.3} mm",
+            -mesh.least_clearance_mm, mesh.least_clearance_at_mm
+        ));
+    }
+    if mesh.contact_ratio_min < 1.0 {
+        violation += 1.0 - mesh.contact_ratio_min;
+        failures.push(format!(
+            "contact ratio {:.3} < 1 at pitch arc {:.3} mm: the transmission is not continuous",
+            mesh.contact_ratio_min, mesh.contact_ratio_min_at_mm
+        ));
+    }
+    TeethReport {
+        teeth,
+        module_mm: m,
+        pressure_angle_deg: spec.pressure_angle_deg,
+        centre_distance_mm: track.centre_distance(),
+        perimeter_mm: track.perimeter(),
+        gears: reports,
+        mesh: *mesh,
+        violation,
+        failures,
+    }
+}

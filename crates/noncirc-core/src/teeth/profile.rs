@@ -1,0 +1,670 @@
+//! One gear's tooth outline, cut by a rack or a shaper rolling without slip on its pitch
+//! curve (the generalised involute; Litvin, *Gear Geometry and Applied Theory*, ch. 2 and
+//! 17; Bäsel, arXiv:1905.02642).
+//!
+//! At rolling position `s` (mm of pitch arc) the pitch point is `I = P(s)` and the tool's
+//! pitch line (or circle) touches the pitch curve there. A straight tool flank crossing the
+//! pitch line at `u0` touches the gear where the normal through `I` meets it: on the line
+//! of action `I + λ (cos α T + σ sin α N)`, `λ = −(s − u0) cos α`, `σ = +1` for a tooth's
+//! right flank (towards growing `s`), `−1` for its left. An involute shaper cutter of the
+//! same pitch and pressure angle gives the same `λ(s)` on any pitch curve (its line of
+//! action through `I` is tangent to its base circle, and its involute advances along it at
+//! `cos α` per mm of rolling), so the flanks do not depend on the cutter: the cutter shapes
+//! only the root fillet, the envelope of its tip rounding (radius `ρf`, the contact point
+//! on the far side of the rounding's centre from `I`), and decides which concave arcs can
+//! be cut at all. The flank is regular while `sin α + σ λ κ > 0`; where that factor
+//! vanishes the envelope has a cusp: below the pitch curve on a convex arc that is
+//! undercut, and the fillet then cuts across the flank.
+
+use super::polyline::OutlineGrid;
+use super::track::{Frame, Member, PairTrack};
+use super::{Cutter, ToothSpec};
+use crate::error::{Error, Result};
+use crate::vec2::Vec2;
+use serde::Serialize;
+
+/// Which flank of a tooth, seen from outside with the pitch arc growing to the right.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Side {
+    Left,
+    Right,
+}
+
+impl Side {
+    fn sign(self) -> f64 {
+        match self {
+            Side::Left => -1.0,
+            Side::Right => 1.0,
+        }
+    }
+}
+
+/// The fillet cutting across a flank: where, and how much of the flank it takes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Undercut {
+    pub side: Side,
+    /// Pitch arc (mm) of the flank's crossing of the pitch curve.
+    pub pitch_arc_mm: f64,
+    /// Height (mm above the pitch curve, negative below) where the flank now starts.
+    pub flank_starts_at_mm: f64,
+    /// Flank height lost to the fillet (mm): where the flank starts less where it would
+    /// start without undercut (the tool's form height).
+    pub lost_height_mm: f64,
+}
+
+/// One tooth as cut.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Tooth {
+    /// Pitch arc of the tooth's centre (mm from `ψ = 0`).
+    pub centre_arc_mm: f64,
+    /// Width of the tip land (mm, chord); 0 for a pointed tooth.
+    pub tip_land_mm: f64,
+    /// Whether the flanks meet below the tip: the tooth ends in a point.
+    pub pointed: bool,
+    /// Undercut of the left and of the right flank, if any.
+    pub undercut: [Option<Undercut>; 2],
+    /// Active flank of the left and the right side as tool heights `(start, tip)` (mm
+    /// from the pitch curve): the span the mesh can use.
+    #[serde(skip)]
+    pub active: [(f64, f64); 2],
+}
+
+/// A toothed gear in its own frame: one closed counter-clockwise outline (mm), the corners
+/// between its smooth pieces, and its teeth.
+#[derive(Debug, Clone)]
+pub struct ToothedGear {
+    pub outline: Vec<Vec2>,
+    /// Indices of outline points where two pieces meet at an angle (tip corners, undercut
+    /// and root crossings, pointed tips).
+    pub corners: Vec<usize>,
+    /// Flank side of each outline point (`Some` on a flank), and its tooth.
+    pub flank_of: Vec<Option<(usize, Side)>>,
+    /// Outline index where each tooth's points start (its left root end; the right root
+    /// end for the driven gear, whose outline runs the other way), in tooth order.
+    pub tooth_starts: Vec<usize>,
+    pub teeth: Vec<Tooth>,
+}
+
+/// The tool's rounding centre relative to the pitch point, per tool kind (right side).
+#[derive(Debug, Clone, Copy)]
+enum Rounding {
+    /// Rack: centre at `u0 + du` along the pitch line, height `v` (mm).
+    Rack { du: f64, v: f64 },
+    /// Shaper of pitch radius `rc`: centre at radius `r` and angle `phi` from the flank's
+    /// pitch crossing (rad).
+    Shaper { rc: f64, r: f64, phi: f64 },
+}
+
+/// The tool as it cuts one gear: heights and the rounding, for the right side (the left
+/// mirrors it).
+#[derive(Debug, Clone, Copy)]
+pub struct Tool {
+    sin: f64,
+    cos: f64,
+    tip: f64,
+    root: f64,
+    radius: f64,
+    /// `λ` at the flank–fillet junction, right side (mm, negative: below the pitch curve).
+    lambda_form: f64,
+    rounding: Rounding,
+    /// Rolling past `u0` at which the fillet reaches the root, right side (mm).
+    fillet_reach: f64,
+    /// Tooth thickness on the pitch curve (mm).
+    pub thickness: f64,
+}
+
+impl Tool {
+    /// The tool for a gear of module `m` with profile shift `shift` (× m) and tooth
+    /// thickness `thickness` (mm), from the spec's proportions.
+    pub fn new(spec: &ToothSpec, m: f64, shift: f64, thickness: f64) -> Result<Self> {
+        let alpha = spec.pressure_angle_deg.to_radians();
+        let (sin, cos) = alpha.sin_cos();
+        let tip = (spec.addendum + shift) * m;
+        let root = -(spec.dedendum - shift) * m;
+        let radius = spec.tip_radius * m;
+        let (lambda_form, rounding, fillet_reach) = match spec.cutter {
+            Cutter::Rack => {
+                let v = root + radius;
+                let form = root + radius * (1.0 - sin);
+                let du = -v * sin / cos + radius / cos;
+                (form / sin, Rounding::Rack { du, v }, du)
+            }
+            Cutter::Shaper { teeth } => {
+                let rc = 0.5 * m * f64::from(teeth);
+                let rb = rc * cos;
+                let ra = rc - root;
+                let reach = (ra - radius) * (ra - radius) - rb * rb;
+                if reach <= 0.0 {
+                    return Err(Error::OutOfRange {
+                        name: "gear.teeth.cutter.teeth".into(),
+                        value: f64::from(teeth),
+                        expected: "a shaper whose tip rounding stays outside its base circle"
+                            .into(),
+                    });
+                }
+                // Roll angle of the rounding's tangency on the cutter's involute.
+                let t = (radius + reach.sqrt()) / rb;
+                let inv = alpha.tan() - alpha;
+                let phi = -inv + t - ((rb * t - radius) / rb).atan();
+                let r = ra - radius;
+                (
+                    rb * (alpha.tan() - t),
+                    Rounding::Shaper { rc, r, phi },
+                    rc * phi,
+                )
+            }
+        };
+        let space = std::f64::consts::PI * m - thickness;
+        if fillet_reach >= 0.5 * space {
+            return Err(Error::OutOfRange {
+                name: "gear.teeth.tip_radius".into(),
+                value: spec.tip_radius,
+                expected: format!(
+                    "a rounding that fits on the tool's tooth tip: {} roundings would overlap",
+                    match spec.cutter {
+                        Cutter::Rack => "the rack's".to_string(),
+                        Cutter::Shaper { teeth } => format!("the {teeth}-tooth shaper's"),
+                    }
+                ),
+            });
+        }
+        if lambda_form >= 0.0 {
+            return Err(Error::OutOfRange {
+                name: "gear.teeth.tip_radius".into(),
+                value: spec.tip_radius,
+                expected: "a tool tip rounding that ends below the pitch curve".into(),
+            });
+        }
+        Ok(Self {
+            sin,
+            cos,
+            tip,
+            root,
+            radius,
+            lambda_form,
+            rounding,
+            fillet_reach,
+            thickness,
+        })
+    }
+
+    /// Where the tool's straight flank ends (mm, negative: below the pitch curve).
+    pub fn form_height(&self) -> f64 {
+        self.lambda_form * self.sin
+    }
+}
+
+/// A point of a gear's outline as a function of the rolling position: the flank, the
+/// fillet, or an offset of the pitch curve.
+#[derive(Debug, Clone, Copy)]
+enum Piece {
+    Flank { u0: f64, sigma: f64 },
+    Fillet { u0: f64, sigma: f64 },
+    Offset { height: f64 },
+}
+
+/// Cuts one gear of a pair.
+pub struct Cut<'a> {
+    pub track: &'a PairTrack,
+    pub member: Member,
+    pub tool: Tool,
+    /// Pitch (mm).
+    pub pitch: f64,
+    /// Pitch arc of tooth 0's centre (mm).
+    pub phase: f64,
+    pub teeth: usize,
+    pub flank_samples: usize,
+    pub fillet_samples: usize,
+    pub name: &'static str,
+}
+
+impl Cut<'_> {
+    #[inline]
+    fn frame(&self, s: f64) -> Frame {
+        self.track.frame(self.member, self.track.psi_at(s))
+    }
+
+    #[inline]
+    fn lambda(&self, s: f64, u0: f64) -> f64 {
+        -(s - u0) * self.tool.cos
+    }
+
+    /// The outline point of `piece` generated at rolling position `s` with frame `f`.
+    #[inline]
+    fn point(&self, piece: Piece, s: f64, f: &Frame) -> Vec2 {
+        let t = &self.tool;
+        match piece {
+            Piece::Flank { u0, sigma } => {
+                let dir = f.tangent * t.cos + f.normal * (sigma * t.sin);
+                f.point + dir * self.lambda(s, u0)
+            }
+            Piece::Fillet { u0, sigma } => {
+                let (du, dv) = match t.rounding {
+                    Rounding::Rack { du, v } => (u0 + sigma * du - s, v),
+                    Rounding::Shaper { rc, r, phi } => {
+                        let a = sigma * phi + (u0 - s) / rc;
+                        let (sn, cs) = a.sin_cos();
+                        (r * sn, rc - r * cs)
+                    }
+                };
+                let off = f.tangent * du + f.normal * dv;
+                let len = off.hypot();
+                f.point + off * (1.0 + t.radius / len)
+            }
+            Piece::Offset { height } => f.point + f.normal * height,
+        }
+    }
+
+    fn at(&self, piece: Piece, s: f64) -> Vec2 {
+        self.point(piece, s, &self.frame(s))
+    }
+
+    /// `n + 1` points of `piece` from `s0` to `s1`, uniform in `ψ`, with their
+    /// parameters and frames.
+    fn sample(&self, piece: Piece, s0: f64, s1: f64, n: usize) -> Vec<(f64, Frame, Vec2)> {
+        let (p0, p1) = (self.track.psi_at(s0), self.track.psi_at(s1));
+        (0..=n)
+            .map(|k| {
+                let psi = p0 + (p1 - p0) * k as f64 / n as f64;
+                let s = match k {
+                    0 => s0,
+                    _ if k == n => s1,
+                    _ => self.track.arc(psi),
+                };
+                let f = self.track.frame(self.member, psi);
+                (s, f, self.point(piece, s, &f))
+            })
+            .collect()
+    }
+
+    /// The fillet from the root (`s0`) to `s1`, `fillet_samples` segments spaced evenly in
+    /// the angle of the rounding's contact (exactly so for a rack): uniform in `s` would
+    /// crowd them where the contact hardly moves.
+    fn sample_fillet(&self, piece: Piece, s0: f64, s1: f64) -> Vec<(f64, Frame, Vec2)> {
+        let n = self.fillet_samples;
+        let end = std::f64::consts::FRAC_PI_2 - self.tool.sin.asin();
+        (0..=n)
+            .map(|k| {
+                let s = match k {
+                    0 => s0,
+                    _ if k == n => s1,
+                    _ => s0 + (s1 - s0) * (end * k as f64 / n as f64).tan() / end.tan(),
+                };
+                let f = self.frame(s);
+                (s, f, self.point(piece, s, &f))
+            })
+            .collect()
+    }
+
+    /// Newton on `F(a) = G(b)` from `(a, b)`, with forward-difference Jacobians.
+    fn meet(&self, f: Piece, g: Piece, mut a: f64, mut b: f64) -> Option<(f64, f64, Vec2)> {
+        let h = 1e-7 * self.pitch;
+        for _ in 0..12 {
+            let (fa, gb) = (self.at(f, a), self.at(g, b));
+            let r = fa - gb;
+            let da = (self.at(f, a + h) - fa) * (1.0 / h);
+            let db = (self.at(g, b + h) - gb) * (1.0 / h);
+            // Solve da·Δa − db·Δb = −r.
+            let det = da.cross(-db);
+            if det == 0.0 || !det.is_finite() {
+                return None;
+            }
+            let step_a = (-r).cross(-db) / det;
+            let step_b = da.cross(-r) / det;
+            a += step_a;
+            b += step_b;
+            if step_a.abs().max(step_b.abs()) < 1e-11 * self.pitch {
+                let p = self.at(f, a);
+                return p.is_finite().then_some((a, b, p));
+            }
+        }
+        None
+    }
+
+    fn fail(&self, tooth: usize, s: f64, why: String) -> Error {
+        Error::Teeth {
+            gear: self.name,
+            tooth,
+            arc_mm: s,
+            why,
+        }
+    }
+
+    /// One side of tooth `j` from the root to the tip: the fillet, then the flank up to the
+    /// tip curve. Returns the chain's points, the index where the flank starts, the flank's
+    /// tip parameter, and the undercut if the fillet crosses the flank.
+    fn side(&self, j: usize, u0: f64, side: Side) -> Result<SideChain> {
+        let t = &self.tool;
+        let sigma = side.sign();
+        let flank = Piece::Flank { u0, sigma };
+        let fillet = Piece::Fillet { u0, sigma };
+        let tip = Piece::Offset { height: t.tip };
+        let form = u0 - sigma * t.lambda_form / t.cos;
+        let root_end = u0 + sigma * t.fillet_reach;
+        // Where the flank meets the tip curve: from the tool's tip height.
+        let s_guess = u0 - sigma * t.tip / (t.sin * t.cos);
+        let w_guess = s_guess + self.lambda(s_guess, u0) * t.cos;
+        let (s_tip, w_tip, _) = self.meet(flank, tip, s_guess, w_guess).ok_or_else(|| {
+            let radius = 1.0 / self.frame(u0).curvature;
+            self.fail(
+                j,
+                u0,
+                format!(
+                    "the flank does not reach the tip curve {:.3} mm outside the pitch curve, \
+                     whose radius of curvature is {radius:.3} mm here: the pitch curve bends \
+                     too sharply for teeth of module {:.4} mm",
+                    t.tip,
+                    self.pitch / std::f64::consts::PI
+                ),
+            )
+        })?;
+        let factor = |s: f64, f: &Frame| t.sin + sigma * self.lambda(s, u0) * f.curvature;
+        let flank_pts = self.sample(flank, form, s_tip, self.flank_samples);
+        let fillet_pts = self.sample_fillet(fillet, root_end, form);
+        // Where the flank is singular (a cusp of the envelope). A singular stretch at the
+        // flank's foot is undercut: the fillet then cuts across the regular flank above
+        // it. Anywhere else the tool cannot cut the flank.
+        let singular = flank_pts.iter().rposition(|(s, f, _)| factor(*s, f) <= 0.0);
+        let regular_from = match singular {
+            None => None,
+            Some(k)
+                if k + 1 < flank_pts.len()
+                    && flank_pts[..=k].iter().all(|(s, f, _)| factor(*s, f) <= 0.0) =>
+            {
+                let (mut lo, mut hi) = (flank_pts[k].0, flank_pts[k + 1].0);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    if factor(mid, &self.frame(mid)) <= 0.0 {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                Some(hi)
+            }
+            Some(k) => {
+                let (s, f, _) = &flank_pts[k];
+                let height = sigma * self.lambda(*s, u0) * t.sin;
+                return Err(self.fail(
+                    j,
+                    u0,
+                    format!(
+                        "the generated flank has a cusp {height:.4} mm from the pitch curve, \
+                         where the pitch curve's radius of curvature is {:.4} mm: the tool \
+                         cannot cut this flank (a smaller module, or a pitch curve with \
+                         gentler curvature)",
+                        1.0 / f.curvature
+                    ),
+                ));
+            }
+        };
+        let (fillet_pts, flank_pts, undercut, start) = match regular_from {
+            None => (fillet_pts, flank_pts, None, form),
+            Some(cusp) => {
+                // The fillet continues the flank's lower branch (form point to cusp); the
+                // regular branch rises from the cusp. Where the two first meet again, seen
+                // from the tip, the cut flank starts.
+                let lower = self.sample(flank, form, cusp, 8);
+                let regular = self.sample(flank, cusp, s_tip, self.flank_samples);
+                let chain: Vec<(Piece, f64, Vec2)> =
+                    (fillet_pts.iter().map(|x| (fillet, x.0, x.2)))
+                        .chain(lower.iter().skip(1).map(|x| (flank, x.0, x.2)))
+                        .collect();
+                let mut found = last_crossing(&chain, &regular, true);
+                if found.is_none() {
+                    // A shallow undercut crosses within the first chords: look closer.
+                    let reach = (cusp - form) * 8.0;
+                    let end = if reach.abs() < (s_tip - cusp).abs() {
+                        cusp + reach
+                    } else {
+                        s_tip
+                    };
+                    let lower: Vec<(Piece, f64, Vec2)> = (self.sample(flank, form, cusp, 64))
+                        .into_iter()
+                        .map(|x| (flank, x.0, x.2))
+                        .collect();
+                    found = last_crossing(&lower, &self.sample(flank, cusp, end, 64), true);
+                }
+                let converged = found.and_then(|(piece, sa, sb)| {
+                    let (sa, sb, _) = self.meet(piece, flank, sa, sb)?;
+                    ((sb - cusp) * (s_tip - cusp) > 0.0).then_some((piece, sa, sb))
+                });
+                // No crossing even close up: the swallowtail is thinner than its samples
+                // resolve, and the fillet meets the regular flank at the cusp.
+                let (piece, sa, sb) = converged.unwrap_or((fillet, form, cusp));
+                let start_height = sigma * self.lambda(sb, u0) * t.sin;
+                let undercut = Undercut {
+                    side,
+                    pitch_arc_mm: u0,
+                    flank_starts_at_mm: start_height,
+                    lost_height_mm: start_height - t.form_height(),
+                };
+                let kept = match piece {
+                    Piece::Fillet { .. } => self.sample_fillet(fillet, root_end, sa),
+                    _ => {
+                        let mut pts = fillet_pts;
+                        pts.extend(self.sample(flank, form, sa, 4).into_iter().skip(1));
+                        pts
+                    }
+                };
+                (
+                    kept,
+                    self.sample(flank, sb, s_tip, self.flank_samples),
+                    Some(undercut),
+                    sb,
+                )
+            }
+        };
+        let mut points: Vec<Vec2> = fillet_pts.iter().map(|x| x.2).collect();
+        let flank_start = points.len() - 1;
+        points.extend(flank_pts.iter().skip(1).map(|x| x.2));
+        Ok(SideChain {
+            points,
+            flank_start,
+            tip_param: w_tip,
+            root_end,
+            undercut,
+            active: (
+                sigma * self.lambda(start, u0) * t.sin,
+                sigma * self.lambda(s_tip, u0) * t.sin,
+            ),
+        })
+    }
+
+    /// Cuts every tooth and assembles the closed outline.
+    pub fn run(&self) -> Result<ToothedGear> {
+        let t = &self.tool;
+        let mut outline = Vec::new();
+        let mut corners = Vec::new();
+        let mut flank_of = Vec::new();
+        let mut teeth = Vec::with_capacity(self.teeth);
+        let centre = |j: usize| self.phase + self.pitch * j as f64;
+        let mut sides = Vec::with_capacity(self.teeth);
+        let mut tooth_starts = Vec::with_capacity(self.teeth);
+        for j in 0..self.teeth {
+            let c = centre(j);
+            let left = self.side(j, c - 0.5 * t.thickness, Side::Left)?;
+            let right = self.side(j, c + 0.5 * t.thickness, Side::Right)?;
+            sides.push((left, right));
+        }
+        for j in 0..self.teeth {
+            let (left, right) = &sides[j];
+            let c = centre(j);
+            let mut tooth = Tooth {
+                centre_arc_mm: c,
+                tip_land_mm: 0.0,
+                pointed: false,
+                undercut: [left.undercut, right.undercut],
+                active: [left.active, right.active],
+            };
+            // Left chain root → tip.
+            let mut left_pts = left.points.clone();
+            let mut right_pts = right.points.clone();
+            let mut tip_pts = Vec::new();
+            if left.tip_param < right.tip_param {
+                let a = left_pts.last().copied().unwrap_or_default();
+                let b = right_pts.last().copied().unwrap_or_default();
+                tooth.tip_land_mm = (b - a).hypot();
+                let tip = Piece::Offset { height: t.tip };
+                let n = 4;
+                for k in 1..n {
+                    let w =
+                        left.tip_param + (right.tip_param - left.tip_param) * k as f64 / n as f64;
+                    tip_pts.push(self.at(tip, w));
+                }
+            } else {
+                // The flanks cross below the tip curve: the tooth ends in a point.
+                let (lf, rf) = (
+                    &left_pts[left.flank_start..],
+                    &right_pts[right.flank_start..],
+                );
+                let cross =
+                    super::polyline::first_crossing(lf, rf, |_, _| false).ok_or_else(|| {
+                        self.fail(
+                            j,
+                            c,
+                            "the tip curve misses the tooth and its flanks do not meet".into(),
+                        )
+                    })?;
+                let (li, ri) = (cross.0.floor() as usize, cross.1.floor() as usize);
+                let apex = lf[li] + (lf[li + 1] - lf[li]) * (cross.0 - li as f64);
+                left_pts.truncate(left.flank_start + li + 1);
+                left_pts.push(apex);
+                right_pts.truncate(right.flank_start + ri + 1);
+                tooth.pointed = true;
+            }
+            let base = outline.len();
+            tooth_starts.push(base);
+            flank_of.extend(
+                (0..left_pts.len()).map(|k| (k >= left.flank_start).then_some((j, Side::Left))),
+            );
+            outline.extend(&left_pts);
+            if left.undercut.is_some() {
+                corners.push(base + left.flank_start);
+            }
+            corners.push(outline.len() - 1);
+            flank_of.extend(tip_pts.iter().map(|_| None));
+            outline.extend(tip_pts);
+            if !tooth.pointed {
+                corners.push(outline.len());
+            }
+            let right_start = outline.len();
+            let rn = right_pts.len();
+            for (k, p) in right_pts.iter().rev().enumerate() {
+                let idx = rn - 1 - k;
+                flank_of.push((idx >= right.flank_start).then_some((j, Side::Right)));
+                outline.push(*p);
+            }
+            if right.undercut.is_some() {
+                corners.push(right_start + (rn - 1 - right.flank_start));
+            }
+            // The root to the next tooth's left fillet, or the fillets' crossing.
+            let next = &sides[(j + 1) % self.teeth].0;
+            let (s0, s1) = (
+                right.root_end,
+                next.root_end
+                    + if j + 1 == self.teeth {
+                        self.pitch * self.teeth as f64
+                    } else {
+                        0.0
+                    },
+            );
+            if s1 > s0 {
+                let root = Piece::Offset { height: t.root };
+                for k in 1..3 {
+                    let s = s0 + (s1 - s0) * k as f64 / 3.0;
+                    let f = self.frame(s);
+                    if 1.0 + t.root * f.curvature <= 0.0 {
+                        return Err(self.fail(j, s, format!(
+                            "the root curve {:.4} mm inside the pitch curve folds where the pitch curve's radius of curvature is {:.4} mm",
+                            -t.root, 1.0 / f.curvature)));
+                    }
+                    outline.push(self.point(root, s, &f));
+                    flank_of.push(None);
+                }
+            } else {
+                return Err(self.fail(j, s0, "the fillets of neighbouring teeth cross: the tooth space is narrower than the tool's tip".into()));
+            }
+            teeth.push(tooth);
+        }
+        let grid_cell = self.pitch / 4.0;
+        if self.member == Member::Driven {
+            outline.reverse();
+            flank_of.reverse();
+            let n = outline.len();
+            for c in &mut corners {
+                *c = n - 1 - *c;
+            }
+            corners.sort_unstable();
+            // Tooth j now ends at n − 1 − start_j: it starts after tooth j + 1's end.
+            let ends: Vec<usize> = tooth_starts.iter().map(|&b| n - 1 - b).collect();
+            for (j, start) in tooth_starts.iter_mut().enumerate() {
+                *start = (ends[(j + 1) % self.teeth] + 1) % n;
+            }
+        }
+        let grid = OutlineGrid::new(outline, grid_cell);
+        if let Some(p) = grid.self_crossing() {
+            return Err(Error::OutlineCrossing {
+                gear: self.name,
+                x_mm: p.x,
+                y_mm: p.y,
+            });
+        }
+        Ok(ToothedGear {
+            outline: grid.points().to_vec(),
+            corners,
+            flank_of,
+            tooth_starts,
+            teeth,
+        })
+    }
+}
+
+/// The crossing of polyline `a` (points tagged with their piece and parameter) with the
+/// polyline `b` nearest `b`'s end, as the piece and the two parameters (interpolated);
+/// `skip_joint` skips the pair of segments that share `a`'s last and `b`'s first point.
+fn last_crossing(
+    a: &[(Piece, f64, Vec2)],
+    b: &[(f64, Frame, Vec2)],
+    skip_joint: bool,
+) -> Option<(Piece, f64, f64)> {
+    let mut best: Option<(usize, f64, usize, f64)> = None;
+    for i in 0..a.len().saturating_sub(1) {
+        for k in 0..b.len() - 1 {
+            if skip_joint && i + 2 == a.len() && k == 0 {
+                continue;
+            }
+            if let Some((ta, tb)) =
+                super::polyline::segments_cross(a[i].2, a[i + 1].2, b[k].2, b[k + 1].2)
+            {
+                if best.is_none_or(|(_, _, bk, btb)| k as f64 + tb > bk as f64 + btb) {
+                    best = Some((i, ta, k, tb));
+                }
+            }
+        }
+    }
+    best.map(|(i, ta, k, tb)| {
+        // A crossing on the joint between two pieces belongs to the later one.
+        let piece = a[i + 1].0;
+        let sa = if matches!((a[i].0, piece), (Piece::Fillet { .. }, Piece::Flank { .. })) {
+            a[i + 1].1
+        } else {
+            a[i].1 + (a[i + 1].1 - a[i].1) * ta
+        };
+        (piece, sa, b[k].0 + (b[k + 1].0 - b[k].0) * tb)
+    })
+}
+
+/// One side of a tooth, root to tip.
+struct SideChain {
+    points: Vec<Vec2>,
+    /// Index in `points` where the flank starts.
+    flank_start: usize,
+    /// The tip curve's parameter where the flank meets it.
+    tip_param: f64,
+    /// Rolling position where the fillet reaches the root.
+    root_end: f64,
+    undercut: Option<Undercut>,
+    active: (f64, f64),
+}

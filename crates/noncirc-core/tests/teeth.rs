@@ -1,0 +1,262 @@
+//! Teeth against closed forms: the involute spur gear and its trochoid fillet, the
+//! classical contact ratio and undercut limit, the backlash a thinning gives, and a pair
+//! the curvature rule passes whose teeth collide.
+
+use noncirc_core::{
+    signed_area, CurveSpec, Ellipse, PitchCurve, Side, ToothSpec, ToothedPair, Vec2,
+};
+use std::f64::consts::PI;
+
+fn circle(r: f64) -> PitchCurve {
+    PitchCurve::Ellipse(Ellipse::new(r, 0.0).unwrap())
+}
+
+fn inv(a: f64) -> f64 {
+    a.tan() - a
+}
+
+#[test]
+fn a_circle_pair_gives_the_involute_spur_gear_and_its_trochoid_fillet() {
+    let (r, z) = (30.0, 24);
+    let spec = ToothSpec::default();
+    let pair = ToothedPair::cut(&circle(r), 2.0 * r, z, &spec).unwrap();
+    let m = 2.0 * r / z as f64;
+    assert!((pair.module_mm - m).abs() < 1e-12);
+    let alpha = 20f64.to_radians();
+    let rb = r * alpha.cos();
+    let gear = &pair.gears[0];
+    let mut checked = 0;
+    let mut worst: f64 = 0.0;
+    for (p, of) in gear.outline.iter().zip(&gear.flank_of) {
+        let Some((j, side)) = *of else { continue };
+        let centre = 2.0 * PI * j as f64 / z as f64;
+        let half = PI / (2.0 * z as f64); // half the tooth's angle on the pitch circle
+        let radius = p.hypot();
+        let a_r = (rb / radius).acos();
+        let theta = match side {
+            Side::Right => centre + half - (inv(a_r) - inv(alpha)),
+            Side::Left => centre - half + (inv(a_r) - inv(alpha)),
+        };
+        let expected = Vec2::new(radius * theta.cos(), radius * theta.sin());
+        worst = worst.max((*p - expected).hypot());
+        checked += 1;
+    }
+    assert!(checked > z as usize * 40, "{checked} flank points");
+    assert!(worst < 1e-6, "flank off the involute by {worst:e} mm");
+
+    // The fillet: every non-flank point between the root and the form circle lies at the
+    // tool's tip radius from the trochoid of the rounding's centre.
+    let (hf, rho) = (1.25 * m, 0.38 * m);
+    let (vc, du) = (-hf + rho, (hf - rho) * alpha.tan() + rho / alpha.cos());
+    let u0 = PI * m / 4.0; // tooth 0's right flank crosses the pitch circle here
+    let centre_at = |theta: f64| {
+        // Rack fixed to the pitch line rolling on the circle: the centre in the gear frame.
+        let e = Vec2::new(theta.cos(), theta.sin());
+        e * (r + vc) + e.turn_90() * (u0 + du - r * theta)
+    };
+    let form_radius = ((r - (hf - rho * (1.0 - alpha.sin()))).powi(2)).sqrt();
+    let mut fillet_worst: f64 = 0.0;
+    let mut fillet_points = 0;
+    for (p, of) in gear.outline.iter().zip(&gear.flank_of) {
+        let radius = p.hypot();
+        let angle = p.y.atan2(p.x);
+        if of.is_some() || radius > form_radius - 1e-9 || radius < r - hf + 1e-6 {
+            continue;
+        }
+        // Right fillet of tooth 0 only: just past the right flank.
+        if !(angle > u0 / r && angle < PI / z as f64) {
+            continue;
+        }
+        let dist = |t: f64| (centre_at(t) - *p).hypot();
+        let (mut lo, mut hi) = (-0.5, 0.5);
+        for _ in 0..200 {
+            let (a, b) = (lo + (hi - lo) * 0.382, lo + (hi - lo) * 0.618);
+            if dist(a) < dist(b) {
+                hi = b;
+            } else {
+                lo = a;
+            }
+        }
+        fillet_worst = fillet_worst.max((dist(0.5 * (lo + hi)) - rho).abs());
+        fillet_points += 1;
+    }
+    assert!(fillet_points >= 8, "{fillet_points} fillet points");
+    assert!(
+        fillet_worst < 1e-6,
+        "fillet off the trochoid envelope by {fillet_worst:e} mm"
+    );
+}
+
+#[test]
+fn circle_pair_contact_ratio_is_the_classical_one_and_the_mesh_is_tight() {
+    let (r, z) = (30.0, 30);
+    let spec = ToothSpec::default();
+    let pair = ToothedPair::cut(&circle(r), 2.0 * r, z, &spec).unwrap();
+    let m = 2.0 * r / z as f64;
+    let alpha = 20f64.to_radians();
+    let (ra, rb) = (r + m, r * alpha.cos());
+    let classical =
+        (2.0 * (ra * ra - rb * rb).sqrt() - 2.0 * r * alpha.sin()) / (PI * m * alpha.cos());
+    let mesh = pair.report.mesh;
+    assert!(
+        (mesh.contact_ratio_min - classical).abs() < 1e-6,
+        "{} vs {classical}",
+        mesh.contact_ratio_min
+    );
+    // Zero backlash: the flanks touch and nothing overlaps beyond the chords' sag.
+    assert!(mesh.least_clearance_mm.abs() < 2e-3, "{mesh:?}");
+    let (lo, hi) = mesh.backlash_mm.unwrap();
+    assert!(lo > -2e-3 && hi < 5e-3, "{mesh:?}");
+    assert!(
+        pair.report.failures.is_empty(),
+        "{:?}",
+        pair.report.failures
+    );
+    for g in &pair.gears {
+        assert!(signed_area(&g.outline) > 0.0);
+        let area = signed_area(&g.outline);
+        assert!(area > PI * (r - 1.25 * m).powi(2) && area < PI * ra * ra);
+    }
+}
+
+#[test]
+fn a_thinned_pair_has_the_backlash_it_was_given() {
+    let (r, z, j) = (30.0, 30, 0.2);
+    let spec = ToothSpec {
+        backlash_mm: j,
+        ..ToothSpec::default()
+    };
+    let pair = ToothedPair::cut(&circle(r), 2.0 * r, z, &spec).unwrap();
+    let (lo, hi) = pair.report.mesh.backlash_mm.unwrap();
+    let normal = j * 20f64.to_radians().cos();
+    assert!(
+        (lo - normal).abs() < 3e-3 && (hi - normal).abs() < 3e-3,
+        "{lo} {hi} vs {normal}"
+    );
+    assert!(pair.report.mesh.least_clearance_mm > 0.4 * normal);
+}
+
+#[test]
+fn undercut_starts_below_seventeen_teeth_on_a_circle() {
+    let spec = ToothSpec::default();
+    let undercut = |z: u32| {
+        let pair = ToothedPair::cut(&circle(30.0), 60.0, z, &spec).unwrap();
+        pair.report.gears[0].undercut_teeth
+    };
+    assert_eq!(undercut(18), 0);
+    assert_eq!(undercut(17), 17);
+    assert_eq!(undercut(12), 12);
+    let pair = ToothedPair::cut(&circle(30.0), 60.0, 12, &spec).unwrap();
+    let lost = pair.report.gears[0].undercut_lost_height_mm;
+    assert!(lost > 0.0 && pair.report.failures.iter().any(|f| f.contains("undercut")));
+}
+
+#[test]
+fn the_mesh_check_catches_tip_interference_the_curvature_rule_passes() {
+    // Teeth whose tips reach deeper than the mate's root: the module rule sees only the
+    // pitch curve's curvature and passes the design.
+    let curve = CurveSpec::Fourier {
+        c0_mm: 30.0,
+        cos_mm: vec![0.0, 1.5],
+        sin_mm: vec![0.0, 0.0, 0.6],
+    }
+    .build()
+    .unwrap();
+    let good = ToothSpec::default();
+    let bad = ToothSpec {
+        addendum: 1.45,
+        ..good
+    };
+    let ok = ToothedPair::cut(&curve, 60.0, 30, &good).unwrap();
+    assert!(ok.report.failures.is_empty(), "{:?}", ok.report.failures);
+    let clash = ToothedPair::cut(&curve, 60.0, 30, &bad).unwrap();
+    assert!(
+        clash.report.mesh.least_clearance_mm < -0.05,
+        "{:?}",
+        clash.report.mesh
+    );
+    assert!(clash.report.failures.iter().any(|f| f.contains("overlap")));
+}
+
+#[test]
+fn a_shaper_cuts_the_same_involute_flanks_as_the_rack() {
+    use noncirc_core::Cutter;
+    let (r, z) = (30.0, 30);
+    let curve = circle(r);
+    let alpha = 20f64.to_radians();
+    let rb = r * alpha.cos();
+    for teeth in [40, 400] {
+        let spec = ToothSpec {
+            cutter: Cutter::Shaper { teeth },
+            ..ToothSpec::default()
+        };
+        let g = &ToothedPair::cut(&curve, 2.0 * r, z, &spec).unwrap().gears[0];
+        let mut worst: f64 = 0.0;
+        for (p, of) in g.outline.iter().zip(&g.flank_of) {
+            let Some((j, side)) = *of else { continue };
+            let (centre, half) = (2.0 * PI * j as f64 / z as f64, PI / (2.0 * z as f64));
+            let radius = p.hypot();
+            let roll = inv((rb / radius).acos()) - inv(alpha);
+            let theta = match side {
+                Side::Right => centre + half - roll,
+                Side::Left => centre - half + roll,
+            };
+            worst = worst.max((*p - Vec2::new(radius * theta.cos(), radius * theta.sin())).hypot());
+        }
+        assert!(
+            worst < 1e-6,
+            "{teeth}-tooth shaper: flank off the involute by {worst:e} mm"
+        );
+        let root = g
+            .outline
+            .iter()
+            .map(|p| p.hypot())
+            .fold(f64::INFINITY, f64::min);
+        assert!((root - (r - 1.25 * 2.0)).abs() < 1e-6, "{root}");
+    }
+    let curve = circle(30.0);
+    // A 20-tooth shaper's tooth is too thin at its tip for the rounding: refused, named.
+    let spec = ToothSpec {
+        cutter: Cutter::Shaper { teeth: 20 },
+        ..ToothSpec::default()
+    };
+    let err = ToothedPair::cut(&curve, 60.0, 30, &spec)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("gear.teeth.tip_radius") && err.contains("20-tooth shaper"),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_teeth_rule_replaces_the_curvature_proxy_in_the_evaluator() {
+    use noncirc_core::{Evaluator, ModuleReading, ObjectiveKind, Scene, SceneKind};
+    let mut scene = Scene {
+        kind: SceneKind::Gear,
+        objectives: vec![ObjectiveKind::Module],
+        ..Scene::default()
+    };
+    scene.gear.curve = CurveSpec::Ellipse {
+        semi_major_mm: 30.0,
+        eccentricity: 1.0 / (2.0 + 3f64.sqrt()),
+    };
+    scene.gear.module.rule = ModuleReading::Teeth;
+    scene.gear.module.teeth = Some(18);
+    let mut ev = Evaluator::new();
+    let out = ev.evaluate(&scene).unwrap();
+    let teeth = out.teeth.as_ref().unwrap();
+    assert_eq!(ev.counts().teeth, 1);
+    let module = out.objective(ObjectiveKind::Module).unwrap();
+    // The 18-tooth elliptic pair is slightly undercut: the teeth stage says so where the
+    // curvature rule (z_min = 17, rounded from 17.1) passes it.
+    assert!(teeth.violation > 0.0 && module.violation > 0.0, "{teeth:?}");
+    scene.gear.module.teeth = Some(16);
+    scene.bounds.module_min_mm = 3.0;
+    let out = ev.evaluate(&scene).unwrap();
+    assert!(out.teeth.as_ref().unwrap().gears[0].undercut_teeth > 4);
+    // The curvature reading runs no teeth stage.
+    scene.gear.module.rule = ModuleReading::Undercut;
+    ev.evaluate(&scene).unwrap();
+    assert_eq!(ev.counts().teeth, 2);
+}
