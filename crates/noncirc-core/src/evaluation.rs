@@ -2,8 +2,10 @@
 //! box apart). A scene runs only the stages its outputs need; counters prove it.
 
 use crate::anatomy::{anatomy, Anatomy};
+use crate::curve::PitchCurve;
 use crate::error::{Error, Result};
 use crate::events::{events, Events};
+use crate::gear::ModuleReading;
 use crate::gear::{GearPair, ModuleReport};
 use crate::moving_box::{evaluate_box_with, BoxReport};
 use crate::objectives::{objective_value, Agronomy, ObjectiveKind, ObjectiveValue};
@@ -11,6 +13,7 @@ use crate::planetary::Kinematics;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use crate::scene::{Scene, SceneKind};
+use crate::teeth::{TeethReport, ToothedPair};
 use serde::Serialize;
 
 /// How many times each stage ran.
@@ -23,6 +26,8 @@ pub struct StageCounts {
     /// Per objective, in `ObjectiveKind::ALL` order.
     pub objectives: [u64; 9],
     pub moving_box: u64,
+    /// Toothed pairs cut and checked (the module rule `teeth`).
+    pub teeth: u64,
 }
 
 /// A gear pair's summary.
@@ -48,6 +53,8 @@ pub struct Evaluation {
     pub kinematics: Option<Kinematics>,
     /// A gear scene's solved pair (three-arm scenes: see [`Evaluation::pair`]).
     pub gear_pair: Option<GearPair>,
+    /// The teeth's checks, when the module rule is `teeth`.
+    pub teeth: Option<TeethReport>,
 }
 
 impl Evaluation {
@@ -120,6 +127,20 @@ impl Evaluator {
         self.evaluate_at(scene, &scene.resolution)
     }
 
+    /// The teeth stage: runs only under the module rule `teeth`.
+    fn teeth(&mut self, scene: &Scene, curve: &PitchCurve, a: f64) -> Result<Option<TeethReport>> {
+        let rule = &scene.gear.module;
+        match (rule.rule, rule.teeth) {
+            (ModuleReading::Teeth, Some(z)) => {
+                self.counts.teeth += 1;
+                Ok(Some(
+                    ToothedPair::cut(curve, a, z, &scene.gear.teeth)?.report,
+                ))
+            }
+            _ => Ok(None),
+        }
+    }
+
     /// Evaluates `scene` at `resolution`, running only the stages its outputs need.
     pub fn evaluate_at(&mut self, scene: &Scene, resolution: &Resolution) -> Result<Evaluation> {
         scene.validate()?;
@@ -134,6 +155,7 @@ impl Evaluator {
             moving_box: None,
             kinematics: None,
             gear_pair: None,
+            teeth: None,
         };
         match scene.kind {
             SceneKind::Gear => {
@@ -143,6 +165,7 @@ impl Evaluator {
                 let integrator = self.integrator(resolution.samples_per_turn);
                 let pair = GearPair::solve_with(curve, *resolution, integrator)?;
                 let module = pair.module(&scene.gear.module);
+                out.teeth = self.teeth(scene, pair.curve(), pair.centre_distance())?;
                 out.centre_distance_mm = Some(pair.centre_distance());
                 out.gear = Some(GearSummary {
                     centre_distance_mm: pair.centre_distance(),
@@ -152,11 +175,9 @@ impl Evaluator {
                 });
                 for &kind in &scene.objectives {
                     self.counts.objectives[kind as usize] += 1;
-                    out.objectives.push(ObjectiveValue::new(
-                        kind,
-                        module.module_max_mm,
-                        &scene.bounds,
-                    ));
+                    let mut value = ObjectiveValue::new(kind, module.module_max_mm, &scene.bounds);
+                    value.add_teeth(out.teeth.as_ref());
+                    out.objectives.push(value);
                 }
                 out.gear_pair = Some(pair);
             }
@@ -180,6 +201,9 @@ impl Evaluator {
                     .objectives
                     .contains(&ObjectiveKind::Module)
                     .then(|| kin.pair().module(&scene.gear.module));
+                if gear_module.is_some() {
+                    out.teeth = self.teeth(scene, kin.curve(), kin.centre_distance())?;
+                }
                 for &kind in &scene.objectives {
                     self.counts.objectives[kind as usize] += 1;
                     let value = objective_value(
@@ -189,8 +213,11 @@ impl Evaluator {
                         &scene.agronomy,
                         gear_module.as_ref(),
                     );
-                    out.objectives
-                        .push(ObjectiveValue::new(kind, value, &scene.bounds));
+                    let mut value = ObjectiveValue::new(kind, value, &scene.bounds);
+                    if kind == ObjectiveKind::Module {
+                        value.add_teeth(out.teeth.as_ref());
+                    }
+                    out.objectives.push(value);
                 }
                 if coupled {
                     let window = ev

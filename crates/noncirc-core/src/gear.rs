@@ -171,6 +171,10 @@ pub enum ModuleReading {
     /// `m = L/(πz)` for the given tooth count, with no undercut check: how the three-arm
     /// paper most likely computed its 2.5 mm (docs/replication.md).
     Perimeter,
+    /// `m = L/(πz)` for the given tooth count, met only if the teeth cut with
+    /// `gear.teeth` pass every check (undercut, tip land, whole-cycle mesh): the teeth
+    /// stage replaces the curvature proxy (docs/teeth.md).
+    Teeth,
 }
 
 /// How teeth may be cut: the rules that bound the module (spec §1.4).
@@ -206,9 +210,10 @@ impl ModuleRule {
             positive("gear.module.cutter_teeth", z)?;
         }
         match (self.rule, self.teeth) {
-            (ModuleReading::Perimeter, None) => Err(Error::Missing {
+            (ModuleReading::Perimeter | ModuleReading::Teeth, None) => Err(Error::Missing {
                 name: "gear.module.teeth".into(),
-                needed_by: "gear.module.rule = \"perimeter\" reads the module from a tooth count"
+                needed_by: "gear.module.rule = \"perimeter\" or \"teeth\" reads the module \
+                            from a tooth count"
                     .into(),
             }),
             (_, Some(0)) => Err(Error::OutOfRange {
@@ -251,7 +256,8 @@ pub fn module_max(
         None => 0.0,
     };
     let limit = convex_limit.min(concave_limit);
-    let (teeth, module) = if let (ModuleReading::Perimeter, Some(z)) = (rule.rule, rule.teeth) {
+    let by_count = matches!(rule.rule, ModuleReading::Perimeter | ModuleReading::Teeth);
+    let (teeth, module) = if let (true, Some(z)) = (by_count, rule.teeth) {
         (z, perimeter / (std::f64::consts::PI * f64::from(z)))
     } else if limit > 0.0 {
         let z = (perimeter / (std::f64::consts::PI * limit) - 1e-9)

@@ -297,6 +297,20 @@ impl ObjectiveValue {
     }
 }
 
+impl ObjectiveValue {
+    /// Adds the teeth's shortfalls (in modules, so × the module in mm) to the module
+    /// objective's violation: a module whose teeth fail a check is not met.
+    pub fn add_teeth(&mut self, teeth: Option<&crate::teeth::TeethReport>) {
+        if let Some(t) = teeth {
+            let extra = t.violation * t.module_mm;
+            if extra > 0.0 {
+                self.violation += extra;
+                self.margin = self.margin.min(-extra);
+            }
+        }
+    }
+}
+
 /// A segment `a→b` ready for repeated distance queries.
 #[derive(Debug, Clone, Copy)]
 struct Segment {

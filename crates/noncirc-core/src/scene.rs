@@ -8,6 +8,7 @@ use crate::objectives::{Agronomy, Bounds, ObjectiveKind};
 use crate::planetary::TrainSpec;
 use crate::resolution::Resolution;
 use crate::search::{Algorithm, Goal};
+use crate::teeth::ToothSpec;
 use serde::{Deserialize, Serialize};
 
 /// A gear pair's specification: the driver's pitch curve and the tooth-cutting rules.
@@ -20,6 +21,11 @@ pub struct GearSpec {
     /// Module rules (spec §1.4).
     #[serde(default)]
     pub module: ModuleRule,
+    /// How teeth are cut and checked (`noncirc teeth`, and the module rule `teeth`).
+    /// Left out of a written scene while it is the default, so older scenes and their
+    /// checkpoints keep their form.
+    #[serde(default, skip_serializing_if = "ToothSpec::is_default")]
+    pub teeth: ToothSpec,
 }
 
 impl Default for GearSpec {
@@ -27,6 +33,7 @@ impl Default for GearSpec {
         Self {
             curve: CurveSpec::paper(),
             module: ModuleRule::default(),
+            teeth: ToothSpec::default(),
         }
     }
 }
@@ -165,6 +172,7 @@ impl Scene {
     pub fn validate(&self) -> Result<()> {
         self.resolution.validate()?;
         self.gear.module.validate()?;
+        self.gear.teeth.validate()?;
         self.bounds.validate()?;
         if matches!(self.kind, SceneKind::MovingBox | SceneKind::Transplanter) {
             self.moving_box.validate()?;
