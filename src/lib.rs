@@ -5,6 +5,7 @@
 //! (arguments, progress bar, signals) lives in `noncirc-cli`.
 
 pub mod accuracy;
+pub mod cad;
 pub mod export;
 #[cfg(feature = "figures")]
 pub mod figures;
@@ -14,6 +15,7 @@ pub mod plots;
 pub mod report;
 pub mod scene_file;
 pub mod search;
+pub mod teeth;
 
 pub use noncirc_core as core;
 

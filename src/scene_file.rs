@@ -278,6 +278,12 @@ pub fn apply_overrides(scene: Scene, assignments: &[String]) -> Result<Scene, Sc
 /// Writes `key.path=value` assignments into the scene's tree and reads it back.
 fn set_values(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError> {
     let mut tree = serde_json::to_value(&scene).expect("a scene always serialises");
+    // A table a scene leaves out while it is the default (the teeth) can still be set.
+    if let Some(gear) = tree.get_mut("gear").and_then(|g| g.as_object_mut()) {
+        gear.entry("teeth").or_insert_with(|| {
+            serde_json::to_value(noncirc_core::ToothSpec::default()).expect("serialises")
+        });
+    }
     let scene_tree = tree.clone();
     for assignment in assignments {
         let err = |message: String| SceneError::Override {

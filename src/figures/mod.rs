@@ -20,6 +20,7 @@ mod ground;
 mod lines;
 mod moving_box;
 mod objectives;
+mod teeth;
 mod trajectory;
 
 pub use gears::{animate, GearsFigure, MAX_FRAMES};
@@ -27,6 +28,7 @@ pub use ground::GroundFigure;
 pub use lines::LinesFigure;
 pub use moving_box::BoxFigure;
 pub use objectives::ObjectivesFigure;
+pub use teeth::{teeth_figures, TeethFigure};
 pub use trajectory::TrajectoryFigure;
 
 const FONT: &str = "sans-serif";

@@ -93,6 +93,22 @@ struct GearArgs {
 }
 
 #[derive(clap::Args)]
+struct TeethArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Export DXF (lines and arcs, mm), SVG and CSV of each gear and of the assembled
+    /// train into this directory.
+    #[arg(long, value_name = "DIR")]
+    export: Option<std::path::PathBuf>,
+    /// Carrier angle of the assembled train (degrees).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    carrier_deg: f64,
+    /// Largest distance of the exported lines and arcs from the computed outline (mm).
+    #[arg(long, default_value_t = 1e-3)]
+    tolerance_mm: f64,
+}
+
+#[derive(clap::Args)]
 struct AnimateArgs {
     #[command(flatten)]
     scene: SceneArgs,
@@ -143,6 +159,10 @@ enum Command {
     Optimise(OptimiseArgs),
     /// The response of every objective to one parameter (three-arm paper §4.2).
     Sweep(SweepArgs),
+    /// Cut teeth on the scene's gears (every gear of the train), check them over a full
+    /// turn (undercut, tip land, clearance, backlash, contact ratio) and export them for
+    /// manufacturing. The tooth count is `gear.module.teeth` or the module rule's.
+    Teeth(TeethArgs),
     /// List the built-in scenes.
     Scenes,
     /// List every measure (`sweep --measure`, goals `min:NAME`/`max:NAME`) with its unit.
@@ -346,6 +366,32 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             match args.scene.format {
                 Format::Json => out(&json(&report)?)?,
                 Format::Table => out(&report.table())?,
+            }
+        }
+        Command::Teeth(args) => {
+            let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
+            if !(args.tolerance_mm > 0.0 && args.tolerance_mm.is_finite()) {
+                return Err(Box::new(noncirc::core::Error::OutOfRange {
+                    name: "--tolerance-mm".into(),
+                    value: args.tolerance_mm,
+                    expected: "a positive number of mm".into(),
+                }));
+            }
+            let run = noncirc::teeth::TeethRun::from_scene(&scene, args.carrier_deg)?;
+            noncirc::report::check_finite(&run.summary())?;
+            if let Some(dir) = &args.export {
+                for f in run.export(dir, args.tolerance_mm)? {
+                    eprintln!("wrote {}", f.display());
+                }
+            }
+            if let Some(dir) = &args.scene.plot {
+                for f in noncirc::figures::teeth_figures(&run, dir)? {
+                    eprintln!("wrote {}", f.display());
+                }
+            }
+            match args.scene.format {
+                Format::Json => out(&json(&run.summary())?)?,
+                Format::Table => out(&run.table())?,
             }
         }
         Command::Animate(args) => {

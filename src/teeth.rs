@@ -1,0 +1,282 @@
+//! Teeth for a scene: its toothed pair, the train (or the pair) assembled at a carrier
+//! angle, and the manufacturing exports.
+
+use noncirc_core::{
+    GearPair, Kinematics, Member, ModuleReading, Scene, SceneKind, TeethReport, ToothedPair, Vec2,
+};
+use serde::Serialize;
+use std::f64::consts::{PI, TAU};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::cad;
+use crate::files::{create_dir, write_file};
+use crate::Result;
+
+/// One gear of the assembly: which toothed gear, where its centre is, how it is turned.
+#[derive(Debug, Clone, Serialize)]
+pub struct PlacedGear {
+    /// `sun`, `intermediate_1`, `planet_1`, … (`driver`, `driven` for a gear pair).
+    pub name: String,
+    #[serde(skip)]
+    pub member: Member,
+    pub centre_mm: Vec2,
+    /// Turn of the gear's own frame in the drawing (degrees).
+    pub angle_deg: f64,
+}
+
+/// A scene's teeth and their assembly.
+#[derive(Debug, Clone)]
+pub struct TeethRun {
+    pub pair: ToothedPair,
+    /// Where the tooth count came from.
+    pub count_from: &'static str,
+    /// Carrier angle of the assembly (degrees; `None` for a gear pair).
+    pub carrier_deg: Option<f64>,
+    pub layout: Vec<PlacedGear>,
+}
+
+/// What `noncirc teeth` reports.
+#[derive(Debug, Clone, Serialize)]
+pub struct TeethSummary<'a> {
+    pub count_from: &'static str,
+    pub carrier_deg: Option<f64>,
+    pub checks: &'a TeethReport,
+    pub layout: &'a [PlacedGear],
+}
+
+impl TeethRun {
+    /// Cuts the scene's gears (`gear.module.teeth`, or the module rule's tooth count) and
+    /// assembles them at carrier angle `carrier_deg` (three-arm scenes).
+    pub fn from_scene(scene: &Scene, carrier_deg: f64) -> Result<Self> {
+        scene.validate()?;
+        let curve = scene.gear.curve.build()?;
+        let rule = &scene.gear.module;
+        let train = matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
+        let kin = if train {
+            Some(Kinematics::solve(&curve, &scene.train, &scene.resolution)?)
+        } else {
+            None
+        };
+        let solved;
+        let pair: &GearPair = match &kin {
+            Some(k) => k.pair(),
+            None => {
+                solved = GearPair::solve(curve.clone(), scene.resolution)?;
+                &solved
+            }
+        };
+        let (teeth, count_from) = match rule.teeth {
+            Some(z) => (z, "gear.module.teeth"),
+            None => {
+                let m = pair.module(rule);
+                if m.teeth == 0 {
+                    return Err(noncirc_core::Error::Infeasible(
+                        "no tooth count: the module rule admits no module for this curve; set gear.module.teeth".into(),
+                    )
+                    .into());
+                }
+                (
+                    m.teeth,
+                    match rule.rule {
+                        ModuleReading::Undercut => {
+                            "the largest undercut-free module (gear.module.rule = \"undercut\")"
+                        }
+                        _ => "gear.module.teeth",
+                    },
+                )
+            }
+        };
+        let toothed = ToothedPair::cut(&curve, pair.centre_distance(), teeth, &scene.gear.teeth)?;
+        let a = toothed.track.centre_distance();
+        let layout = match &kin {
+            None => vec![
+                PlacedGear {
+                    name: "driver".into(),
+                    member: Member::Driver,
+                    centre_mm: Vec2::ZERO,
+                    angle_deg: 0.0,
+                },
+                PlacedGear {
+                    name: "driven".into(),
+                    member: Member::Driven,
+                    centre_mm: Vec2::new(a, 0.0),
+                    angle_deg: 180.0,
+                },
+            ],
+            Some(kin) => {
+                let sun_angle = scene.train.sun_angle();
+                let mut layout = vec![PlacedGear {
+                    name: "sun".into(),
+                    member: Member::Driver,
+                    centre_mm: Vec2::ZERO,
+                    angle_deg: sun_angle.to_degrees(),
+                }];
+                for k in 0..3 {
+                    let st = kin.state_at(carrier_deg.to_radians() + TAU * k as f64 / 3.0);
+                    // The intermediate's point meeting the sun's ψ faces the sun.
+                    let towards_sun = (-st.o2.y).atan2(-st.o2.x);
+                    let psi = towards_sun + PI - sun_angle;
+                    let chi = toothed.track.driven_angle(psi);
+                    layout.push(PlacedGear {
+                        name: format!("intermediate_{}", k + 1),
+                        member: Member::Driven,
+                        centre_mm: st.o2,
+                        angle_deg: (towards_sun - chi).to_degrees(),
+                    });
+                    layout.push(PlacedGear {
+                        name: format!("planet_{}", k + 1),
+                        member: Member::Driver,
+                        centre_mm: st.o3,
+                        angle_deg: st.theta3.to_degrees(),
+                    });
+                }
+                layout
+            }
+        };
+        Ok(Self {
+            pair: toothed,
+            count_from,
+            carrier_deg: train.then_some(carrier_deg),
+            layout,
+        })
+    }
+
+    pub fn summary(&self) -> TeethSummary<'_> {
+        TeethSummary {
+            count_from: self.count_from,
+            carrier_deg: self.carrier_deg,
+            checks: &self.pair.report,
+            layout: &self.layout,
+        }
+    }
+
+    /// A table for people.
+    pub fn table(&self) -> String {
+        let r = &self.pair.report;
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "teeth per gear      {} (from {})",
+            r.teeth, self.count_from
+        );
+        let _ = writeln!(s, "module              {:.4} mm", r.module_mm);
+        let _ = writeln!(s, "pressure angle      {:.1}°", r.pressure_angle_deg);
+        let _ = writeln!(s, "centre distance     {:.6} mm", r.centre_distance_mm);
+        let _ = writeln!(s, "pitch perimeter     {:.6} mm", r.perimeter_mm);
+        for g in &r.gears {
+            let _ = writeln!(
+                s,
+                "{:<7} undercut teeth {:>4} (flank lost up to {:.4} mm), least tip land {:.4} mm, pointed {}, {} outline points",
+                g.name, g.undercut_teeth, g.undercut_lost_height_mm, g.tip_land_min_mm, g.pointed_teeth, g.outline_points
+            );
+        }
+        let m = &r.mesh;
+        let _ = writeln!(
+            s,
+            "mesh over one turn  {} positions: least clearance {:.4} mm (at pitch arc {:.3} mm)",
+            m.positions, m.least_clearance_mm, m.least_clearance_at_mm
+        );
+        if let Some((lo, hi)) = m.backlash_mm {
+            let _ = writeln!(s, "normal backlash     {lo:.4} … {hi:.4} mm");
+        }
+        let _ = writeln!(
+            s,
+            "contact ratio       least {:.3} (at pitch arc {:.3} mm), mean {:.3}",
+            m.contact_ratio_min, m.contact_ratio_min_at_mm, m.contact_ratio_mean
+        );
+        if r.failures.is_empty() {
+            let _ = writeln!(s, "verdict             every check passes");
+        } else {
+            for f in &r.failures {
+                let _ = writeln!(s, "FAILS               {f}");
+            }
+        }
+        s
+    }
+
+    /// Writes `driver.dxf`/`driven.dxf` (each gear in its own frame), `train.dxf` and
+    /// `train.svg` (the assembly), `driver.csv`/`driven.csv` (every outline point) and
+    /// `pitch_driver.csv` (the pitch curve to `tolerance_mm` of chord), into `dir`.
+    pub fn export(&self, dir: &Path, tolerance_mm: f64) -> Result<Vec<PathBuf>> {
+        create_dir(dir)?;
+        let gears = &self.pair.gears;
+        let fitted: Vec<Vec<cad::Piece>> = gears
+            .iter()
+            .map(|g| cad::fit(&g.outline, &g.corners, tolerance_mm))
+            .collect();
+        let mark = 0.5 * self.pair.module_mm;
+        let mut files = Vec::new();
+        let mut write = |name: &str, text: String| -> Result<()> {
+            let path = dir.join(name);
+            write_file(&path, text.as_bytes())?;
+            files.push(path);
+            Ok(())
+        };
+        for (k, name) in ["driver", "driven"].iter().enumerate() {
+            let own = [cad::Placed {
+                layer: &name.to_uppercase(),
+                pieces: &fitted[k],
+                centre: Vec2::ZERO,
+                angle: 0.0,
+            }];
+            write(
+                &format!("{name}.dxf"),
+                cad::dxf(&own, &[Vec2::ZERO], mark, &[]),
+            )?;
+            let mut csv = String::from("x_mm,y_mm\n");
+            for p in &gears[k].outline {
+                let _ = writeln!(csv, "{:.9},{:.9}", p.x, p.y);
+            }
+            write(&format!("{name}.csv"), csv)?;
+        }
+        let layers: Vec<String> = self.layout.iter().map(|g| g.name.to_uppercase()).collect();
+        let placed: Vec<cad::Placed> = self
+            .layout
+            .iter()
+            .zip(&layers)
+            .map(|(g, layer)| cad::Placed {
+                layer,
+                pieces: &fitted[usize::from(g.member == Member::Driven)],
+                centre: g.centre_mm,
+                angle: g.angle_deg.to_radians(),
+            })
+            .collect();
+        let marks: Vec<Vec2> = self.layout.iter().map(|g| g.centre_mm).collect();
+        write("train.dxf", cad::dxf(&placed, &marks, mark, &[]))?;
+        write("train.svg", cad::svg(&placed, &marks))?;
+        let mut csv = String::from("x_mm,y_mm\n");
+        for p in pitch_to_chord(&self.pair, tolerance_mm) {
+            let _ = writeln!(csv, "{:.9},{:.9}", p.x, p.y);
+        }
+        write("pitch_driver.csv", csv)?;
+        Ok(files)
+    }
+
+    /// Lines and arcs per gear at `tolerance_mm`, and the raw point counts.
+    pub fn entity_counts(&self, tolerance_mm: f64) -> [(usize, usize); 2] {
+        [0, 1].map(|k| {
+            let g = &self.pair.gears[k];
+            (
+                cad::fit(&g.outline, &g.corners, tolerance_mm).len(),
+                g.outline.len(),
+            )
+        })
+    }
+}
+
+/// The driver's pitch curve sampled so that no chord strays more than `tol` (mm) from the
+/// curve: each step `2√(2 tol R)` of arc for the local radius of curvature `R`.
+pub fn pitch_to_chord(pair: &ToothedPair, tol: f64) -> Vec<Vec2> {
+    let track = &pair.track;
+    let perimeter = track.perimeter();
+    let mut s = 0.0;
+    let mut points = Vec::new();
+    while s < perimeter {
+        let f = track.frame(Member::Driver, track.psi_at(s));
+        points.push(f.point);
+        let r = 1.0 / f.curvature.abs().max(1e-9);
+        s += (2.0 * (2.0 * tol * r).sqrt()).min(0.05 * perimeter) * 0.9;
+    }
+    points
+}
