@@ -43,5 +43,6 @@ if [ -f python/pyproject.toml ]; then
   "$VENV/bin/python" -m pip install --quiet --upgrade pip
   "$VENV/bin/python" -m pip install --quiet -r python/requirements-dev.txt
   (cd python && ../"$VENV"/bin/maturin develop --release --quiet)
+  cargo build --release --quiet -p noncirc-cli # the teeth peers' tests run the CLI
   "$VENV/bin/python" -m pytest python/tests -q
 fi
