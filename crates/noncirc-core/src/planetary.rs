@@ -119,6 +119,14 @@ impl TrainSpec {
         positive("train.arm_length_mm", self.arm_length_mm)?;
         length("train.arm_length_mm", self.arm_length_mm)?;
         positive("train.carrier_speed_rpm", self.carrier_speed_rpm)?;
+        // Speeds beyond this overflow what is derived from them (tip speeds in m/s).
+        if self.carrier_speed_rpm > 1e6 {
+            return Err(Error::OutOfRange {
+                name: "train.carrier_speed_rpm".into(),
+                value: self.carrier_speed_rpm,
+                expected: "at most 1e6 rpm".into(),
+            });
+        }
         finite("train.pusher_offset_mm", self.pusher_offset_mm)?;
         if !(self.pusher_offset_mm >= 0.0 && self.pusher_offset_mm < self.arm_length_mm) {
             return Err(Error::OutOfRange {

@@ -63,10 +63,11 @@ impl SolverState for Cmaes {
         check_len("cmaes: covariance", self.cov.len(), dim * dim)?;
         check_len("cmaes: step-size path", self.path_sigma.len(), dim)?;
         check_len("cmaes: covariance path", self.path_c.len(), dim)?;
-        if self.lambda < 4 {
+        if !(4..=crate::scene::SearchSpec::MAX_POPULATION).contains(&self.lambda) {
             return Err(state_error(format!(
-                "cmaes: population {} (at least 4)",
-                self.lambda
+                "cmaes: population {} (from 4 to {})",
+                self.lambda,
+                crate::scene::SearchSpec::MAX_POPULATION
             )));
         }
         if !(self.sigma.is_finite() && self.sigma > 0.0) {
