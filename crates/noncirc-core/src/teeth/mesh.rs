@@ -83,6 +83,9 @@ pub fn check(
                 let end = gear.tooth_starts[(j + 1) % teeth];
                 let len = (end + gear.outline.len() - start) % gear.outline.len();
                 for i in (0..len).map(|i| (start + i) % gear.outline.len()) {
+                    if !gear.probes[i] {
+                        continue;
+                    }
                     let Some(d) = other.signed_distance(map(gear.outline[i])) else {
                         continue;
                     };

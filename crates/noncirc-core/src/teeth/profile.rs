@@ -80,6 +80,10 @@ pub struct ToothedGear {
     pub corners: Vec<usize>,
     /// Flank side of each outline point (`Some` on a flank), and its tooth.
     pub flank_of: Vec<Option<(usize, Side)>>,
+    /// Whether each outline point can meet the mate (the tip and the flank from 0.3 m
+    /// below the pitch curve up): what the mesh check probes; the mate's tips probe the
+    /// rest.
+    pub probes: Vec<bool>,
     /// Outline index where each tooth's points start (its left root end; the right root
     /// end for the driven gear, whose outline runs the other way), in tooth order.
     pub tooth_starts: Vec<usize>,
@@ -459,9 +463,15 @@ impl Cut<'_> {
         let mut points: Vec<Vec2> = fillet_pts.iter().map(|x| x.2).collect();
         let flank_start = points.len() - 1;
         points.extend(flank_pts.iter().skip(1).map(|x| x.2));
+        let low = -0.3 * self.pitch / std::f64::consts::PI;
+        let upper = flank_pts
+            .iter()
+            .position(|(s, _, _)| sigma * self.lambda(*s, u0) * t.sin >= low)
+            .unwrap_or(flank_pts.len() - 1);
         Ok(SideChain {
             points,
             flank_start,
+            probe_from: flank_start + upper,
             tip_param: w_tip,
             root_end,
             undercut,
@@ -478,6 +488,7 @@ impl Cut<'_> {
         let mut outline = Vec::new();
         let mut corners = Vec::new();
         let mut flank_of = Vec::new();
+        let mut probes = Vec::new();
         let mut teeth = Vec::with_capacity(self.teeth);
         let centre = |j: usize| self.phase + self.pitch * j as f64;
         let mut sides = Vec::with_capacity(self.teeth);
@@ -539,12 +550,14 @@ impl Cut<'_> {
             flank_of.extend(
                 (0..left_pts.len()).map(|k| (k >= left.flank_start).then_some((j, Side::Left))),
             );
+            probes.extend((0..left_pts.len()).map(|k| k >= left.probe_from));
             outline.extend(&left_pts);
             if left.undercut.is_some() {
                 corners.push(base + left.flank_start);
             }
             corners.push(outline.len() - 1);
             flank_of.extend(tip_pts.iter().map(|_| None));
+            probes.extend(tip_pts.iter().map(|_| true));
             outline.extend(tip_pts);
             if !tooth.pointed {
                 corners.push(outline.len());
@@ -554,6 +567,7 @@ impl Cut<'_> {
             for (k, p) in right_pts.iter().rev().enumerate() {
                 let idx = rn - 1 - k;
                 flank_of.push((idx >= right.flank_start).then_some((j, Side::Right)));
+                probes.push(idx >= right.probe_from);
                 outline.push(*p);
             }
             if right.undercut.is_some() {
@@ -582,6 +596,7 @@ impl Cut<'_> {
                     }
                     outline.push(self.point(root, s, &f));
                     flank_of.push(None);
+                    probes.push(false);
                 }
             } else {
                 return Err(self.fail(j, s0, "the fillets of neighbouring teeth cross: the tooth space is narrower than the tool's tip".into()));
@@ -592,6 +607,7 @@ impl Cut<'_> {
         if self.member == Member::Driven {
             outline.reverse();
             flank_of.reverse();
+            probes.reverse();
             let n = outline.len();
             for c in &mut corners {
                 *c = n - 1 - *c;
@@ -615,6 +631,7 @@ impl Cut<'_> {
             outline: grid.points().to_vec(),
             corners,
             flank_of,
+            probes,
             tooth_starts,
             teeth,
         })
@@ -661,6 +678,9 @@ struct SideChain {
     points: Vec<Vec2>,
     /// Index in `points` where the flank starts.
     flank_start: usize,
+    /// Index in `points` from which the flank stands higher than 0.3 m below the pitch
+    /// curve: the points that can meet the mate.
+    probe_from: usize,
     /// The tip curve's parameter where the flank meets it.
     tip_param: f64,
     /// Rolling position where the fillet reaches the root.
