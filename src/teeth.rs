@@ -104,35 +104,7 @@ impl TeethRun {
                     angle_deg: 180.0,
                 },
             ],
-            Some(kin) => {
-                let sun_angle = scene.train.sun_angle();
-                let mut layout = vec![PlacedGear {
-                    name: "sun".into(),
-                    member: Member::Driver,
-                    centre_mm: Vec2::ZERO,
-                    angle_deg: sun_angle.to_degrees(),
-                }];
-                for k in 0..3 {
-                    let st = kin.state_at(carrier_deg.to_radians() + TAU * k as f64 / 3.0);
-                    // The intermediate's point meeting the sun's ψ faces the sun.
-                    let towards_sun = (-st.o2.y).atan2(-st.o2.x);
-                    let psi = towards_sun + PI - sun_angle;
-                    let chi = toothed.track.driven_angle(psi);
-                    layout.push(PlacedGear {
-                        name: format!("intermediate_{}", k + 1),
-                        member: Member::Driven,
-                        centre_mm: st.o2,
-                        angle_deg: (towards_sun - chi).to_degrees(),
-                    });
-                    layout.push(PlacedGear {
-                        name: format!("planet_{}", k + 1),
-                        member: Member::Driver,
-                        centre_mm: st.o3,
-                        angle_deg: st.theta3.to_degrees(),
-                    });
-                }
-                layout
-            }
+            Some(kin) => train_layout(kin, &toothed, carrier_deg.to_radians()),
         };
         Ok(Self {
             pair: toothed,
@@ -263,6 +235,39 @@ impl TeethRun {
             )
         })
     }
+}
+
+/// Every gear of the three-arm train at carrier angle `theta` (rad): the sun turned by its
+/// installation angle; each intermediate turned so that its point meeting the sun's `ψ`
+/// faces the sun; each planet at the kinematics' orientation (its frame is the sun's).
+/// Arm `k` stands where arm I stands at `theta + k·120°`.
+pub fn train_layout(kin: &Kinematics, toothed: &ToothedPair, theta: f64) -> Vec<PlacedGear> {
+    let sun_angle = kin.spec().sun_angle();
+    let mut layout = vec![PlacedGear {
+        name: "sun".into(),
+        member: Member::Driver,
+        centre_mm: Vec2::ZERO,
+        angle_deg: sun_angle.to_degrees(),
+    }];
+    for k in 0..3 {
+        let st = kin.state_at(theta + TAU * k as f64 / 3.0);
+        let towards_sun = (-st.o2.y).atan2(-st.o2.x);
+        let psi = towards_sun + PI - sun_angle;
+        let chi = toothed.track.driven_angle(psi);
+        layout.push(PlacedGear {
+            name: format!("intermediate_{}", k + 1),
+            member: Member::Driven,
+            centre_mm: st.o2,
+            angle_deg: (towards_sun - chi).to_degrees(),
+        });
+        layout.push(PlacedGear {
+            name: format!("planet_{}", k + 1),
+            member: Member::Driver,
+            centre_mm: st.o3,
+            angle_deg: st.theta3.to_degrees(),
+        });
+    }
+    layout
 }
 
 /// The driver's pitch curve sampled so that no chord strays more than `tol` (mm) from the

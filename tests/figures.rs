@@ -132,7 +132,7 @@ fn box_search_and_sweep_figures_and_the_animation() {
     )
     .unwrap();
     let gif = dir.join("mechanism.gif");
-    noncirc::figures::animate(&kin, &gif, 6).unwrap();
+    noncirc::figures::animate(&kin, None, &gif, 6).unwrap();
     let bytes = std::fs::read(&gif).unwrap();
     assert_eq!(&bytes[..6], b"GIF89a");
     // Six frames: six image descriptors (0x2C) follow graphic-control extensions (0x21 0xF9).

@@ -30,6 +30,7 @@ impl Figure for GearsFigure<'_> {
         draw_train(
             &left,
             kin,
+            None,
             self.theta,
             &format!(
                 "Pitch curves on the carrier at θ = {:.0}°",
@@ -95,24 +96,58 @@ impl Figure for GearsFigure<'_> {
 fn draw_train<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     kin: &Kinematics,
+    teeth: Option<&ToothedPair>,
     theta: f64,
     caption: &str,
 ) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
-    let sun = kin.pair().driver_points();
-    let inter = kin.pair().driven_points();
-    let mut shapes: Vec<(Vec<(f64, f64)>, RGBColor)> = vec![(
-        place(&sun, Vec2::ZERO, kin.spec().sun_angle()),
-        RGBColor(60, 60, 60),
-    )];
+    let mut shapes: Vec<(Vec<(f64, f64)>, RGBColor)> = Vec::new();
     let mut arms = Vec::new();
     for (k, &colour) in ARM_COLOURS.iter().enumerate() {
         let st = kin.state_at(theta - k as f64 * TAU / 3.0);
-        shapes.push((place(&inter, st.o2, st.theta2), colour));
-        shapes.push((place(&sun, st.o3, st.theta3), colour));
         arms.push(([st.o3, st.tip], colour));
+    }
+    match teeth {
+        // Toothed gears where they stand (arm k at θ − k·120°, as the arms above).
+        Some(toothed) => {
+            for (k, colour) in ARM_COLOURS.into_iter().enumerate() {
+                let layout = crate::teeth::train_layout(kin, toothed, theta - TAU * k as f64 / 3.0);
+                if k == 0 {
+                    shapes.push((
+                        place(
+                            &toothed.gears[0].outline,
+                            Vec2::ZERO,
+                            layout[0].angle_deg.to_radians(),
+                        ),
+                        RGBColor(60, 60, 60),
+                    ));
+                }
+                for g in &layout[1..3] {
+                    let outline = &toothed.gears
+                        [usize::from(g.member == noncirc_core::Member::Driven)]
+                    .outline;
+                    shapes.push((
+                        place(outline, g.centre_mm, g.angle_deg.to_radians()),
+                        colour,
+                    ));
+                }
+            }
+        }
+        None => {
+            let sun = kin.pair().driver_points();
+            let inter = kin.pair().driven_points();
+            shapes.push((
+                place(&sun, Vec2::ZERO, kin.spec().sun_angle()),
+                RGBColor(60, 60, 60),
+            ));
+            for (k, &colour) in ARM_COLOURS.iter().enumerate() {
+                let st = kin.state_at(theta - k as f64 * TAU / 3.0);
+                shapes.push((place(&inter, st.o2, st.theta2), colour));
+                shapes.push((place(&sun, st.o3, st.theta3), colour));
+            }
+        }
     }
     let pts = shapes
         .iter()
@@ -159,8 +194,14 @@ where
 /// Most frames of an animation (a frame per 0.1° of carrier turn).
 pub const MAX_FRAMES: usize = 3600;
 
-/// `noncirc animate`: the mechanism turning, gears and arms drawn, as a GIF.
-pub fn animate(kin: &Kinematics, path: &Path, frames: usize) -> Result<()> {
+/// `noncirc animate`: the mechanism turning, gears (toothed if `teeth` is given) and arms
+/// drawn, as a GIF.
+pub fn animate(
+    kin: &Kinematics,
+    teeth: Option<&ToothedPair>,
+    path: &Path,
+    frames: usize,
+) -> Result<()> {
     if !(2..=MAX_FRAMES).contains(&frames) {
         return Err(Error::Input(format!(
             "--frames {frames}: expected 2 to {MAX_FRAMES}"
@@ -178,6 +219,7 @@ pub fn animate(kin: &Kinematics, path: &Path, frames: usize) -> Result<()> {
         draw_train(
             &root,
             kin,
+            teeth,
             theta,
             &format!("θ = {:5.1}°", theta.to_degrees()),
         )?;

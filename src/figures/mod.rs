@@ -3,7 +3,7 @@
 
 use noncirc_core::{
     advance_per_rad, anatomy, box_curves, travel_sign, unit, BoxReport, BoxSpec, Evaluation,
-    Events, Kinematics, ObjectiveValue, Scene, Section, Vec2,
+    Events, Kinematics, ObjectiveValue, Scene, Section, ToothedPair, Vec2,
 };
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -118,6 +118,9 @@ struct AnimateArgs {
     /// Frames per carrier turn.
     #[arg(long, default_value_t = 72)]
     frames: usize,
+    /// Draw the gears' teeth (`noncirc teeth`'s, with the scene's tooth count).
+    #[arg(long)]
+    teeth: bool,
 }
 
 #[derive(clap::Args)]
@@ -401,7 +404,12 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
                 &scene.train,
                 &scene.resolution,
             )?;
-            noncirc::figures::animate(&kin, &args.out, args.frames)?;
+            let teeth = if args.teeth {
+                Some(noncirc::teeth::TeethRun::from_scene(&scene, 0.0)?.pair)
+            } else {
+                None
+            };
+            noncirc::figures::animate(&kin, teeth.as_ref(), &args.out, args.frames)?;
             eprintln!("wrote {}", args.out.display());
         }
         Command::Evaluate(args) => {
