@@ -1,7 +1,7 @@
 //! Export for CAD and multibody tools: pitch curves as CSV, SVG and DXF (mm, each gear in
 //! its own frame, centre at the origin), and the tip trajectory as CSV.
 
-use noncirc_core::{GearPair, Kinematics, Rotation, Vec2};
+use noncirc_core::{GearPair, Kinematics, Member, PairTrack, Vec2};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -14,28 +14,58 @@ pub struct Outline {
     pub points: Vec<Vec2>,
 }
 
+/// Largest distance of an exported pitch-curve chord from the curve (mm).
+pub const PITCH_CHORD_TOLERANCE_MM: f64 = 1e-3;
+
 /// The driving gear (sun and planets) and the driven gear (intermediates), each in its own
-/// frame: driver points at `ψ`, ascending from the pair's first sample (ψ = 0 for a gear
-/// scene and a train with the sun installed, `Φ0` for a train in the ground frame); driven
-/// points at its own angle `χ = −(φ2(ψ) − φ2(ψ₀))`, radius `a − ρ`, the angle 0 meeting the
-/// first sample.
-pub fn outlines(pair: &GearPair) -> Vec<Outline> {
-    // A clockwise grid (a clockwise train's) read backwards from node 0.
-    let n = pair.samples().len();
-    let ascending = |points: Vec<Vec2>| match pair.grid().sense {
-        Rotation::Counterclockwise => points,
-        Rotation::Clockwise => (0..n).map(|j| points[(n - j) % n]).collect(),
-    };
-    vec![
+/// frame, sampled so that no chord strays more than [`PITCH_CHORD_TOLERANCE_MM`] from the
+/// curve (steps of `2√(2·tol·R)` of arc for the local radius of curvature `R`), not at the
+/// evaluation's samples: driver points at ascending `ψ` from the pair's first sample
+/// (ψ = 0 for a gear scene and a train with the sun installed, `Φ0` for a train in the
+/// ground frame); driven points at its own angle `χ = −(φ2(ψ) − φ2(ψ₀))`, radius `a − ρ`,
+/// the angle 0 meeting the first sample.
+pub fn outlines(pair: &GearPair) -> Result<Vec<Outline>> {
+    let track = PairTrack::new(pair.curve(), pair.centre_distance(), 256)?;
+    let psi0 = pair.psi(0);
+    let (s0, chi0) = (track.arc(psi0), track.driven_angle(psi0));
+    let turn = Vec2::new((-chi0).cos(), (-chi0).sin());
+    let perimeter = track.perimeter();
+    let (mut driver, mut driven) = (Vec::new(), Vec::new());
+    let mut s = 0.0;
+    while s < perimeter {
+        let psi = track.psi_at(s0 + s);
+        let (f1, f2) = (
+            track.frame(Member::Driver, psi),
+            track.frame(Member::Driven, psi),
+        );
+        driver.push(f1.point);
+        driven.push(f2.point.rotated(turn));
+        // The step for the sharper of the two curves, at both ends of the step.
+        let sharpest =
+            |f: [noncirc_core::Frame; 2]| f[0].curvature.abs().max(f[1].curvature.abs()).max(1e-9);
+        let step = |k: f64| {
+            (8.0 * PITCH_CHORD_TOLERANCE_MM / k)
+                .sqrt()
+                .min(0.02 * perimeter)
+        };
+        let k0 = sharpest([f1, f2]);
+        let ahead = track.psi_at(s0 + s + step(k0));
+        let k1 = sharpest([
+            track.frame(Member::Driver, ahead),
+            track.frame(Member::Driven, ahead),
+        ]);
+        s += 0.9 * step(k0.max(k1));
+    }
+    Ok(vec![
         Outline {
             name: "driver",
-            points: ascending(pair.driver_points()),
+            points: driver,
         },
         Outline {
             name: "driven",
-            points: ascending(pair.driven_points()),
+            points: driven,
         },
-    ]
+    ])
 }
 
 /// DXF R12 with one closed POLYLINE per outline, on a layer of its name.
@@ -107,7 +137,7 @@ fn csv(points: &[Vec2]) -> String {
 /// Writes `<name>.csv` per outline, `pitch_curves.svg` and `pitch_curves.dxf` into `dir`.
 pub fn export_gears(pair: &GearPair, dir: &Path) -> Result<Vec<PathBuf>> {
     create_dir(dir)?;
-    let outlines = outlines(pair);
+    let outlines = outlines(pair)?;
     let mut files = Vec::new();
     for o in &outlines {
         let path = dir.join(format!("{}.csv", o.name));

@@ -4,6 +4,8 @@
 use noncirc::core::{Evaluator, GearPair};
 use noncirc::export::{export_gears, outlines};
 use noncirc::scene_file::load_scene;
+use noncirc::core::Vec2;
+use std::f64::consts::TAU;
 use std::path::Path;
 
 fn temp(name: &str) -> std::path::PathBuf {
@@ -88,7 +90,7 @@ fn dxf_reads_back_the_pitch_curves() {
             ));
         }
     }
-    let expected = outlines(&pair);
+    let expected = outlines(&pair).unwrap();
     assert_eq!(polylines.len(), expected.len());
     for (o, (layer, pts)) in expected.iter().zip(&polylines) {
         assert_eq!(o.name, layer);
@@ -101,10 +103,35 @@ fn dxf_reads_back_the_pitch_curves() {
             .fold(0.0, f64::max);
         assert!(worst < 1e-6, "{}: {worst} mm", o.name);
     }
-    // The driven outline is the conjugate: its radius at each node is a − ρ.
-    let a = pair.centre_distance();
-    for (p, q) in pair.samples().iter().zip(&expected[1].points) {
-        assert!((q.hypot() - (a - p.rho)).abs() < 1e-9);
+    // The driven outline is the conjugate: at each point the two radii add up to the
+    // centre distance (re-closed by the export's quadrature, within the evaluation's
+    // closure error of the pair's).
+    let a = expected[0].points[0].hypot() + expected[1].points[0].hypot();
+    assert!(
+        (a - pair.centre_distance()).abs() < 1e-4,
+        "{a} vs {}",
+        pair.centre_distance()
+    );
+    for (p, q) in expected[0].points.iter().zip(&expected[1].points) {
+        assert!((q.hypot() + p.hypot() - a).abs() < 1e-9);
+    }
+    // Sampled to a chord tolerance, not at the evaluation's nodes: no chord's midpoint
+    // strays more than the tolerance from the curve.
+    let curve = pair.curve();
+    let pts = &expected[0].points;
+    assert!(pts.len() > 2 * pair.samples().len(), "{} points", pts.len());
+    for k in 0..pts.len() {
+        let (u, v) = (pts[k], pts[(k + 1) % pts.len()]);
+        let (a0, a1) = (u.y.atan2(u.x), v.y.atan2(v.x));
+        let half = a0 + 0.5 * (a1 - a0 - TAU * ((a1 - a0) / TAU).round());
+        // The curve between the two points, and its distance from the chord.
+        let on_curve = Vec2::new(half.cos(), half.sin()) * curve.eval(half).rho;
+        let chord = v - u;
+        let off = chord.cross(on_curve - u).abs() / chord.hypot();
+        assert!(
+            off < 1.2 * noncirc::export::PITCH_CHORD_TOLERANCE_MM,
+            "chord {k}: {off} mm"
+        );
     }
     check_file(&dir.join("pitch_curves.svg"));
     std::fs::remove_dir_all(dir).ok();

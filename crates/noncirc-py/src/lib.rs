@@ -310,7 +310,7 @@ fn evaluate<'py>(
         )?;
     }
     if let Some(pair) = eval.pair() {
-        let outlines = noncirc::export::outlines(pair);
+        let outlines = noncirc::export::outlines(pair).map_err(lib_err)?;
         out.set_item("driver_curve", points(&outlines[0].points).into_pyarray(py))?;
         out.set_item("driven_curve", points(&outlines[1].points).into_pyarray(py))?;
     }

@@ -14,7 +14,7 @@ mod track;
 pub use mesh::MeshReport;
 pub use polyline::signed_area;
 pub use profile::{Side, Tooth, ToothedGear, Undercut};
-pub use track::{Member, PairTrack};
+pub use track::{Frame, Member, PairTrack};
 
 use crate::curve::PitchCurve;
 use crate::error::{positive, Error, Result};
