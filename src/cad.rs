@@ -133,14 +133,17 @@ impl Placed<'_> {
 
 /// DXF R12 in millimetres: header (`$INSUNITS` = 4), a layer table, each outline a closed
 /// POLYLINE with bulges, each centre a cross of two LINEs and a small CIRCLE (layer
-/// `CENTRES`), and any open polylines given (`extra`, e.g. pitch curves).
+/// `CENTRES`), and any closed polylines of points given (`extra`, e.g. pitch curves).
 pub fn dxf(
     outlines: &[Placed],
     marks: &[Vec2],
     mark_size: f64,
     extra: &[(&str, Vec<Vec2>)],
 ) -> String {
-    let mut layers: Vec<&str> = vec!["0", "CENTRES"];
+    let mut layers: Vec<&str> = vec!["0"];
+    if !marks.is_empty() {
+        layers.push("CENTRES");
+    }
     for l in outlines
         .iter()
         .map(|o| o.layer)

@@ -1,7 +1,7 @@
 //! Export for CAD and multibody tools: pitch curves as CSV, SVG and DXF (mm, each gear in
 //! its own frame, centre at the origin), and the tip trajectory as CSV.
 
-use noncirc_core::{GearPair, Kinematics, Member, PairTrack, Vec2};
+use noncirc_core::{Frame, GearPair, Kinematics, Member, PairTrack, Vec2};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -26,36 +26,7 @@ pub const PITCH_CHORD_TOLERANCE_MM: f64 = 1e-3;
 /// the angle 0 meeting the first sample.
 pub fn outlines(pair: &GearPair) -> Result<Vec<Outline>> {
     let track = PairTrack::new(pair.curve(), pair.centre_distance(), 256)?;
-    let psi0 = pair.psi(0);
-    let (s0, chi0) = (track.arc(psi0), track.driven_angle(psi0));
-    let turn = Vec2::new((-chi0).cos(), (-chi0).sin());
-    let perimeter = track.perimeter();
-    let (mut driver, mut driven) = (Vec::new(), Vec::new());
-    let mut s = 0.0;
-    while s < perimeter {
-        let psi = track.psi_at(s0 + s);
-        let (f1, f2) = (
-            track.frame(Member::Driver, psi),
-            track.frame(Member::Driven, psi),
-        );
-        driver.push(f1.point);
-        driven.push(f2.point.rotated(turn));
-        // The step for the sharper of the two curves, at both ends of the step.
-        let sharpest =
-            |f: [noncirc_core::Frame; 2]| f[0].curvature.abs().max(f[1].curvature.abs()).max(1e-9);
-        let step = |k: f64| {
-            (8.0 * PITCH_CHORD_TOLERANCE_MM / k)
-                .sqrt()
-                .min(0.02 * perimeter)
-        };
-        let k0 = sharpest([f1, f2]);
-        let ahead = track.psi_at(s0 + s + step(k0));
-        let k1 = sharpest([
-            track.frame(Member::Driver, ahead),
-            track.frame(Member::Driven, ahead),
-        ]);
-        s += 0.9 * step(k0.max(k1));
-    }
+    let [driver, driven] = pitch_points(&track, pair.psi(0), PITCH_CHORD_TOLERANCE_MM);
     Ok(vec![
         Outline {
             name: "driver",
@@ -68,25 +39,43 @@ pub fn outlines(pair: &GearPair) -> Result<Vec<Outline>> {
     ])
 }
 
-/// DXF R12 with one closed POLYLINE per outline, on a layer of its name.
-pub fn dxf(outlines: &[Outline]) -> String {
-    let mut s = String::from("0\nSECTION\n2\nENTITIES\n");
-    for o in outlines {
-        let _ = write!(
-            s,
-            "0\nPOLYLINE\n8\n{}\n66\n1\n70\n1\n10\n0.0\n20\n0.0\n30\n0.0\n",
-            o.name
-        );
-        for &Vec2 { x, y } in &o.points {
-            let _ = write!(
-                s,
-                "0\nVERTEX\n8\n{}\n10\n{x:.9}\n20\n{y:.9}\n30\n0.0\n",
-                o.name
-            );
-        }
-        let _ = write!(s, "0\nSEQEND\n8\n{}\n", o.name);
+/// Both pitch curves of `track` in their own frames from the driver's `psi0` (rad) on, the
+/// driven gear turned so that its angle 0 meets `psi0`, sampled so that no chord strays
+/// more than `tol` (mm) from either curve: steps of `2√(2·tol/κ)` of arc for the sharper
+/// curvature at both ends of the step.
+pub fn pitch_points(track: &PairTrack, psi0: f64, tol: f64) -> [Vec<Vec2>; 2] {
+    let (s0, chi0) = (track.arc(psi0), track.driven_angle(psi0));
+    let turn = Vec2::new((-chi0).cos(), (-chi0).sin());
+    let perimeter = track.perimeter();
+    let frames = |psi: f64| {
+        (
+            track.frame(Member::Driver, psi),
+            track.frame(Member::Driven, psi),
+        )
+    };
+    let sharpest = |(f1, f2): (Frame, Frame)| f1.curvature.abs().max(f2.curvature.abs()).max(1e-9);
+    let step = |k: f64| (8.0 * tol / k).sqrt().min(0.02 * perimeter);
+    let (mut driver, mut driven) = (Vec::new(), Vec::new());
+    let mut s = 0.0;
+    while s < perimeter {
+        let here = frames(track.psi_at(s0 + s));
+        driver.push(here.0.point);
+        driven.push(here.1.point.rotated(turn));
+        let k0 = sharpest(here);
+        let k1 = sharpest(frames(track.psi_at(s0 + s + step(k0))));
+        s += 0.9 * step(k0.max(k1));
     }
-    s + "0\nENDSEC\n0\nEOF\n"
+    [driver, driven]
+}
+
+/// DXF R12 in millimetres (header, layer table), one closed POLYLINE per outline on a
+/// layer of its name.
+pub fn dxf(outlines: &[Outline]) -> String {
+    let polylines: Vec<(&str, Vec<Vec2>)> = outlines
+        .iter()
+        .map(|o| (o.name, o.points.clone()))
+        .collect();
+    crate::cad::dxf(&[], &[], 0.0, &polylines)
 }
 
 /// SVG in mm (1 user unit = 1 mm, y up as in the model), one closed path per outline.

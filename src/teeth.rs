@@ -218,7 +218,8 @@ impl TeethRun {
         write("train.dxf", cad::dxf(&placed, &marks, mark, &[]))?;
         write("train.svg", cad::svg(&placed, &marks))?;
         let mut csv = String::from("x_mm,y_mm\n");
-        for p in pitch_to_chord(&self.pair, tolerance_mm) {
+        let [pitch, _] = crate::export::pitch_points(&self.pair.track, 0.0, tolerance_mm);
+        for p in pitch {
             let _ = writeln!(csv, "{:.9},{:.9}", p.x, p.y);
         }
         write("pitch_driver.csv", csv)?;
@@ -268,20 +269,4 @@ pub fn train_layout(kin: &Kinematics, toothed: &ToothedPair, theta: f64) -> Vec<
         });
     }
     layout
-}
-
-/// The driver's pitch curve sampled so that no chord strays more than `tol` (mm) from the
-/// curve: each step `2√(2 tol R)` of arc for the local radius of curvature `R`.
-pub fn pitch_to_chord(pair: &ToothedPair, tol: f64) -> Vec<Vec2> {
-    let track = &pair.track;
-    let perimeter = track.perimeter();
-    let mut s = 0.0;
-    let mut points = Vec::new();
-    while s < perimeter {
-        let f = track.frame(Member::Driver, track.psi_at(s));
-        points.push(f.point);
-        let r = 1.0 / f.curvature.abs().max(1e-9);
-        s += (2.0 * (2.0 * tol * r).sqrt()).min(0.05 * perimeter) * 0.9;
-    }
-    points
 }

@@ -1,10 +1,10 @@
 //! Every figure and export is produced and valid: SVG parses, PNG decodes, the DXF reads
 //! back (with an independent reader) to the exported geometry within 1e-6 mm.
 
+use noncirc::core::Vec2;
 use noncirc::core::{Evaluator, GearPair};
 use noncirc::export::{export_gears, outlines};
 use noncirc::scene_file::load_scene;
-use noncirc::core::Vec2;
 use std::f64::consts::TAU;
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! at the pitch arc where the intermediate met the sun, so the planet, congruent to the
 //! sun and toothed at the same pitch arcs, meshes tooth for space (docs/teeth.md).
 
-use noncirc::core::{CurveSpec, Kinematics, Scene, ToothSpec, ToothedPair};
+use noncirc::core::{CurveSpec, Kinematics, Rotation, Scene, ToothSpec, ToothedPair, TrainSpec};
 use noncirc::teeth::train_layout;
 use std::f64::consts::{PI, TAU};
 
@@ -15,11 +15,11 @@ fn every_planet_meets_its_intermediate_at_the_sun_meshs_pitch_arc() {
         sin_mm: vec![0.0, 0.0, 0.4],
     };
     let curve = scene.gear.curve.build().unwrap();
-    for sense in [1.0, -1.0] {
-        let mut train = scene.train.clone();
-        if sense < 0.0 {
-            train.rotation = noncirc::core::Rotation::Counterclockwise;
-        }
+    for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
+        let train = TrainSpec {
+            rotation,
+            ..scene.train
+        };
         let kin = Kinematics::solve(&curve, &train, &scene.resolution).unwrap();
         let toothed =
             ToothedPair::cut(&curve, kin.centre_distance(), 40, &ToothSpec::default()).unwrap();
