@@ -2,8 +2,8 @@
 
 use noncirc_core::{
     execute, non_dominated_fronts, stop_after_generations, Algorithm, BatchEvaluator, Candidate,
-    Checkpoint, Control, Ending, Evaluation, Evaluator, Fitness, Measure, Observer, Resolution,
-    Scene, SceneProblem, SearchState, CHECKPOINT_FORMAT,
+    Checkpoint, Control, Ending, Evaluation, Evaluator, Fitness, Measure, ModuleReading, Observer,
+    Resolution, Scene, SceneProblem, SearchState, CHECKPOINT_FORMAT,
 };
 use rayon::prelude::*;
 use serde::Serialize;
@@ -251,6 +251,17 @@ pub struct Confirmed {
 
 impl Confirmed {
     fn new(problem: &SceneProblem, state: &SearchState) -> Self {
+        // Under `search.confirm_with_teeth`, the same problem with the module rule `teeth`.
+        let with_teeth = problem.base().search.confirm_with_teeth.then(|| {
+            let mut scene = problem.base().clone();
+            scene.gear.module.rule = ModuleReading::Teeth;
+            SceneProblem::new(&scene)
+        });
+        // (It cannot fail: only the rule changed, and `validate_search` saw the count.)
+        let problem = match &with_teeth {
+            Some(Ok(teeth)) => teeth,
+            _ => problem,
+        };
         let base = problem.base();
         let mut ev = Evaluator::new();
         let mut scratch = base.clone();

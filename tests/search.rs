@@ -378,3 +378,47 @@ fn sweeps_report_any_measure() {
     let h: Vec<f64> = rows.iter().map(|r| r.measures["loop_height_mm"]).collect();
     assert!(h[0] < h[1] && h[1] < h[2], "{h:?}");
 }
+
+#[test]
+fn a_search_can_confirm_its_reported_designs_with_the_teeth() {
+    // An elliptic gear search: screened by the curvature rule, confirmed by the teeth.
+    let text = r#"
+        name = "ellipse-teeth"
+        kind = "gear"
+        objectives = ["module"]
+        [gear.curve]
+        kind = "ellipse"
+        semi_major_mm = 30
+        eccentricity = 0.2
+        [gear.module]
+        teeth = 20
+        [bounds]
+        module_min_mm = 2.0
+        [search]
+        budget = 96
+        population = 8
+        confirm_with_teeth = true
+        free = [{ name = "gear.curve.eccentricity", lower = 0.05, upper = 0.4 }]
+    "#;
+    let scene = noncirc::scene_file::parse_scene(text, "ellipse-teeth.toml").unwrap();
+    let outcome = run(&scene, &options(1, None, None, None)).unwrap();
+    let (_, eval) = outcome.confirmed.best.as_ref().unwrap();
+    let teeth = eval
+        .as_ref()
+        .unwrap()
+        .teeth
+        .as_ref()
+        .expect("confirmed with teeth");
+    assert_eq!(teeth.teeth, 20);
+    // Screening never paid for teeth: without the setting the confirmation has none.
+    let mut plain = scene.clone();
+    plain.search.confirm_with_teeth = false;
+    let outcome = run(&plain, &options(1, None, None, None)).unwrap();
+    let (_, eval) = outcome.confirmed.best.as_ref().unwrap();
+    assert!(eval.as_ref().unwrap().teeth.is_none());
+    // Without a tooth count the setting is refused, named.
+    let mut uncounted = scene.clone();
+    uncounted.gear.module.teeth = None;
+    let err = uncounted.validate_search().unwrap_err().to_string();
+    assert!(err.contains("gear.module.teeth"), "{err}");
+}

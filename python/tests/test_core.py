@@ -53,10 +53,14 @@ def test_evaluate_matches_the_pinned_paper_design():
     assert abs(m["planting_carrier_deg"]["value"] - 157.179) < 1e-2
     assert o["module"]["violation"] > 2.0 and o["trajectory_height"]["violation"] == 0.0
     assert r["trajectory"].shape == (360, 2) and r["trajectory"].dtype == np.float64
-    assert r["driver_curve"].shape == (360, 2) and r["driven_curve"].shape == (360, 2)
-    # The driven curve closes the pair: radii add up to the centre distance node by node.
+    # The pitch curves to a 1 µm chord tolerance (more points than the evaluation's).
+    n = r["driver_curve"].shape[0]
+    assert n > 360 and r["driven_curve"].shape == (n, 2)
+    # The driven curve closes the pair: radii add up to one centre distance point by point
+    # (re-closed by the export's quadrature, within the evaluation's closure error).
     radii = np.hypot(*r["driver_curve"].T) + np.hypot(*r["driven_curve"].T)
-    assert np.allclose(radii, r["centre_distance_mm"], atol=1e-9)
+    assert np.allclose(radii, radii[0], atol=1e-9)
+    assert abs(radii[0] - r["centre_distance_mm"]) < 1e-4
 
 
 def paper_batch(n, seed=0):

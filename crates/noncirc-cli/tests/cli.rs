@@ -194,3 +194,48 @@ fn a_checkpoint_never_overwrites_another_file() {
     assert_eq!(names.len(), 2, "{names:?}");
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn teeth_reports_its_checks_and_names_what_it_refuses() {
+    let out = noncirc()
+        .args(["teeth", "ellipse-gear", "--format", "json"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8(out.stdout).unwrap();
+    // The largest undercut-free module's 18 teeth, and the undercut the rule misses.
+    assert!(text.contains("\"teeth\": 18"), "{text}");
+    assert!(text.contains("\"undercut_teeth\": 4"), "{text}");
+    for (args, named) in [
+        (
+            &["--set", "gear.teeth.pressure_angle_deg=60"][..],
+            "gear.teeth.pressure_angle_deg",
+        ),
+        (&["--tolerance-mm", "0"][..], "--tolerance-mm"),
+        (&["--set", "gear.module.teeth=2"][..], "gear.module.teeth"),
+        (
+            &["--set", "gear.teeth.cutter={kind=\"shaper\",teeth=20}"][..],
+            "20-tooth shaper",
+        ),
+    ] {
+        let out = noncirc()
+            .args(["teeth", "ellipse-gear"])
+            .args(args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(named), "{args:?}: {err}");
+    }
+    // The paper's curve: a concave arc of 1.9 mm that no cutter can cut at module 2.5.
+    let out = noncirc()
+        .args(["teeth", "paper", "--set", "gear.module.teeth=40"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("a rack cannot cut a concave arc") && err.contains("no shaper"),
+        "{err}"
+    );
+}

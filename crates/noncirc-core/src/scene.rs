@@ -83,6 +83,12 @@ pub struct SearchSpec {
     /// `least_margin`, `picking_tip_speed` and `box_travel` (minimised), `min:NAME` /
     /// `max:NAME` of any measure. Empty: `least_margin`.
     pub goals: Vec<Goal>,
+    /// Confirm the reported designs under the module rule `teeth` (their teeth cut and
+    /// checked, `gear.module.teeth` teeth) while the search itself screens with the
+    /// scene's own rule: the teeth's cost is paid once per reported design. Left out of a
+    /// written scene while false.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub confirm_with_teeth: bool,
 }
 
 impl SearchSpec {
@@ -102,6 +108,7 @@ impl Default for SearchSpec {
             seed: 1,
             screening: Resolution::FAST,
             goals: Vec::new(),
+            confirm_with_teeth: false,
         }
     }
 }
@@ -231,6 +238,12 @@ impl Scene {
             });
         }
         self.search.screening.validate()?;
+        if self.search.confirm_with_teeth && self.gear.module.teeth.is_none() {
+            return Err(Error::Missing {
+                name: "gear.module.teeth".into(),
+                needed_by: "search.confirm_with_teeth cuts that many teeth".into(),
+            });
+        }
         for (i, goal) in self.search.goals.iter().enumerate() {
             let name = goal.name();
             let problem = if self.search.goals[..i].contains(goal) {
