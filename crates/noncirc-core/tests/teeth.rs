@@ -260,3 +260,43 @@ fn the_teeth_rule_replaces_the_curvature_proxy_in_the_evaluator() {
     ev.evaluate(&scene).unwrap();
     assert_eq!(ev.counts().teeth, 2);
 }
+
+#[test]
+fn a_shifted_tooth_too_tall_for_its_thickness_ends_in_a_point_where_the_involutes_meet() {
+    // Circle, 30 teeth, m = 2, shift +0.5 m, addendum 1.6 m: the flanks meet below the tip
+    // circle, at the radius where the involute tooth's thickness is zero:
+    // inv α_r = s/(2r) + inv α, s = πm/2 + 2xm tan α.
+    let (r, z, m, x) = (30.0, 30, 2.0, 0.5);
+    let spec = ToothSpec {
+        addendum: 1.6,
+        profile_shift: x,
+        ..ToothSpec::default()
+    };
+    let pair = ToothedPair::cut(&circle(r), 2.0 * r, z, &spec).unwrap();
+    let driver = &pair.report.gears[0];
+    assert_eq!(driver.pointed_teeth, z as usize);
+    assert_eq!(driver.tip_land_min_mm, 0.0);
+    assert!(pair.report.failures.iter().any(|f| f.contains("pointed")));
+    let alpha = 20f64.to_radians();
+    let s = PI * m / 2.0 + 2.0 * x * m * alpha.tan();
+    let target = s / (2.0 * r) + inv(alpha);
+    let (mut lo, mut hi) = (alpha, 1.5);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if inv(mid) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let apex = r * alpha.cos() / lo.cos();
+    let reach = pair.gears[0]
+        .outline
+        .iter()
+        .map(|p| p.hypot())
+        .fold(0.0, f64::max);
+    assert!(
+        (reach - apex).abs() < 1e-3,
+        "apex at {reach} mm, expected {apex} mm"
+    );
+}
