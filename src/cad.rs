@@ -5,7 +5,7 @@
 //! POLYLINE with bulges, LINE, CIRCLE) is small and fixed, and the crates that write DXF
 //! bring far more than that for it.
 
-use noncirc_core::Vec2;
+use noncirc_core::{segment_distance, Vec2};
 use std::fmt::Write as _;
 
 /// One piece of a fitted outline: from `start` to the next piece's start, straight
@@ -27,18 +27,6 @@ fn circle(a: Vec2, b: Vec2, c: Vec2) -> Option<(Vec2, f64)> {
     let (l1, l2) = (ab.hypot2(), ac.hypot2());
     let centre = a + Vec2::new(ac.y * l1 - ab.y * l2, ab.x * l2 - ac.x * l1) * (1.0 / d);
     Some((centre, (a - centre).hypot()))
-}
-
-/// Distance from `p` to the segment `a→b`.
-fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f64 {
-    let d = b - a;
-    let len2 = d.hypot2();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(d) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + d * t - p).hypot()
 }
 
 /// The bulge of the arc from `points[0]` to `points[last]` through them all within `tol`

@@ -2,7 +2,8 @@
 
 use super::*;
 
-fn place(outline: &[Vec2], centre: Vec2, angle: f64) -> Vec<(f64, f64)> {
+/// `outline` turned by `angle` (rad) and moved to `centre`, closed, as plot points.
+pub(super) fn place(outline: &[Vec2], centre: Vec2, angle: f64) -> Vec<(f64, f64)> {
     let (s, c) = angle.sin_cos();
     (outline.iter().chain(outline.first()))
         .map(|p| (centre.x + c * p.x - s * p.y, centre.y + s * p.x + c * p.y))

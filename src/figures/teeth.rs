@@ -13,13 +13,7 @@ pub struct TeethFigure<'a> {
 fn placed(run: &TeethRun, k: usize) -> Vec<(f64, f64)> {
     let g = &run.layout[k];
     let outline = &run.pair.gears[usize::from(g.member == Member::Driven)].outline;
-    let (s, c) = g.angle_deg.to_radians().sin_cos();
-    (outline.iter().chain(outline.first()))
-        .map(|p| {
-            let q = g.centre_mm + p.rotated(Vec2::new(c, s));
-            (q.x, q.y)
-        })
-        .collect()
+    super::gears::place(outline, g.centre_mm, g.angle_deg.to_radians())
 }
 
 impl Figure for TeethFigure<'_> {

@@ -48,8 +48,8 @@ pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves
 pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue, Travel};
 pub use planetary::{ArmState, Kinematics};
 pub use teeth::{
-    signed_area, Cutter, Frame, GearTeethReport, Member, MeshReport, PairTrack, Side, TeethReport,
-    Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut, OVERLAP_TOLERANCE_MM,
+    segment_distance, signed_area, Cutter, Frame, GearTeethReport, Member, MeshReport, PairTrack,
+    Side, TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut, OVERLAP_TOLERANCE_MM,
 };
 pub use vec2::Vec2;
 

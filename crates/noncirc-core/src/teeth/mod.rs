@@ -12,7 +12,7 @@ mod profile;
 mod track;
 
 pub use mesh::MeshReport;
-pub use polyline::signed_area;
+pub use polyline::{segment_distance, signed_area};
 pub use profile::{Side, Tooth, ToothedGear, Undercut};
 pub use track::{Frame, Member, PairTrack};
 

@@ -15,24 +15,21 @@ pub fn segments_cross(p0: Vec2, p1: Vec2, q0: Vec2, q1: Vec2) -> Option<(f64, f6
     ((0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u)).then_some((t, u))
 }
 
-/// The first crossing of two open polylines, as fractional indices `(i + t, j + u)`,
-/// skipping the segment pairs `skip` says to (e.g. the two that share a junction).
-pub fn first_crossing(
-    a: &[Vec2],
-    b: &[Vec2],
-    skip: impl Fn(usize, usize) -> bool,
-) -> Option<(f64, f64)> {
+/// The first crossing of two open polylines, as fractional indices `(i + t, j + u)`.
+pub fn first_crossing(a: &[Vec2], b: &[Vec2]) -> Option<(f64, f64)> {
     for i in 0..a.len().saturating_sub(1) {
         for j in 0..b.len().saturating_sub(1) {
-            if skip(i, j) {
-                continue;
-            }
             if let Some((t, u)) = segments_cross(a[i], a[i + 1], b[j], b[j + 1]) {
                 return Some((i as f64 + t, j as f64 + u));
             }
         }
     }
     None
+}
+
+/// Distance (mm) from `p` to the segment `a→b`.
+pub fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f64 {
+    segment_nearest(p, a, b).0.sqrt()
 }
 
 /// Squared distance from `p` to segment `a→b` and the parameter of the nearest point.

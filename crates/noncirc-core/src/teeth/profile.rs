@@ -530,14 +530,13 @@ impl Cut<'_> {
                     &left_pts[left.flank_start..],
                     &right_pts[right.flank_start..],
                 );
-                let cross =
-                    super::polyline::first_crossing(lf, rf, |_, _| false).ok_or_else(|| {
-                        self.fail(
-                            j,
-                            c,
-                            "the tip curve misses the tooth and its flanks do not meet".into(),
-                        )
-                    })?;
+                let cross = super::polyline::first_crossing(lf, rf).ok_or_else(|| {
+                    self.fail(
+                        j,
+                        c,
+                        "the tip curve misses the tooth and its flanks do not meet".into(),
+                    )
+                })?;
                 let (li, ri) = (cross.0.floor() as usize, cross.1.floor() as usize);
                 let apex = lf[li] + (lf[li + 1] - lf[li]) * (cross.0 - li as f64);
                 left_pts.truncate(left.flank_start + li + 1);
