@@ -19,13 +19,13 @@ pub struct MeshReport {
     /// Rolling positions checked over one turn.
     pub positions: usize,
     /// Least signed distance between the tooth bodies over the turn (mm; negative: they
-    /// overlap); a quarter module if nothing comes closer.
+    /// overlap); the check's reach (0.1 m plus the backlash) if nothing comes closer.
     pub least_clearance_mm: f64,
     /// Pitch arc (mm) of the rolling position where it occurs.
     pub least_clearance_at_mm: f64,
     /// Least and largest normal backlash over the turn (mm): the gaps between the two
-    /// sides' facing flanks, added; `None` if no position had both sides within a
-    /// quarter module.
+    /// sides' facing flanks, added; `None` if no position had both sides within the
+    /// check's reach.
     pub backlash_mm: Option<(f64, f64)>,
     /// Least contact ratio over the teeth and both flank sides: pitches rolled while one
     /// tooth pair is in contact (≥ 1: the next pair takes over before this one lets go).
@@ -36,28 +36,28 @@ pub struct MeshReport {
     pub contact_ratio_min_at_mm: f64,
 }
 
-/// Turns the pair through one turn in `steps_per_pitch` steps per pitch and measures.
+/// Turns the pair through one turn in `teeth · steps_per_pitch + 1` equal steps and
+/// measures distances up to `reach` (mm). The one step more than a whole number per
+/// pitch shifts each tooth's phases by `1/(teeth · steps_per_pitch)` pitch from its
+/// neighbour's: each tooth is met `steps_per_pitch` times a pitch, and the teeth together
+/// sample the mesh cycle at `teeth · steps_per_pitch` phases (for a circle pair, whose
+/// teeth are alike, that is exactly the finer check).
 pub fn check(
     track: &PairTrack,
     gears: &[ToothedGear; 2],
     pitch: f64,
+    reach: f64,
     sin_cos: (f64, f64),
     steps_per_pitch: usize,
 ) -> MeshReport {
     let teeth = gears[0].teeth.len();
-    // Cells of a quarter module: a query looks at a few segments; clearances beyond a
-    // cell are not small and are not measured.
-    let cell = 0.25 * pitch / std::f64::consts::PI;
-    let grids = [
-        OutlineGrid::new(gears[0].outline.clone(), cell),
-        OutlineGrid::new(gears[1].outline.clone(), cell),
-    ];
     let a = track.centre_distance();
-    let positions = teeth * steps_per_pitch;
-    let mut least = (cell, 0.0);
+    let positions = teeth * steps_per_pitch + 1;
+    let step = pitch * teeth as f64 / positions as f64;
+    let mut least = (reach, 0.0);
     let mut backlash = (f64::INFINITY, f64::NEG_INFINITY);
     for k in 0..positions {
-        let s = pitch * k as f64 / steps_per_pitch as f64;
+        let s = step * k as f64;
         let psi = track.psi_at(s);
         let chi = track.driven_angle(psi);
         let e = |angle: f64| {
@@ -65,30 +65,34 @@ pub fn check(
             Vec2::new(cs, sn)
         };
         let (e1, e2) = (e(psi), e(psi + std::f64::consts::PI - chi));
+        // Driven → driver frame: `q ↦ c + R(e2) q`; driver → driven: `p ↦ R(e2)⁻¹ (p − c)`,
+        // each as a rotation and a shift.
         let centre2 = e1 * a;
-        // Driven → driver frame and back.
-        let to_driver = |q: Vec2| centre2 + q.rotated(e2);
         let e2_inv = Vec2::new(e2.x, -e2.y);
-        let to_driven = |p: Vec2| (p - centre2).rotated(e2_inv);
+        let to_driver = (e2, centre2);
+        let to_driven = (e2_inv, -centre2.rotated(e2_inv));
         // Per side: driver right flanks face driven left flanks (gap A), driver left
         // flanks face driven right flanks (gap B).
         let mut gap = [f64::INFINITY; 2];
-        let mut visit = |g: usize, map: &dyn Fn(Vec2) -> Vec2, other: &OutlineGrid| {
+        let mut visit = |g: usize, (turn, shift): (Vec2, Vec2), other: &OutlineGrid| {
             let gear = &gears[g];
             let phase = if g == 0 { 0.0 } else { 0.5 };
             let centre_tooth = (s / pitch - phase).round() as i64;
             for dj in -1..=1 {
                 let j = (centre_tooth + dj).rem_euclid(teeth as i64) as usize;
-                let start = gear.tooth_starts[j];
-                let end = gear.tooth_starts[(j + 1) % teeth];
-                let len = (end + gear.outline.len() - start) % gear.outline.len();
-                for i in (0..len).map(|i| (start + i) % gear.outline.len()) {
+                let n = gear.outline.len();
+                let (start, count) = gear.tooth_points[j];
+                for i in (start..start + count).map(|i| if i < n { i } else { i - n }) {
                     if !gear.probes[i] {
                         continue;
                     }
-                    let Some(d) = other.signed_distance(map(gear.outline[i])) else {
+                    let Some(d) = other.signed_distance(gear.outline[i].rotated(turn) + shift)
+                    else {
                         continue;
                     };
+                    if d >= reach {
+                        continue;
+                    }
                     if d < least.0 {
                         least = (d, s);
                     }
@@ -102,8 +106,8 @@ pub fn check(
                 }
             }
         };
-        visit(1, &to_driver, &grids[0]);
-        visit(0, &to_driven, &grids[1]);
+        visit(1, to_driver, &gears[0].grid);
+        visit(0, to_driven, &gears[1].grid);
         if gap.iter().all(|g| g.is_finite()) {
             let total = gap[0] + gap[1];
             backlash = (backlash.0.min(total), backlash.1.max(total));

@@ -58,7 +58,8 @@ pub struct ToothSpec {
     pub flank_samples: usize,
     /// Segments per root fillet.
     pub fillet_samples: usize,
-    /// Mesh positions per pitch in the whole-cycle check.
+    /// Mesh positions per pitch in the whole-cycle check (one more over the turn, so that
+    /// the teeth together sample the mesh cycle `teeth` times as finely).
     pub mesh_steps_per_pitch: usize,
     /// Panels per turn of the arc-length tables.
     pub arc_panels: usize,
@@ -80,7 +81,7 @@ impl Default for ToothSpec {
             cutter: Cutter::Rack,
             flank_samples: 24,
             fillet_samples: 12,
-            mesh_steps_per_pitch: 4,
+            mesh_steps_per_pitch: 2,
             arc_panels: 256,
             min_tip_land: 0.25,
             allow_undercut: false,
@@ -90,6 +91,11 @@ impl Default for ToothSpec {
 
 /// Largest overlap of tooth bodies the mesh check tolerates (mm).
 pub const OVERLAP_TOLERANCE_MM: f64 = 1e-3;
+
+/// How far (× m, beyond the backlash) the mesh check measures distances between the
+/// gears: clearances and backlash gaps up to this are exact, larger ones are not
+/// measured. Conjugate flanks touch, so only the backlash and interference are small.
+pub const MESH_REACH_MODULES: f64 = 0.1;
 
 impl ToothSpec {
     /// Whether every setting is the default (a scene then leaves the table out).
@@ -245,6 +251,12 @@ impl ToothedPair {
                 });
             }
         }
+        let reach = MESH_REACH_MODULES * m + spec.backlash_mm;
+        let end = std::f64::consts::FRAC_PI_2 - alpha;
+        let n = spec.fillet_samples;
+        let fillet_spacing: Vec<f64> = (0..=n)
+            .map(|k| (end * k as f64 / n as f64).tan() / end.tan())
+            .collect();
         let cut = |member, shift: f64, phase: f64, name| -> Result<ToothedGear> {
             Cut {
                 track: &track,
@@ -255,6 +267,8 @@ impl ToothedPair {
                 teeth: teeth as usize,
                 flank_samples: spec.flank_samples,
                 fillet_samples: spec.fillet_samples,
+                reach,
+                fillet_spacing: fillet_spacing.clone(),
                 name,
             }
             .run()
@@ -267,6 +281,7 @@ impl ToothedPair {
             &track,
             &gears,
             pitch,
+            reach,
             alpha.sin_cos(),
             spec.mesh_steps_per_pitch,
         );
@@ -286,16 +301,8 @@ impl ToothedPair {
 /// arc's neighbours), only by a shaper whose pitch radius is below the arc's least radius
 /// of curvature (spec §1.4).
 fn check_concave(track: &PairTrack, spec: &ToothSpec, m: f64) -> Result<()> {
-    let n = 8 * spec.arc_panels;
     for (member, name) in [(Member::Driver, "driver"), (Member::Driven, "driven")] {
-        let (mut least, mut at) = (0.0_f64, 0.0);
-        for k in 0..n {
-            let psi = std::f64::consts::TAU * k as f64 / n as f64;
-            let kappa = track.frame(member, psi).curvature;
-            if kappa < least {
-                (least, at) = (kappa, psi);
-            }
-        }
+        let (least, at) = track.least_curvature(member);
         if least >= 0.0 {
             continue;
         }

@@ -46,103 +46,159 @@ fn segment_nearest(p: Vec2, a: Vec2, b: Vec2) -> (f64, f64) {
 }
 
 /// A closed outline (counter-clockwise: material on the left of each segment) with its
-/// segments binned on a uniform grid, for signed distances to nearby points.
+/// segments binned on a uniform grid, for signed distances to points within a reach.
 #[derive(Debug, Clone)]
 pub struct OutlineGrid {
+    /// The outline's points with the first repeated at the end: segment `i` is
+    /// `points[i]→points[i + 1]`.
     points: Vec<Vec2>,
+    /// Segment `i` as its start, its direction and the inverse of its squared length
+    /// (0 for a degenerate segment): the queries' inner loop, without a division.
+    segments: Vec<(Vec2, Vec2, f64)>,
+    /// Distance (mm) up to which [`Self::signed_distance`] answers.
+    reach: f64,
     origin: Vec2,
+    /// Cell width (mm), at least twice the reach: a query's square of half-width `reach`
+    /// overlaps at most two cells a side.
     cell: f64,
     cols: usize,
     rows: usize,
-    /// Segment indices per cell, row-major (`start..end` into `items`).
-    spans: Vec<(u32, u32)>,
+    /// Where each cell's segment indices start in `items` (row-major; one more entry than
+    /// cells, the last one `items.len()`).
+    starts: Vec<u32>,
     items: Vec<u32>,
 }
 
+/// Most cells along either side of a grid: a small reach on a large outline widens the
+/// cells rather than allocate more (a query then scans more segments, never fewer).
+const MAX_CELLS_PER_SIDE: f64 = 128.0;
+
 impl OutlineGrid {
-    /// Bins the segments of `points` (closed, counter-clockwise) in cells of `cell` mm.
-    pub fn new(points: Vec<Vec2>, cell: f64) -> Self {
+    /// Bins the segments of `points` (closed, counter-clockwise) for distance queries up
+    /// to `reach` (mm).
+    pub fn new(mut points: Vec<Vec2>, reach: f64) -> Self {
         let (mut lo, mut hi) = (points[0], points[0]);
         for p in &points {
             lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
             hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
         }
+        let cell = (2.0 * reach).max((hi.x - lo.x).max(hi.y - lo.y) / MAX_CELLS_PER_SIDE);
         let origin = lo - Vec2::new(cell, cell);
         let cols = ((hi.x - origin.x) / cell).ceil() as usize + 2;
         let rows = ((hi.y - origin.y) / cell).ceil() as usize + 2;
         let n = points.len();
-        let mut cells: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
-        for i in 0..n {
-            let (a, b) = (points[i], points[(i + 1) % n]);
-            let (c0, r0) = Self::cell_of(origin, cell, Vec2::new(a.x.min(b.x), a.y.min(b.y)));
-            let (c1, r1) = Self::cell_of(origin, cell, Vec2::new(a.x.max(b.x), a.y.max(b.y)));
-            for r in r0..=r1 {
-                for c in c0..=c1 {
-                    cells[r * cols + c].push(i as u32);
-                }
+        points.push(points[0]);
+        let segments = points
+            .windows(2)
+            .map(|w| {
+                let d = w[1] - w[0];
+                let len2 = d.hypot2();
+                (w[0], d, if len2 > 0.0 { 1.0 / len2 } else { 0.0 })
+            })
+            .collect();
+        // Each segment's cells, by its bounding box: columns and rows, inclusive.
+        let spans: Vec<[usize; 4]> = (0..n)
+            .map(|i| Self::box_cells(origin, cell, points[i], points[i + 1]))
+            .collect();
+        let cells_of = |[c0, c1, r0, r1]: [usize; 4]| {
+            (r0..=r1).flat_map(move |r| (r * cols + c0)..=(r * cols + c1))
+        };
+        // Counting sort: count per cell, running sums (each cell's end), then fill each
+        // cell from its end down, leaving `starts[k]` at its start.
+        let cells = cols * rows;
+        let mut starts = vec![0u32; cells + 1];
+        for &span in &spans {
+            for k in cells_of(span) {
+                starts[k] += 1;
             }
         }
-        let mut spans = Vec::with_capacity(cells.len());
-        let mut items = Vec::new();
-        for list in cells {
-            let start = items.len() as u32;
-            items.extend(list);
-            spans.push((start, items.len() as u32));
+        for k in 1..cells {
+            starts[k] += starts[k - 1];
+        }
+        starts[cells] = starts[cells - 1];
+        let mut items = vec![0u32; starts[cells] as usize];
+        for (i, &span) in spans.iter().enumerate().rev() {
+            for k in cells_of(span) {
+                starts[k] -= 1;
+                items[starts[k] as usize] = i as u32;
+            }
         }
         Self {
             points,
+            segments,
+            reach,
             origin,
             cell,
             cols,
             rows,
-            spans,
+            starts,
             items,
         }
     }
 
+    /// The segments binned in cell `k`.
     #[inline]
-    fn cell_of(origin: Vec2, cell: f64, p: Vec2) -> (usize, usize) {
-        (
-            ((p.x - origin.x) / cell).max(0.0) as usize,
-            ((p.y - origin.y) / cell).max(0.0) as usize,
-        )
+    fn cell_items(&self, k: usize) -> &[u32] {
+        &self.items[self.starts[k] as usize..self.starts[k + 1] as usize]
+    }
+
+    /// The cells `[first column, last column, first row, last row]` of the bounding box
+    /// of segment `a→b`.
+    #[inline]
+    fn box_cells(origin: Vec2, cell: f64, a: Vec2, b: Vec2) -> [usize; 4] {
+        let at = |v: f64, o: f64| ((v - o) / cell).max(0.0) as usize;
+        [
+            at(a.x.min(b.x), origin.x),
+            at(a.x.max(b.x), origin.x),
+            at(a.y.min(b.y), origin.y),
+            at(a.y.max(b.y), origin.y),
+        ]
     }
 
     /// The outline's points.
     pub fn points(&self) -> &[Vec2] {
-        &self.points
+        &self.points[..self.points.len() - 1]
     }
 
     /// Signed distance (mm) from `p` to the outline, negative inside the material, if the
-    /// outline passes within one cell width of `p` (exact then); `None` if it does not.
+    /// outline passes within the reach of `p` (exact then); `None` if it does not.
     pub fn signed_distance(&self, p: Vec2) -> Option<f64> {
-        let c = (p.x - self.origin.x) / self.cell;
-        let r = (p.y - self.origin.y) / self.cell;
-        if c < 0.0 || r < 0.0 || c >= self.cols as f64 || r >= self.rows as f64 {
-            return None;
-        }
-        let (c, r) = (c as usize, r as usize);
+        let inv = 1.0 / self.cell;
+        let to_cell = |x: f64, o: f64, limit: usize| {
+            let c = (x - o) * inv;
+            // Truncation is the floor here: `c` is not negative.
+            (c >= 0.0 && c < limit as f64).then_some(c as usize)
+        };
+        let (r, o) = (self.reach, self.origin);
+        let (c0, c1) = (
+            to_cell(p.x - r, o.x, self.cols)?,
+            to_cell(p.x + r, o.x, self.cols)?,
+        );
+        let (r0, r1) = (
+            to_cell(p.y - r, o.y, self.rows)?,
+            to_cell(p.y + r, o.y, self.rows)?,
+        );
         let mut best = (f64::INFINITY, 0usize, 0.0);
-        for rr in r.saturating_sub(1)..(r + 2).min(self.rows) {
-            for cc in c.saturating_sub(1)..(c + 2).min(self.cols) {
-                let (s, e) = self.spans[rr * self.cols + cc];
-                for &i in &self.items[s as usize..e as usize] {
+        for row in r0..=r1 {
+            for col in c0..=c1 {
+                for &i in self.cell_items(row * self.cols + col) {
                     let i = i as usize;
-                    let (a, b) = (self.points[i], self.points[(i + 1) % self.points.len()]);
-                    let (d2, t) = segment_nearest(p, a, b);
+                    let (a, d, inv_len2) = self.segments[i];
+                    let t = ((p - a).dot(d) * inv_len2).clamp(0.0, 1.0);
+                    let d2 = (a + d * t - p).hypot2();
                     if d2 < best.0 {
                         best = (d2, i, t);
                     }
                 }
             }
         }
-        if best.0 >= self.cell * self.cell {
+        if best.0 >= r * r {
             return None;
         }
         let (d2, i, t) = best;
-        let n = self.points.len();
+        let n = self.points.len() - 1;
         let side = |k: usize| {
-            let (a, b) = (self.points[k % n], self.points[(k + 1) % n]);
+            let (a, b) = (self.points[k], self.points[k + 1]);
             (b - a).cross(p - a)
         };
         // Inside (left of a counter-clockwise outline) by the nearest segment, or at a
@@ -151,13 +207,13 @@ impl OutlineGrid {
         let inside = if t > 0.0 && t < 1.0 {
             side(i) > 0.0
         } else {
-            let v = if t >= 1.0 { i + 1 } else { i + n };
-            let (prev, next) = (v - 1, v);
-            let (a, b, c) = (
-                self.points[prev % n],
-                self.points[v % n],
-                self.points[(v + 1) % n],
-            );
+            // The segments before and after the vertex (indices wrap without a division).
+            let (prev, next) = if t >= 1.0 {
+                (i, if i + 1 == n { 0 } else { i + 1 })
+            } else {
+                (if i == 0 { n - 1 } else { i - 1 }, i)
+            };
+            let (a, b, c) = (self.points[prev], self.points[next], self.points[next + 1]);
             let convex = (b - a).cross(c - b) >= 0.0;
             if convex {
                 side(prev) > 0.0 && side(next) > 0.0
@@ -172,19 +228,27 @@ impl OutlineGrid {
     /// Where the closed outline crosses itself (the first crossing found), if it does:
     /// non-adjacent segments that meet, found through the grid.
     pub fn self_crossing(&self) -> Option<Vec2> {
-        let n = self.points.len();
-        for (s, e) in &self.spans {
-            let list = &self.items[*s as usize..*e as usize];
-            for (k, &i) in list.iter().enumerate() {
-                for &j in &list[k + 1..] {
-                    let (i, j) = (i as usize, j as usize);
-                    if (i + 1) % n == j || (j + 1) % n == i || i == j {
-                        continue;
-                    }
-                    let (a0, a1) = (self.points[i], self.points[(i + 1) % n]);
-                    let (b0, b1) = (self.points[j], self.points[(j + 1) % n]);
-                    if let Some((t, _)) = segments_cross(a0, a1, b0, b1) {
-                        return Some(a0 + (a1 - a0) * t);
+        let n = self.points.len() - 1;
+        let bounds = |a: Vec2, b: Vec2| (a.x.min(b.x), a.x.max(b.x), a.y.min(b.y), a.y.max(b.y));
+        for i in 0..n {
+            let (a0, a1) = (self.points[i], self.points[i + 1]);
+            let (x0, x1, y0, y1) = bounds(a0, a1);
+            let [c0, c1, r0, r1] = Self::box_cells(self.origin, self.cell, a0, a1);
+            for row in r0..=r1 {
+                for col in c0..=c1 {
+                    for &j in self.cell_items(row * self.cols + col) {
+                        let j = j as usize;
+                        if j <= i + 1 || (j + 1) % n == i {
+                            continue;
+                        }
+                        let (b0, b1) = (self.points[j], self.points[j + 1]);
+                        let (u0, u1, v0, v1) = bounds(b0, b1);
+                        if u0 > x1 || u1 < x0 || v0 > y1 || v1 < y0 {
+                            continue;
+                        }
+                        if let Some((t, _)) = segments_cross(a0, a1, b0, b1) {
+                            return Some(a0 + (a1 - a0) * t);
+                        }
                     }
                 }
             }
@@ -216,7 +280,7 @@ mod tests {
 
     #[test]
     fn signed_distance_is_negative_inside_and_exact_near_edges_and_corners() {
-        let g = OutlineGrid::new(square(), 0.5);
+        let g = OutlineGrid::new(square(), 0.6);
         assert!((g.signed_distance(Vec2::new(1.0, 0.2)).unwrap() + 0.2).abs() < 1e-15);
         assert!((g.signed_distance(Vec2::new(1.0, -0.3)).unwrap() - 0.3).abs() < 1e-15);
         let corner = g.signed_distance(Vec2::new(2.3, 2.4)).unwrap();

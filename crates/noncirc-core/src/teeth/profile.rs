@@ -84,10 +84,13 @@ pub struct ToothedGear {
     /// below the pitch curve up): what the mesh check probes; the mate's tips probe the
     /// rest.
     pub probes: Vec<bool>,
-    /// Outline index where each tooth's points start (its left root end; the right root
-    /// end for the driven gear, whose outline runs the other way), in tooth order.
-    pub tooth_starts: Vec<usize>,
+    /// Each tooth's points, in tooth order, as the outline index of the first (its left
+    /// root end; the right root end for the driven gear, whose outline runs the other way)
+    /// and their count, with the root that follows: indices wrap past the outline's end.
+    pub tooth_points: Vec<(usize, usize)>,
     pub teeth: Vec<Tooth>,
+    /// The outline's segments binned for the mesh check's distance queries.
+    pub(super) grid: OutlineGrid,
 }
 
 /// The tool's rounding centre relative to the pitch point, per tool kind (right side).
@@ -220,6 +223,11 @@ pub struct Cut<'a> {
     pub teeth: usize,
     pub flank_samples: usize,
     pub fillet_samples: usize,
+    /// Reach (mm) of the mesh check's distance queries to this gear.
+    pub reach: f64,
+    /// Fractions of the way along a fillet of its `fillet_samples + 1` points: even in the
+    /// angle of the rounding's contact, `tan(k·e/n)/tan(e)` with `e = π/2 − α`.
+    pub fillet_spacing: Vec<f64>,
     pub name: &'static str,
 }
 
@@ -227,6 +235,14 @@ impl Cut<'_> {
     #[inline]
     fn frame(&self, s: f64) -> Frame {
         self.track.frame(self.member, self.track.psi_at(s))
+    }
+
+    /// The rolling position `s` (mm), its rate `ds/dψ` (mm/rad) and the frame at driver
+    /// parameter `psi` (rad): no inversion of the arc length.
+    #[inline]
+    fn frame_at_psi(&self, psi: f64) -> (f64, f64, Frame) {
+        let (s, rate) = self.track.arc_with_rate(psi);
+        (s, rate, self.track.frame(self.member, psi))
     }
 
     #[inline]
@@ -260,6 +276,37 @@ impl Cut<'_> {
         }
     }
 
+    /// The rate `d/ds` (per mm of rolling) of [`Self::point`]: the frame turns as
+    /// `T' = −κN`, `N' = κT`.
+    #[inline]
+    fn velocity(&self, piece: Piece, s: f64, f: &Frame) -> Vec2 {
+        let t = &self.tool;
+        let (tangent, normal, kappa) = (f.tangent, f.normal, f.curvature);
+        match piece {
+            Piece::Flank { u0, sigma } => {
+                let dir = tangent * t.cos + normal * (sigma * t.sin);
+                let turn = tangent * (sigma * t.sin) - normal * t.cos;
+                tangent - dir * t.cos + turn * (self.lambda(s, u0) * kappa)
+            }
+            Piece::Fillet { u0, sigma } => {
+                let (du, dv, ddu, ddv) = match t.rounding {
+                    Rounding::Rack { du, v } => (u0 + sigma * du - s, v, -1.0, 0.0),
+                    Rounding::Shaper { rc, r, phi } => {
+                        let a = sigma * phi + (u0 - s) / rc;
+                        let (sn, cs) = a.sin_cos();
+                        (r * sn, rc - r * cs, -r * cs / rc, -r * sn / rc)
+                    }
+                };
+                let off = tangent * du + normal * dv;
+                let d_off = tangent * (ddu + kappa * dv) + normal * (ddv - kappa * du);
+                let len = off.hypot2().sqrt();
+                tangent + d_off * (1.0 + t.radius / len)
+                    - off * (t.radius * off.dot(d_off) / (len * len * len))
+            }
+            Piece::Offset { height } => tangent * (1.0 + height * kappa),
+        }
+    }
+
     fn at(&self, piece: Piece, s: f64) -> Vec2 {
         self.point(piece, s, &self.frame(s))
     }
@@ -267,10 +314,23 @@ impl Cut<'_> {
     /// `n + 1` points of `piece` from `s0` to `s1`, uniform in `ψ`, with their
     /// parameters and frames.
     fn sample(&self, piece: Piece, s0: f64, s1: f64, n: usize) -> Vec<(f64, Frame, Vec2)> {
+        self.sample_spaced(piece, s0, s1, n, |x| x)
+    }
+
+    /// `n + 1` points of `piece` from `s0` to `s1` at the fractions `spacing(k/n)` of the
+    /// way in `ψ`, with their parameters and frames.
+    fn sample_spaced(
+        &self,
+        piece: Piece,
+        s0: f64,
+        s1: f64,
+        n: usize,
+        spacing: impl Fn(f64) -> f64,
+    ) -> Vec<(f64, Frame, Vec2)> {
         let (p0, p1) = (self.track.psi_at(s0), self.track.psi_at(s1));
         (0..=n)
             .map(|k| {
-                let psi = p0 + (p1 - p0) * k as f64 / n as f64;
+                let psi = p0 + (p1 - p0) * spacing(k as f64 / n as f64);
                 let s = match k {
                     0 => s0,
                     _ if k == n => s1,
@@ -283,32 +343,27 @@ impl Cut<'_> {
     }
 
     /// The fillet from the root (`s0`) to `s1`, `fillet_samples` segments spaced evenly in
-    /// the angle of the rounding's contact (exactly so for a rack): uniform in `s` would
-    /// crowd them where the contact hardly moves.
+    /// the angle of the rounding's contact (exactly so for a rack, where `ψ` follows `s`
+    /// linearly over a fillet): uniform spacing would crowd them where the contact hardly
+    /// moves.
     fn sample_fillet(&self, piece: Piece, s0: f64, s1: f64) -> Vec<(f64, Frame, Vec2)> {
         let n = self.fillet_samples;
-        let end = std::f64::consts::FRAC_PI_2 - self.tool.sin.asin();
-        (0..=n)
-            .map(|k| {
-                let s = match k {
-                    0 => s0,
-                    _ if k == n => s1,
-                    _ => s0 + (s1 - s0) * (end * k as f64 / n as f64).tan() / end.tan(),
-                };
-                let f = self.frame(s);
-                (s, f, self.point(piece, s, &f))
-            })
-            .collect()
+        self.sample_spaced(piece, s0, s1, n, |x| {
+            self.fillet_spacing[(x * n as f64).round() as usize]
+        })
     }
 
-    /// Newton on `F(a) = G(b)` from `(a, b)`, with forward-difference Jacobians.
-    fn meet(&self, f: Piece, g: Piece, mut a: f64, mut b: f64) -> Option<(f64, f64, Vec2)> {
-        let h = 1e-7 * self.pitch;
+    /// Newton on `F(a) = G(b)` from the rolling positions `(a, b)` (mm), stepping in the
+    /// driver parameter with exact derivatives; the rolling positions where they meet and
+    /// the point.
+    fn meet(&self, f: Piece, g: Piece, a: f64, b: f64) -> Option<(f64, f64, Vec2)> {
+        let (mut pa, mut pb) = (self.track.psi_at(a), self.track.psi_at(b));
         for _ in 0..12 {
-            let (fa, gb) = (self.at(f, a), self.at(g, b));
-            let r = fa - gb;
-            let da = (self.at(f, a + h) - fa) * (1.0 / h);
-            let db = (self.at(g, b + h) - gb) * (1.0 / h);
+            let (sa, rate_a, fa) = self.frame_at_psi(pa);
+            let (sb, rate_b, fb) = self.frame_at_psi(pb);
+            let r = self.point(f, sa, &fa) - self.point(g, sb, &fb);
+            let da = self.velocity(f, sa, &fa) * rate_a;
+            let db = self.velocity(g, sb, &fb) * rate_b;
             // Solve da·Δa − db·Δb = −r.
             let det = da.cross(-db);
             if det == 0.0 || !det.is_finite() {
@@ -316,11 +371,12 @@ impl Cut<'_> {
             }
             let step_a = (-r).cross(-db) / det;
             let step_b = da.cross(-r) / det;
-            a += step_a;
-            b += step_b;
-            if step_a.abs().max(step_b.abs()) < 1e-11 * self.pitch {
-                let p = self.at(f, a);
-                return p.is_finite().then_some((a, b, p));
+            pa += step_a;
+            pb += step_b;
+            if (step_a * rate_a).abs().max((step_b * rate_b).abs()) < 1e-11 * self.pitch {
+                let (sa, _, fa) = self.frame_at_psi(pa);
+                let p = self.point(f, sa, &fa);
+                return p.is_finite().then_some((sa, self.track.arc(pb), p));
             }
         }
         None
@@ -376,16 +432,21 @@ impl Cut<'_> {
                 if k + 1 < flank_pts.len()
                     && flank_pts[..=k].iter().all(|(s, f, _)| factor(*s, f) <= 0.0) =>
             {
-                let (mut lo, mut hi) = (flank_pts[k].0, flank_pts[k + 1].0);
-                for _ in 0..60 {
+                let psi = |s: f64| self.track.psi_at(s);
+                let (mut lo, mut hi) = (psi(flank_pts[k].0), psi(flank_pts[k + 1].0));
+                loop {
                     let mid = 0.5 * (lo + hi);
-                    if factor(mid, &self.frame(mid)) <= 0.0 {
+                    if mid == lo || mid == hi {
+                        break;
+                    }
+                    let (s, _, f) = self.frame_at_psi(mid);
+                    if factor(s, &f) <= 0.0 {
                         lo = mid;
                     } else {
                         hi = mid;
                     }
                 }
-                Some(hi)
+                Some(self.track.arc(hi))
             }
             Some(k) => {
                 let (s, f, _) = &flank_pts[k];
@@ -424,11 +485,12 @@ impl Cut<'_> {
                     } else {
                         s_tip
                     };
-                    let lower: Vec<(Piece, f64, Vec2)> = (self.sample(flank, form, cusp, 64))
+                    let n = CLOSE_UP_SAMPLES;
+                    let lower: Vec<(Piece, f64, Vec2)> = (self.sample(flank, form, cusp, n))
                         .into_iter()
                         .map(|x| (flank, x.0, x.2))
                         .collect();
-                    found = last_crossing(&lower, &self.sample(flank, cusp, end, 64), true);
+                    found = last_crossing(&lower, &self.sample(flank, cusp, end, n), true);
                 }
                 let converged = found.and_then(|(piece, sa, sb)| {
                     let (sa, sb, _) = self.meet(piece, flank, sa, sb)?;
@@ -602,23 +664,27 @@ impl Cut<'_> {
             }
             teeth.push(tooth);
         }
-        let grid_cell = self.pitch / 4.0;
+        let n = outline.len();
+        let mut tooth_points: Vec<(usize, usize)> = (0..self.teeth)
+            .map(|j| {
+                let end = tooth_starts.get(j + 1).copied().unwrap_or(n);
+                (tooth_starts[j], end - tooth_starts[j])
+            })
+            .collect();
         if self.member == Member::Driven {
             outline.reverse();
             flank_of.reverse();
             probes.reverse();
-            let n = outline.len();
             for c in &mut corners {
                 *c = n - 1 - *c;
             }
             corners.sort_unstable();
-            // Tooth j now ends at n − 1 − start_j: it starts after tooth j + 1's end.
-            let ends: Vec<usize> = tooth_starts.iter().map(|&b| n - 1 - b).collect();
-            for (j, start) in tooth_starts.iter_mut().enumerate() {
-                *start = (ends[(j + 1) % self.teeth] + 1) % n;
+            // Points [b, b + count) now lie at [n − b − count, n − b).
+            for (start, count) in &mut tooth_points {
+                *start = n - *start - *count;
             }
         }
-        let grid = OutlineGrid::new(outline, grid_cell);
+        let grid = OutlineGrid::new(outline, self.reach);
         if let Some(p) = grid.self_crossing() {
             return Err(Error::OutlineCrossing {
                 gear: self.name,
@@ -631,11 +697,16 @@ impl Cut<'_> {
             corners,
             flank_of,
             probes,
-            tooth_starts,
+            tooth_points,
             teeth,
+            grid,
         })
     }
 }
+
+/// Segments of each branch in the close look at a shallow undercut's crossing: enough to
+/// start Newton ([`Cut::meet`]) inside its basin.
+const CLOSE_UP_SAMPLES: usize = 24;
 
 /// The crossing of polyline `a` (points tagged with their piece and parameter) with the
 /// polyline `b` nearest `b`'s end, as the piece and the two parameters (interpolated);

@@ -58,6 +58,9 @@ pub struct PairTrack {
     s_nodes: Vec<f64>,
     /// `∫ ρ/(a − ρ) dψ` cells, one per panel.
     turn: Vec<QuinticCell>,
+    /// Least curvature (1/mm) of the driver and of the driven curve over the Gauss nodes,
+    /// with the `ψ` (rad) where it occurs.
+    least_curvature: [(f64, f64); 2],
 }
 
 impl PairTrack {
@@ -67,15 +70,33 @@ impl PairTrack {
         let h = TAU / panels as f64;
         // Radius and arc rate at every Gauss node with its weight: the closure and both
         // tables are sums over them.
-        let gauss: Vec<(f64, f64, f64)> = (0..panels)
+        let polar: Vec<(f64, Polar)> = (0..panels)
             .flat_map(|i| {
-                GAUSS.iter().map(move |&(x, w)| {
-                    let p = curve.eval((i as f64 + x) * h);
-                    (p.rho, p.arc_rate(), w * h)
-                })
+                GAUSS
+                    .iter()
+                    .map(move |&(x, _)| ((i as f64 + x) * h, curve.eval((i as f64 + x) * h)))
             })
             .collect();
+        let gauss: Vec<(f64, f64, f64)> = polar
+            .iter()
+            .zip(GAUSS.iter().cycle())
+            .map(|((_, p), &(_, w))| (p.rho, p.arc_rate(), w * h))
+            .collect();
         let a = close(&gauss, a_guess)?;
+        let least = |kappa: &dyn Fn(Polar) -> f64| {
+            polar.iter().fold((f64::INFINITY, 0.0), |best, &(psi, p)| {
+                let k = kappa(p);
+                if k < best.0 {
+                    (k, psi)
+                } else {
+                    best
+                }
+            })
+        };
+        let least_curvature = [
+            least(&|p: Polar| p.curvature()),
+            least(&|p: Polar| conjugate_polar(p, a).curvature()),
+        ];
         let nodes: Vec<Polar> = (0..=panels).map(|i| curve.eval(i as f64 * h)).collect();
         let (mut s_nodes, mut t_nodes) = (vec![0.0], vec![0.0]);
         let (mut s, mut t) = (0.0, 0.0);
@@ -111,6 +132,7 @@ impl PairTrack {
             a,
             panels,
             s_nodes,
+            least_curvature,
         })
     }
 
@@ -145,6 +167,23 @@ impl PairTrack {
         turns * self.perimeter() + self.arc[i].eval(x).0
     }
 
+    /// Arc length `s(ψ)` (mm) and its rate `ds/dψ` (mm/rad).
+    #[inline]
+    pub fn arc_with_rate(&self, psi: f64) -> (f64, f64) {
+        let (turns, i, x) = self.locate(psi);
+        let (value, rate) = self.arc[i].eval(x);
+        (turns * self.perimeter() + value, rate)
+    }
+
+    /// The least curvature (1/mm; negative where concave) of `member`'s pitch curve over
+    /// the arc tables' Gauss nodes (eight a panel), and the `ψ` (rad) where it occurs.
+    pub fn least_curvature(&self, member: Member) -> (f64, f64) {
+        self.least_curvature[match member {
+            Member::Driver => 0,
+            Member::Driven => 1,
+        }]
+    }
+
     /// The driver parameter `ψ` (rad) at arc length `s` (mm): Newton on [`Self::arc`] from
     /// the panel's linear guess.
     pub fn psi_at(&self, s: f64) -> f64 {
@@ -158,17 +197,20 @@ impl PairTrack {
             - 1;
         let h = TAU / self.panels as f64;
         let (s0, s1) = (self.s_nodes[i], self.s_nodes[i + 1]);
-        let mut psi = (i as f64 + (local - s0) / (s1 - s0)) * h;
-        for _ in 0..6 {
-            let (turn_i, j, x) = self.locate(psi);
-            let (value, rate) = self.arc[j].eval(x);
-            let step = (value + turn_i * perimeter - local) / rate;
-            psi -= step;
-            if step.abs() < 1e-15 {
+        // Newton within panel `i` (the root lies in it; a step out of it evaluates the
+        // neighbouring cell's polynomial, still a fine Newton map near the root).
+        let cell = &self.arc[i];
+        let mut x = (local - s0) / (s1 - s0);
+        for _ in 0..8 {
+            let (value, rate) = cell.eval(x);
+            let step = (value - local) / (rate * h);
+            x -= step;
+            // Quadratic convergence: a step this small leaves an error far below it.
+            if step.abs() < 1e-9 {
                 break;
             }
         }
-        psi + turns * TAU
+        (i as f64 + x) * h + turns * TAU
     }
 
     /// The frame of `member` at driver parameter `psi` (rad), in that gear's own frame.
@@ -180,7 +222,7 @@ impl PairTrack {
                 let (sn, cs) = psi.sin_cos();
                 let e = Vec2::new(cs, sn);
                 let d = e * p.d1 + e.turn_90() * p.rho;
-                let tangent = d * (1.0 / d.hypot());
+                let tangent = d * (1.0 / d.hypot2().sqrt());
                 Frame {
                     point: e * p.rho,
                     tangent,
@@ -196,7 +238,7 @@ impl PairTrack {
                 let gap = self.a - p.rho;
                 // dP/dψ = −ρ' e(χ) + (a − ρ) χ' e⊥(χ), χ' = −ρ/(a − ρ).
                 let d = e * (-p.d1) - e.turn_90() * p.rho;
-                let tangent = d * (1.0 / d.hypot());
+                let tangent = d * (1.0 / d.hypot2().sqrt());
                 Frame {
                     point: e * gap,
                     tangent,
