@@ -175,7 +175,7 @@ impl TeethRun {
         let gears = &self.pair.gears;
         let fitted: Vec<Vec<cad::Piece>> = gears
             .iter()
-            .map(|g| cad::fit(&g.outline, &g.corners, tolerance_mm))
+            .map(|g| cad::fit(g.outline(), &g.corners, tolerance_mm))
             .collect();
         let mark = 0.5 * self.pair.module_mm;
         let mut files = Vec::new();
@@ -197,7 +197,7 @@ impl TeethRun {
                 cad::dxf(&own, &[Vec2::ZERO], mark, &[]),
             )?;
             let mut csv = String::from("x_mm,y_mm\n");
-            for p in &gears[k].outline {
+            for p in gears[k].outline() {
                 let _ = writeln!(csv, "{:.9},{:.9}", p.x, p.y);
             }
             write(&format!("{name}.csv"), csv)?;
@@ -231,8 +231,8 @@ impl TeethRun {
         [0, 1].map(|k| {
             let g = &self.pair.gears[k];
             (
-                cad::fit(&g.outline, &g.corners, tolerance_mm).len(),
-                g.outline.len(),
+                cad::fit(g.outline(), &g.corners, tolerance_mm).len(),
+                g.outline().len(),
             )
         })
     }

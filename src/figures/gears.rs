@@ -118,7 +118,7 @@ where
                 if k == 0 {
                     shapes.push((
                         place(
-                            &toothed.gears[0].outline,
+                            toothed.gears[0].outline(),
                             Vec2::ZERO,
                             layout[0].angle_deg.to_radians(),
                         ),
@@ -128,7 +128,7 @@ where
                 for g in &layout[1..3] {
                     let outline = &toothed.gears
                         [usize::from(g.member == noncirc_core::Member::Driven)]
-                    .outline;
+                    .outline();
                     shapes.push((
                         place(outline, g.centre_mm, g.angle_deg.to_radians()),
                         colour,

@@ -12,7 +12,7 @@ pub struct TeethFigure<'a> {
 
 fn placed(run: &TeethRun, k: usize) -> Vec<(f64, f64)> {
     let g = &run.layout[k];
-    let outline = &run.pair.gears[usize::from(g.member == Member::Driven)].outline;
+    let outline = run.pair.gears[usize::from(g.member == Member::Driven)].outline();
     super::gears::place(outline, g.centre_mm, g.angle_deg.to_radians())
 }
 

@@ -10,6 +10,7 @@
 use super::polyline::OutlineGrid;
 use super::profile::{Side, ToothedGear};
 use super::track::PairTrack;
+use crate::angle::unit;
 use crate::vec2::Vec2;
 use serde::Serialize;
 
@@ -60,11 +61,7 @@ pub fn check(
         let s = step * k as f64;
         let psi = track.psi_at(s);
         let chi = track.driven_angle(psi);
-        let e = |angle: f64| {
-            let (sn, cs) = angle.sin_cos();
-            Vec2::new(cs, sn)
-        };
-        let (e1, e2) = (e(psi), e(psi + std::f64::consts::PI - chi));
+        let (e1, e2) = (unit(psi), unit(psi + std::f64::consts::PI - chi));
         // Driven → driver frame: `q ↦ c + R(e2) q`; driver → driven: `p ↦ R(e2)⁻¹ (p − c)`,
         // each as a rotation and a shift.
         let centre2 = e1 * a;
@@ -80,13 +77,13 @@ pub fn check(
             let centre_tooth = (s / pitch - phase).round() as i64;
             for dj in -1..=1 {
                 let j = (centre_tooth + dj).rem_euclid(teeth as i64) as usize;
-                let n = gear.outline.len();
+                let n = gear.outline().len();
                 let (start, count) = gear.tooth_points[j];
                 for i in (start..start + count).map(|i| if i < n { i } else { i - n }) {
                     if !gear.probes[i] {
                         continue;
                     }
-                    let Some(d) = other.signed_distance(gear.outline[i].rotated(turn) + shift)
+                    let Some(d) = other.signed_distance(gear.outline()[i].rotated(turn) + shift)
                     else {
                         continue;
                     };

@@ -79,7 +79,7 @@ impl Default for ToothSpec {
             backlash_mm: 0.0,
             profile_shift: 0.0,
             cutter: Cutter::Rack,
-            flank_samples: 24,
+            flank_samples: 18,
             fillet_samples: 12,
             mesh_steps_per_pitch: 2,
             arc_panels: 256,
@@ -371,7 +371,7 @@ fn verdict(
                 .iter()
                 .fold(f64::INFINITY, |a, t| a.min(t.tip_land_mm)),
             pointed_teeth: g.teeth.iter().filter(|t| t.pointed).count(),
-            outline_points: g.outline.len(),
+            outline_points: g.outline().len(),
         }
     };
     let reports = [

@@ -52,9 +52,9 @@ pub struct OutlineGrid {
     /// The outline's points with the first repeated at the end: segment `i` is
     /// `points[i]→points[i + 1]`.
     points: Vec<Vec2>,
-    /// Segment `i` as its start, its direction and the inverse of its squared length
-    /// (0 for a degenerate segment): the queries' inner loop, without a division.
-    segments: Vec<(Vec2, Vec2, f64)>,
+    /// Segment `i`'s direction and the inverse of its squared length (0 for a degenerate
+    /// segment): the queries' inner loop, without a division.
+    segments: Vec<(Vec2, f64)>,
     /// Distance (mm) up to which [`Self::signed_distance`] answers.
     reach: f64,
     origin: Vec2,
@@ -93,22 +93,20 @@ impl OutlineGrid {
             .map(|w| {
                 let d = w[1] - w[0];
                 let len2 = d.hypot2();
-                (w[0], d, if len2 > 0.0 { 1.0 / len2 } else { 0.0 })
+                (d, if len2 > 0.0 { 1.0 / len2 } else { 0.0 })
             })
             .collect();
-        // Each segment's cells, by its bounding box: columns and rows, inclusive.
-        let spans: Vec<[usize; 4]> = (0..n)
-            .map(|i| Self::box_cells(origin, cell, points[i], points[i + 1]))
-            .collect();
-        let cells_of = |[c0, c1, r0, r1]: [usize; 4]| {
+        // Each segment's cells, by its bounding box.
+        let cells_of = |i: usize| {
+            let [c0, c1, r0, r1] = Self::box_cells(origin, cell, points[i], points[i + 1]);
             (r0..=r1).flat_map(move |r| (r * cols + c0)..=(r * cols + c1))
         };
         // Counting sort: count per cell, running sums (each cell's end), then fill each
         // cell from its end down, leaving `starts[k]` at its start.
         let cells = cols * rows;
         let mut starts = vec![0u32; cells + 1];
-        for &span in &spans {
-            for k in cells_of(span) {
+        for i in 0..n {
+            for k in cells_of(i) {
                 starts[k] += 1;
             }
         }
@@ -117,8 +115,8 @@ impl OutlineGrid {
         }
         starts[cells] = starts[cells - 1];
         let mut items = vec![0u32; starts[cells] as usize];
-        for (i, &span) in spans.iter().enumerate().rev() {
-            for k in cells_of(span) {
+        for i in (0..n).rev() {
+            for k in cells_of(i) {
                 starts[k] -= 1;
                 items[starts[k] as usize] = i as u32;
             }
@@ -183,7 +181,7 @@ impl OutlineGrid {
             for col in c0..=c1 {
                 for &i in self.cell_items(row * self.cols + col) {
                     let i = i as usize;
-                    let (a, d, inv_len2) = self.segments[i];
+                    let (a, (d, inv_len2)) = (self.points[i], self.segments[i]);
                     let t = ((p - a).dot(d) * inv_len2).clamp(0.0, 1.0);
                     let d2 = (a + d * t - p).hypot2();
                     if d2 < best.0 {

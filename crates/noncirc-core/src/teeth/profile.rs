@@ -74,23 +74,29 @@ pub struct Tooth {
 /// between its smooth pieces, and its teeth.
 #[derive(Debug, Clone)]
 pub struct ToothedGear {
-    pub outline: Vec<Vec2>,
     /// Indices of outline points where two pieces meet at an angle (tip corners, undercut
     /// and root crossings, pointed tips).
     pub corners: Vec<usize>,
     /// Flank side of each outline point (`Some` on a flank), and its tooth.
     pub flank_of: Vec<Option<(usize, Side)>>,
-    /// Whether each outline point can meet the mate (the tip and the flank from 0.3 m
-    /// below the pitch curve up): what the mesh check probes; the mate's tips probe the
-    /// rest.
+    /// Whether each outline point is probed by the mesh check: the tip and the flank from
+    /// the pitch curve up (every contact is at or above the pitch curve of one of the two
+    /// gears); the mate's probes meet the rest.
     pub probes: Vec<bool>,
     /// Each tooth's points, in tooth order, as the outline index of the first (its left
     /// root end; the right root end for the driven gear, whose outline runs the other way)
     /// and their count, with the root that follows: indices wrap past the outline's end.
     pub tooth_points: Vec<(usize, usize)>,
     pub teeth: Vec<Tooth>,
-    /// The outline's segments binned for the mesh check's distance queries.
+    /// The outline, its segments binned for the mesh check's distance queries.
     pub(super) grid: OutlineGrid,
+}
+
+impl ToothedGear {
+    /// The closed counter-clockwise outline (mm), in the gear's own frame.
+    pub fn outline(&self) -> &[Vec2] {
+        self.grid.points()
+    }
 }
 
 /// The tool's rounding centre relative to the pitch point, per tool kind (right side).
@@ -269,7 +275,7 @@ impl Cut<'_> {
                     }
                 };
                 let off = f.tangent * du + f.normal * dv;
-                let len = off.hypot();
+                let len = off.hypot2().sqrt();
                 f.point + off * (1.0 + t.radius / len)
             }
             Piece::Offset { height } => f.point + f.normal * height,
@@ -340,6 +346,35 @@ impl Cut<'_> {
                 (s, f, self.point(piece, s, &f))
             })
             .collect()
+    }
+
+    /// The flank crossing the pitch curve at `u0` on side `sigma`, from rolling position
+    /// `s0` to `s1`, in `flank_samples` chords of even sag. The flank advances
+    /// `f = sin α + σλκ` mm per mm of rolling and bends with radius `f/κ` (`κ` of the pitch
+    /// curve at `u0`), so a chord over `Δs` of rolling sags `fκΔs²/8`: even sag wants
+    /// `Δs ∝ f^(-1/2)`, even steps in `f^(3/2)` (`f` is linear in `s`). Uniform where `f`
+    /// is not positive at both ends or hardly changes.
+    fn sample_flank(
+        &self,
+        u0: f64,
+        sigma: f64,
+        kappa: f64,
+        s0: f64,
+        s1: f64,
+    ) -> Vec<(f64, Frame, Vec2)> {
+        let t = &self.tool;
+        let f = |s: f64| t.sin + sigma * self.lambda(s, u0) * kappa;
+        let (f0, f1) = (f(s0), f(s1));
+        let piece = Piece::Flank { u0, sigma };
+        let n = self.flank_samples;
+        if f0 > 0.0 && f1 > 0.0 && (f1 - f0).abs() > 1e-6 * (f0 + f1) {
+            let (g0, g1) = (f0.powf(1.5), f1.powf(1.5));
+            self.sample_spaced(piece, s0, s1, n, |x| {
+                ((g0 + x * (g1 - g0)).powf(2.0 / 3.0) - f0) / (f1 - f0)
+            })
+        } else {
+            self.sample(piece, s0, s1, n)
+        }
     }
 
     /// The fillet from the root (`s0`) to `s1`, `fillet_samples` segments spaced evenly in
@@ -420,7 +455,8 @@ impl Cut<'_> {
             )
         })?;
         let factor = |s: f64, f: &Frame| t.sin + sigma * self.lambda(s, u0) * f.curvature;
-        let flank_pts = self.sample(flank, form, s_tip, self.flank_samples);
+        let kappa = self.frame(u0).curvature;
+        let flank_pts = self.sample_flank(u0, sigma, kappa, form, s_tip);
         let fillet_pts = self.sample_fillet(fillet, root_end, form);
         // Where the flank is singular (a cusp of the envelope). A singular stretch at the
         // flank's foot is undercut: the fillet then cuts across the regular flank above
@@ -516,7 +552,7 @@ impl Cut<'_> {
                 };
                 (
                     kept,
-                    self.sample(flank, sb, s_tip, self.flank_samples),
+                    self.sample_flank(u0, sigma, kappa, sb, s_tip),
                     Some(undercut),
                     sb,
                 )
@@ -525,11 +561,14 @@ impl Cut<'_> {
         let mut points: Vec<Vec2> = fillet_pts.iter().map(|x| x.2).collect();
         let flank_start = points.len() - 1;
         points.extend(flank_pts.iter().skip(1).map(|x| x.2));
-        let low = -0.3 * self.pitch / std::f64::consts::PI;
+        // The flank from the segment that crosses the pitch curve up: every contact of a
+        // pair lies on the pitch curve or above it on one of the two gears (at height h on
+        // one, −h on the other), so the two gears' probes meet each contact.
         let upper = flank_pts
             .iter()
-            .position(|(s, _, _)| sigma * self.lambda(*s, u0) * t.sin >= low)
-            .unwrap_or(flank_pts.len() - 1);
+            .position(|(s, _, _)| sigma * self.lambda(*s, u0) >= 0.0)
+            .unwrap_or(flank_pts.len() - 1)
+            .saturating_sub(1);
         Ok(SideChain {
             points,
             flank_start,
@@ -547,10 +586,10 @@ impl Cut<'_> {
     /// Cuts every tooth and assembles the closed outline.
     pub fn run(&self) -> Result<ToothedGear> {
         let t = &self.tool;
-        let mut outline = Vec::new();
+        let mut outline: Vec<Vec2> = Vec::new();
         let mut corners = Vec::new();
-        let mut flank_of = Vec::new();
-        let mut probes = Vec::new();
+        let mut flank_of: Vec<Option<(usize, Side)>> = Vec::new();
+        let mut probes: Vec<bool> = Vec::new();
         let mut teeth = Vec::with_capacity(self.teeth);
         let centre = |j: usize| self.phase + self.pitch * j as f64;
         let mut sides = Vec::with_capacity(self.teeth);
@@ -561,6 +600,16 @@ impl Cut<'_> {
             let right = self.side(j, c + 0.5 * t.thickness, Side::Right)?;
             sides.push((left, right));
         }
+        // Every side's points, three tip and two root points a tooth, and the closing
+        // point the grid adds.
+        let points = sides
+            .iter()
+            .map(|(l, r)| l.points.len() + r.points.len() + 5)
+            .sum::<usize>()
+            + 1;
+        outline.reserve(points);
+        flank_of.reserve(points);
+        probes.reserve(points);
         for j in 0..self.teeth {
             let (left, right) = &sides[j];
             let c = centre(j);
@@ -693,7 +742,6 @@ impl Cut<'_> {
             });
         }
         Ok(ToothedGear {
-            outline: grid.points().to_vec(),
             corners,
             flank_of,
             probes,
@@ -748,8 +796,8 @@ struct SideChain {
     points: Vec<Vec2>,
     /// Index in `points` where the flank starts.
     flank_start: usize,
-    /// Index in `points` from which the flank stands higher than 0.3 m below the pitch
-    /// curve: the points that can meet the mate.
+    /// Index in `points` from which the flank reaches the pitch curve: the points the mesh
+    /// check probes.
     probe_from: usize,
     /// The tip curve's parameter where the flank meets it.
     tip_param: f64,

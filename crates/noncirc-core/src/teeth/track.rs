@@ -6,6 +6,7 @@
 //! `∫ ρ/(a − ρ) dψ = 2π`, so that the conjugate gear's teeth close to the quadrature's
 //! accuracy rather than to the evaluation's closure tolerance.
 
+use crate::angle::unit;
 use crate::curve::{PitchCurve, Polar, TAU};
 use crate::error::{Error, Result};
 use crate::gear::conjugate_polar;
@@ -70,28 +71,32 @@ impl PairTrack {
         let h = TAU / panels as f64;
         // Radius and arc rate at every Gauss node with its weight: the closure and both
         // tables are sums over them.
-        let polar: Vec<(f64, Polar)> = (0..panels)
+        // The curve at every Gauss node (eight a panel): the closure, both tables and the
+        // least curvatures are sums or extremes over them.
+        let polar: Vec<Polar> = (0..panels)
             .flat_map(|i| {
                 GAUSS
                     .iter()
-                    .map(move |&(x, _)| ((i as f64 + x) * h, curve.eval((i as f64 + x) * h)))
+                    .map(move |&(x, _)| curve.eval((i as f64 + x) * h))
             })
             .collect();
-        let gauss: Vec<(f64, f64, f64)> = polar
-            .iter()
-            .zip(GAUSS.iter().cycle())
-            .map(|((_, p), &(_, w))| (p.rho, p.arc_rate(), w * h))
-            .collect();
-        let a = close(&gauss, a_guess)?;
+        let weights = || GAUSS.iter().cycle().map(|&(_, w)| w * h);
+        let a = close(polar.iter().zip(weights()), a_guess)?;
         let least = |kappa: &dyn Fn(Polar) -> f64| {
-            polar.iter().fold((f64::INFINITY, 0.0), |best, &(psi, p)| {
-                let k = kappa(p);
-                if k < best.0 {
-                    (k, psi)
-                } else {
-                    best
-                }
-            })
+            polar
+                .iter()
+                .enumerate()
+                .fold((f64::INFINITY, 0.0), |best, (k, &p)| {
+                    let value = kappa(p);
+                    if value < best.0 {
+                        (
+                            value,
+                            (k / GAUSS.len()) as f64 * h + GAUSS[k % GAUSS.len()].0 * h,
+                        )
+                    } else {
+                        best
+                    }
+                })
         };
         let least_curvature = [
             least(&|p: Polar| p.curvature()),
@@ -100,10 +105,10 @@ impl PairTrack {
         let nodes: Vec<Polar> = (0..=panels).map(|i| curve.eval(i as f64 * h)).collect();
         let (mut s_nodes, mut t_nodes) = (vec![0.0], vec![0.0]);
         let (mut s, mut t) = (0.0, 0.0);
-        for panel in gauss.chunks(GAUSS.len()) {
-            for &(rho, rate, wh) in panel {
-                s += wh * rate;
-                t += wh * rho / (a - rho);
+        for panel in polar.chunks(GAUSS.len()) {
+            for (p, wh) in panel.iter().zip(weights()) {
+                s += wh * p.arc_rate();
+                t += wh * p.rho / (a - p.rho);
             }
             s_nodes.push(s);
             t_nodes.push(t);
@@ -219,8 +224,7 @@ impl PairTrack {
         let p = self.curve.eval(psi);
         match member {
             Member::Driver => {
-                let (sn, cs) = psi.sin_cos();
-                let e = Vec2::new(cs, sn);
+                let e = unit(psi);
                 let d = e * p.d1 + e.turn_90() * p.rho;
                 let tangent = d * (1.0 / d.hypot2().sqrt());
                 Frame {
@@ -233,8 +237,7 @@ impl PairTrack {
             Member::Driven => {
                 let (turns, i, x) = self.locate(psi);
                 let chi = -(turns * TAU + self.turn[i].eval(x).0);
-                let (sn, cs) = chi.sin_cos();
-                let e = Vec2::new(cs, sn);
+                let e = unit(chi);
                 let gap = self.a - p.rho;
                 // dP/dψ = −ρ' e(χ) + (a − ρ) χ' e⊥(χ), χ' = −ρ/(a − ρ).
                 let d = e * (-p.d1) - e.turn_90() * p.rho;
@@ -258,15 +261,15 @@ impl PairTrack {
 
 /// Newton on `F(a) = Σ w ρ/(a − ρ) − 2π` from `a0`; `F` is convex and decreasing for
 /// `a > max ρ`, so Newton from the right converges monotonically.
-fn close(gauss: &[(f64, f64, f64)], a0: f64) -> Result<f64> {
-    let rho_max = gauss.iter().fold(0.0_f64, |m, &(r, _, _)| m.max(r));
+fn close<'a>(nodes: impl Iterator<Item = (&'a Polar, f64)> + Clone, a0: f64) -> Result<f64> {
+    let rho_max = nodes.clone().fold(0.0_f64, |m, (p, _)| m.max(p.rho));
     let mut a = a0.max(rho_max * (1.0 + 1e-9));
     for _ in 0..50 {
         let (mut f, mut df) = (-TAU, 0.0);
-        for &(r, _, w) in gauss {
-            let g = a - r;
-            f += w * r / g;
-            df -= w * r / (g * g);
+        for (p, w) in nodes.clone() {
+            let g = a - p.rho;
+            f += w * p.rho / g;
+            df -= w * p.rho / (g * g);
         }
         let step = f / df;
         let mut next = a - step;
