@@ -54,8 +54,10 @@ fn arc_through(points: &[Vec2], tol: f64) -> Option<f64> {
 
 /// Fits lines and arcs to a closed outline through every point within `tol` (mm),
 /// breaking at `corners` (indices where the outline turns sharply): greedily, the longest
-/// line or arc from each piece's start.
+/// line or arc from each piece's start. The pieces keep 1 % of `tol` in hand for the
+/// files' rounding (nine decimals of a millimetre move an arc's ends and so its middle).
 pub fn fit(points: &[Vec2], corners: &[usize], tol: f64) -> Vec<Piece> {
+    let tol = 0.99 * tol;
     let n = points.len();
     let mut breaks: Vec<usize> = corners.iter().copied().filter(|&c| c < n).collect();
     if breaks.is_empty() {

@@ -364,3 +364,32 @@ fn the_flank_chords_sag_below_a_micrometre_at_the_default_samples_and_fall_secon
     );
     eprintln!("flank sag: 16 → {coarse:e}, default → {default:e}, 32 → {fine:e} mm");
 }
+
+#[test]
+fn a_shift_that_lifts_the_rounding_centre_outside_the_pitch_curve_cuts_the_shifted_root() {
+    // Shift 0.9 m with dedendum 1.25 m and rounding 0.38 m: the rounding's centre stands
+    // 0.03 m outside the pitch curve, and the cutting point is the one nearer the pitch
+    // point. The root must be at r − (1.25 − 0.9) m and the outline closed and simple.
+    let (r, z) = (30.0, 24);
+    let spec = ToothSpec {
+        profile_shift: 0.9,
+        addendum: 1.6,
+        ..ToothSpec::default()
+    };
+    let pair = ToothedPair::cut(&circle(r), 2.0 * r, z, &spec).unwrap();
+    let m = pair.module_mm;
+    let root = pair.gears[0]
+        .outline()
+        .iter()
+        .fold(f64::INFINITY, |a, p| a.min(p.hypot()));
+    assert!((root - (r - 0.35 * m)).abs() < 1e-6, "root at {root} mm");
+    // The intermediates take −0.9: their root is deeper by as much.
+    let driven_root = pair.gears[1]
+        .outline()
+        .iter()
+        .fold(f64::INFINITY, |a, p| a.min(p.hypot()));
+    assert!(
+        (driven_root - (r - 2.15 * m)).abs() < 1e-6,
+        "{driven_root} mm"
+    );
+}

@@ -123,6 +123,10 @@ pub struct Tool {
     rounding: Rounding,
     /// Rolling past `u0` at which the fillet reaches the root, right side (mm).
     fillet_reach: f64,
+    /// Which of the two points where the rounding's normal passes through the pitch point
+    /// cuts: the far one from the pitch point (+1) while the rounding's centre is inside
+    /// the pitch curve, the near one (−1) when a large profile shift lifts it outside.
+    cutting_side: f64,
     /// Tooth thickness on the pitch curve (mm).
     pub thickness: f64,
 }
@@ -195,6 +199,7 @@ impl Tool {
             tip,
             root,
             radius,
+            cutting_side: if root + radius < 0.0 { 1.0 } else { -1.0 },
             lambda_form,
             rounding,
             fillet_reach,
@@ -276,7 +281,7 @@ impl Cut<'_> {
                 };
                 let off = f.tangent * du + f.normal * dv;
                 let len = off.hypot2().sqrt();
-                f.point + off * (1.0 + t.radius / len)
+                f.point + off * (1.0 + t.cutting_side * t.radius / len)
             }
             Piece::Offset { height } => f.point + f.normal * height,
         }
@@ -306,8 +311,8 @@ impl Cut<'_> {
                 let off = tangent * du + normal * dv;
                 let d_off = tangent * (ddu + kappa * dv) + normal * (ddv - kappa * du);
                 let len = off.hypot2().sqrt();
-                tangent + d_off * (1.0 + t.radius / len)
-                    - off * (t.radius * off.dot(d_off) / (len * len * len))
+                let r = t.cutting_side * t.radius;
+                tangent + d_off * (1.0 + r / len) - off * (r * off.dot(d_off) / (len * len * len))
             }
             Piece::Offset { height } => tangent * (1.0 + height * kappa),
         }
@@ -683,7 +688,7 @@ impl Cut<'_> {
             if right.undercut.is_some() {
                 corners.push(right_start + (rn - 1 - right.flank_start));
             }
-            // The root to the next tooth's left fillet, or the fillets' crossing.
+            // The root to the next tooth's left fillet.
             let next = &sides[(j + 1) % self.teeth].0;
             let (s0, s1) = (
                 right.root_end,
@@ -709,7 +714,13 @@ impl Cut<'_> {
                     probes.push(false);
                 }
             } else {
-                return Err(self.fail(j, s0, "the fillets of neighbouring teeth cross: the tooth space is narrower than the tool's tip".into()));
+                return Err(self.fail(
+                    j,
+                    s0,
+                    "the fillets of neighbouring teeth cross: the tooth space is narrower than \
+                     the tool's tip"
+                        .into(),
+                ));
             }
             teeth.push(tooth);
         }
