@@ -77,14 +77,13 @@ pub fn check(
             let centre_tooth = (s / pitch - phase).round() as i64;
             for dj in -1..=1 {
                 let j = (centre_tooth + dj).rem_euclid(teeth as i64) as usize;
-                let n = gear.outline().len();
-                let (start, count) = gear.tooth_points[j];
+                let (outline, (start, count)) = (gear.outline(), gear.tooth_points[j]);
+                let n = outline.len();
                 for i in (start..start + count).map(|i| if i < n { i } else { i - n }) {
                     if !gear.probes[i] {
                         continue;
                     }
-                    let Some(d) = other.signed_distance(gear.outline()[i].rotated(turn) + shift)
-                    else {
+                    let Some(d) = other.signed_distance(outline[i].rotated(turn) + shift) else {
                         continue;
                     };
                     if d >= reach {

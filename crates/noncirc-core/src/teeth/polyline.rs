@@ -29,12 +29,6 @@ pub fn first_crossing(a: &[Vec2], b: &[Vec2]) -> Option<(f64, f64)> {
 
 /// Distance (mm) from `p` to the segment `a→b`.
 pub fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f64 {
-    segment_nearest(p, a, b).0.sqrt()
-}
-
-/// Squared distance from `p` to segment `a→b` and the parameter of the nearest point.
-#[inline]
-fn segment_nearest(p: Vec2, a: Vec2, b: Vec2) -> (f64, f64) {
     let d = b - a;
     let len2 = d.hypot2();
     let t = if len2 > 0.0 {
@@ -42,7 +36,7 @@ fn segment_nearest(p: Vec2, a: Vec2, b: Vec2) -> (f64, f64) {
     } else {
         0.0
     };
-    ((a + d * t - p).hypot2(), t)
+    (a + d * t - p).hypot2().sqrt()
 }
 
 /// A closed outline (counter-clockwise: material on the left of each segment) with its
@@ -70,7 +64,7 @@ pub struct OutlineGrid {
 }
 
 /// Most cells along either side of a grid: a small reach on a large outline widens the
-/// cells rather than allocate more (a query then scans more segments, never fewer).
+/// cells rather than allocate more (a query then scans more segments but misses none).
 const MAX_CELLS_PER_SIDE: f64 = 128.0;
 
 impl OutlineGrid {

@@ -325,23 +325,23 @@ impl Cut<'_> {
     /// `n + 1` points of `piece` from `s0` to `s1`, uniform in `ψ`, with their
     /// parameters and frames.
     fn sample(&self, piece: Piece, s0: f64, s1: f64, n: usize) -> Vec<(f64, Frame, Vec2)> {
-        self.sample_spaced(piece, s0, s1, n, |x| x)
+        self.sample_spaced(piece, s0, s1, n, |k| k as f64 / n as f64)
     }
 
-    /// `n + 1` points of `piece` from `s0` to `s1` at the fractions `spacing(k/n)` of the
-    /// way in `ψ`, with their parameters and frames.
+    /// `n + 1` points of `piece` from `s0` to `s1`, point `k` at the fraction `spacing(k)`
+    /// of the way in `ψ`, with their parameters and frames.
     fn sample_spaced(
         &self,
         piece: Piece,
         s0: f64,
         s1: f64,
         n: usize,
-        spacing: impl Fn(f64) -> f64,
+        spacing: impl Fn(usize) -> f64,
     ) -> Vec<(f64, Frame, Vec2)> {
         let (p0, p1) = (self.track.psi_at(s0), self.track.psi_at(s1));
         (0..=n)
             .map(|k| {
-                let psi = p0 + (p1 - p0) * spacing(k as f64 / n as f64);
+                let psi = p0 + (p1 - p0) * spacing(k);
                 let s = match k {
                     0 => s0,
                     _ if k == n => s1,
@@ -374,7 +374,8 @@ impl Cut<'_> {
         let n = self.flank_samples;
         if f0 > 0.0 && f1 > 0.0 && (f1 - f0).abs() > 1e-6 * (f0 + f1) {
             let (g0, g1) = (f0.powf(1.5), f1.powf(1.5));
-            self.sample_spaced(piece, s0, s1, n, |x| {
+            self.sample_spaced(piece, s0, s1, n, |k| {
+                let x = k as f64 / n as f64;
                 ((g0 + x * (g1 - g0)).powf(2.0 / 3.0) - f0) / (f1 - f0)
             })
         } else {
@@ -388,9 +389,7 @@ impl Cut<'_> {
     /// moves.
     fn sample_fillet(&self, piece: Piece, s0: f64, s1: f64) -> Vec<(f64, Frame, Vec2)> {
         let n = self.fillet_samples;
-        self.sample_spaced(piece, s0, s1, n, |x| {
-            self.fillet_spacing[(x * n as f64).round() as usize]
-        })
+        self.sample_spaced(piece, s0, s1, n, |k| self.fillet_spacing[k])
     }
 
     /// Newton on `F(a) = G(b)` from the rolling positions `(a, b)` (mm), stepping in the

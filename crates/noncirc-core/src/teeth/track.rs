@@ -69,8 +69,6 @@ impl PairTrack {
     /// centre distance at `a_guess` (mm, the evaluation's closure).
     pub fn new(curve: &PitchCurve, a_guess: f64, panels: usize) -> Result<Self> {
         let h = TAU / panels as f64;
-        // Radius and arc rate at every Gauss node with its weight: the closure and both
-        // tables are sums over them.
         // The curve at every Gauss node (eight a panel): the closure, both tables and the
         // least curvatures are sums or extremes over them.
         let polar: Vec<Polar> = (0..panels)
@@ -168,8 +166,7 @@ impl PairTrack {
     /// Arc length `s(ψ)` (mm) from `ψ = 0`, over any number of turns.
     #[inline]
     pub fn arc(&self, psi: f64) -> f64 {
-        let (turns, i, x) = self.locate(psi);
-        turns * self.perimeter() + self.arc[i].eval(x).0
+        self.arc_with_rate(psi).0
     }
 
     /// Arc length `s(ψ)` (mm) and its rate `ds/dψ` (mm/rad).
@@ -202,8 +199,7 @@ impl PairTrack {
             - 1;
         let h = TAU / self.panels as f64;
         let (s0, s1) = (self.s_nodes[i], self.s_nodes[i + 1]);
-        // Newton within panel `i` (the root lies in it; a step out of it evaluates the
-        // neighbouring cell's polynomial, still a fine Newton map near the root).
+        // The root lies in panel `i`: Newton on that cell's polynomial.
         let cell = &self.arc[i];
         let mut x = (local - s0) / (s1 - s0);
         for _ in 0..8 {
