@@ -97,6 +97,54 @@ pub fn save(fig: &impl Figure, base: &Path) -> Result<Vec<PathBuf>> {
     Ok(vec![svg, png])
 }
 
+/// The parts of the polyline `points` inside the box `x`×`y` (mm), each segment cut at
+/// the box's edges (Liang–Barsky): plotters would pin points outside the plot area to its
+/// border and draw lines along it.
+fn clipped_runs(points: &[(f64, f64)], x: (f64, f64), y: (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut open = false;
+    for w in points.windows(2) {
+        let ((ax, ay), (bx, by)) = (w[0], w[1]);
+        let (dx, dy) = (bx - ax, by - ay);
+        let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+        let inside = [
+            (-dx, ax - x.0),
+            (dx, x.1 - ax),
+            (-dy, ay - y.0),
+            (dy, y.1 - ay),
+        ]
+        .into_iter()
+        .all(|(p, q)| {
+            if p == 0.0 {
+                return q >= 0.0;
+            }
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+            t0 <= t1
+        });
+        if !inside {
+            open = false;
+            continue;
+        }
+        let at = |t: f64| match t {
+            0.0 => w[0],
+            1.0 => w[1],
+            _ => (ax + t * dx, ay + t * dy),
+        };
+        let (p, q) = (at(t0), at(t1));
+        match runs.last_mut() {
+            Some(run) if open && t0 == 0.0 => run.push(q),
+            _ => runs.push(vec![p, q]),
+        }
+        open = t1 == 1.0;
+    }
+    runs
+}
+
 /// Axis ranges with equal scale in x and y for a plot area of `w × h` pixels.
 fn equal_ranges(
     points: impl Iterator<Item = Vec2>,
@@ -186,4 +234,27 @@ pub fn evaluation_figures(scene: &Scene, eval: &Evaluation, dir: &Path) -> Resul
         )?);
     }
     Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::clipped_runs;
+
+    #[test]
+    fn a_polyline_leaving_the_box_is_cut_at_its_edges_into_runs() {
+        // In at the left edge, out through the top, back in through the top, ending inside.
+        let path = [(-1.0, 0.5), (0.5, 0.5), (0.5, 2.0), (0.8, 2.0), (0.8, 0.2)];
+        let runs = clipped_runs(&path, (0.0, 1.0), (0.0, 1.0));
+        assert_eq!(
+            runs,
+            vec![
+                vec![(0.0, 0.5), (0.5, 0.5), (0.5, 1.0)],
+                vec![(0.8, 1.0), (0.8, 0.2)],
+            ]
+        );
+        // Wholly outside: nothing; wholly inside: the polyline itself.
+        assert!(clipped_runs(&[(2.0, 2.0), (3.0, 2.5)], (0.0, 1.0), (0.0, 1.0)).is_empty());
+        let inside = vec![(0.1, 0.1), (0.9, 0.2), (0.5, 0.9)];
+        assert_eq!(clipped_runs(&inside, (0.0, 1.0), (0.0, 1.0)), vec![inside]);
+    }
 }

@@ -71,6 +71,10 @@ impl Figure for TeethFigure<'_> {
         let rho = pitch_point_distance(run, d);
         let pitch = o1 + d * (rho / d.hypot());
         let half = 3.0 * r.module_mm;
+        let window = (
+            (pitch.x - half, pitch.x + half),
+            (pitch.y - half, pitch.y + half),
+        );
         let mut c = ChartBuilder::on(&right)
             .caption(
                 format!(
@@ -85,10 +89,7 @@ impl Figure for TeethFigure<'_> {
             .margin(10)
             .x_label_area_size(35)
             .y_label_area_size(50)
-            .build_cartesian_2d(
-                pitch.x - half..pitch.x + half,
-                pitch.y - half..pitch.y + half,
-            )
+            .build_cartesian_2d(window.0 .0..window.0 .1, window.1 .0..window.1 .1)
             .map_err(err)?;
         c.configure_mesh()
             .x_desc("x (mm)")
@@ -97,13 +98,12 @@ impl Figure for TeethFigure<'_> {
             .draw()
             .map_err(err)?;
         for k in [0, other] {
-            let inside: Vec<(f64, f64)> = all[k].clone();
-            c.draw_series(LineSeries::new(inside, colour(k).stroke_width(2)))
+            let style = colour(k).stroke_width(2);
+            let runs = clipped_runs(&all[k], window.0, window.1);
+            c.draw_series(runs.into_iter().map(|run| PathElement::new(run, style)))
                 .map_err(err)?
                 .label(run.layout[k].name.clone())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], colour(k).stroke_width(2))
-                });
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
         }
         c.draw_series(std::iter::once(Circle::new(
             (pitch.x, pitch.y),
