@@ -159,20 +159,7 @@ where
         area.dim_in_pixel().1 as f64 - 80.0,
     );
     let ((x0, x1), (y0, y1)) = equal_ranges(pts, w, h, 10.0);
-    let mut chart = ChartBuilder::on(area)
-        .caption(caption, (FONT, 18))
-        .margin(10)
-        .x_label_area_size(30)
-        .y_label_area_size(45)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .x_desc("x (mm)")
-        .y_desc("y (mm)")
-        .label_style((FONT, 12))
-        .draw()
-        .map_err(err)?;
+    let mut chart = plane_chart(area, caption, 18, x0..x1, y0..y1)?;
     for (shape, colour) in shapes {
         chart
             .draw_series(LineSeries::new(shape, colour.stroke_width(2)))

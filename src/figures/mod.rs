@@ -5,6 +5,7 @@ use noncirc_core::{
     advance_per_rad, anatomy, box_curves, travel_sign, unit, BoxReport, BoxSpec, Evaluation,
     Events, Kinematics, ObjectiveValue, Scene, Section, ToothedPair, Vec2,
 };
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -95,6 +96,34 @@ pub fn save(fig: &impl Figure, base: &Path) -> Result<Vec<PathBuf>> {
         root.present().map_err(err)?;
     }
     Ok(vec![svg, png])
+}
+
+/// A chart of the plane on `area`, both axes in millimetres over `x` and `y`.
+fn plane_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    caption_size: u32,
+    x: std::ops::Range<f64>,
+    y: std::ops::Range<f64>,
+) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>>
+where
+    DB::ErrorType: 'static,
+{
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, (FONT, caption_size))
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(50)
+        .build_cartesian_2d(x, y)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("x (mm)")
+        .y_desc("y (mm)")
+        .label_style((FONT, 12))
+        .draw()
+        .map_err(err)?;
+    Ok(chart)
 }
 
 /// The parts of the polyline `points` inside the box `x`×`y` (mm), each segment cut at

@@ -47,19 +47,7 @@ impl Figure for TeethFigure<'_> {
         };
         let points = all.iter().flatten().map(|&(x, y)| Vec2::new(x, y));
         let ((x0, x1), (y0, y1)) = equal_ranges(points, 640.0, 600.0, 2.0);
-        let mut c = ChartBuilder::on(&left)
-            .caption(title, (FONT, 18))
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(45)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(err)?;
-        c.configure_mesh()
-            .x_desc("x (mm)")
-            .y_desc("y (mm)")
-            .label_style((FONT, 12))
-            .draw()
-            .map_err(err)?;
+        let mut c = plane_chart(&left, &title, 18, x0..x1, y0..y1)?;
         for (k, pts) in all.iter().enumerate() {
             c.draw_series(LineSeries::new(pts.clone(), colour(k).stroke_width(1)))
                 .map_err(err)?;
@@ -75,28 +63,15 @@ impl Figure for TeethFigure<'_> {
             (pitch.x - half, pitch.x + half),
             (pitch.y - half, pitch.y + half),
         );
-        let mut c = ChartBuilder::on(&right)
-            .caption(
-                format!(
-                    "The {} – {} mesh: least clearance {:.4} mm, contact ratio ≥ {:.2}",
-                    run.layout[0].name,
-                    run.layout[other].name,
-                    r.mesh.least_clearance_mm,
-                    r.mesh.contact_ratio_min
-                ),
-                (FONT, 16),
-            )
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(50)
-            .build_cartesian_2d(window.0 .0..window.0 .1, window.1 .0..window.1 .1)
-            .map_err(err)?;
-        c.configure_mesh()
-            .x_desc("x (mm)")
-            .y_desc("y (mm)")
-            .label_style((FONT, 12))
-            .draw()
-            .map_err(err)?;
+        let caption = format!(
+            "The {} – {} mesh: least clearance {:.4} mm, contact ratio ≥ {:.2}",
+            run.layout[0].name,
+            run.layout[other].name,
+            r.mesh.least_clearance_mm,
+            r.mesh.contact_ratio_min
+        );
+        let (wx, wy) = window;
+        let mut c = plane_chart(&right, &caption, 16, wx.0..wx.1, wy.0..wy.1)?;
         for k in [0, other] {
             let style = colour(k).stroke_width(2);
             let runs = clipped_runs(&all[k], window.0, window.1);
