@@ -260,6 +260,7 @@ pub fn signed_area(points: &[Vec2]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     fn square() -> Vec<Vec2> {
         vec![
@@ -293,5 +294,51 @@ mod tests {
         ];
         let x = OutlineGrid::new(bow, 0.7).self_crossing().unwrap();
         assert!((x - Vec2::new(1.0, 1.0)).hypot() < 1e-12);
+    }
+    proptest! {
+        /// On random star-shaped outlines (wavy, so with reflex corners) and random
+        /// points, the grid's answer is the nearest of all segments, with the sign of the
+        /// winding number: the grid loses no candidate.
+        #[test]
+        fn grid_distance_is_the_brute_force_distance(
+            radii in proptest::collection::vec(5.0f64..9.0, 12..120),
+            reach in 0.05f64..1.5,
+            probes in proptest::collection::vec((-12.0f64..12.0, -12.0f64..12.0), 50),
+        ) {
+            let n = radii.len();
+            let points: Vec<Vec2> = radii
+                .iter()
+                .enumerate()
+                .map(|(k, r)| {
+                    let (s, c) = (std::f64::consts::TAU * k as f64 / n as f64).sin_cos();
+                    Vec2::new(r * c, r * s)
+                })
+                .collect();
+            let grid = OutlineGrid::new(points.clone(), reach);
+            prop_assert_eq!(grid.self_crossing(), None);
+            for (x, y) in probes {
+                let p = Vec2::new(x, y);
+                let nearest = (0..n)
+                    .map(|i| segment_distance(p, points[i], points[(i + 1) % n]))
+                    .fold(f64::INFINITY, f64::min);
+                let winding: f64 = (0..n)
+                    .map(|i| {
+                        let (a, b) = (points[i] - p, points[(i + 1) % n] - p);
+                        a.cross(b).atan2(a.dot(b))
+                    })
+                    .sum();
+                let inside = winding.abs() > 1.0;
+                match grid.signed_distance(p) {
+                    None => prop_assert!(nearest >= reach, "{p:?}: {nearest} within {reach}"),
+                    Some(d) => {
+                        prop_assert!((d.abs() - nearest).abs() < 1e-12, "{p:?}: {d} vs {nearest}");
+                        prop_assert!(nearest < reach);
+                        if nearest > 1e-9 {
+                            prop_assert_eq!(d < 0.0, inside, "{:?}: {}", p, d);
+                        }
+                    }
+                }
+            }
+        }
     }
 }

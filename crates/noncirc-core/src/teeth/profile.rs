@@ -400,7 +400,8 @@ impl Cut<'_> {
         for _ in 0..12 {
             let (sa, rate_a, fa) = self.frame_at_psi(pa);
             let (sb, rate_b, fb) = self.frame_at_psi(pb);
-            let r = self.point(f, sa, &fa) - self.point(g, sb, &fb);
+            let point = self.point(f, sa, &fa);
+            let r = point - self.point(g, sb, &fb);
             let da = self.velocity(f, sa, &fa) * rate_a;
             let db = self.velocity(g, sb, &fb) * rate_b;
             // Solve da·Δa − db·Δb = −r.
@@ -412,10 +413,13 @@ impl Cut<'_> {
             let step_b = da.cross(-r) / det;
             pa += step_a;
             pb += step_b;
-            if (step_a * rate_a).abs().max((step_b * rate_b).abs()) < 1e-11 * self.pitch {
-                let (sa, _, fa) = self.frame_at_psi(pa);
-                let p = self.point(f, sa, &fa);
-                return p.is_finite().then_some((sa, self.track.arc(pb), p));
+            // Quadratic convergence: after a step below 1e-7 pitch (well under a
+            // micrometre) the error is of the order of its square, and the step's linear
+            // update is as good as evaluating there again.
+            let (move_a, move_b) = (step_a * rate_a, step_b * rate_b);
+            if move_a.abs().max(move_b.abs()) < 1e-7 * self.pitch {
+                let p = point + da * step_a;
+                return p.is_finite().then_some((sa + move_a, sb + move_b, p));
             }
         }
         None
@@ -472,21 +476,15 @@ impl Cut<'_> {
                 if k + 1 < flank_pts.len()
                     && flank_pts[..=k].iter().all(|(s, f, _)| factor(*s, f) <= 0.0) =>
             {
-                let psi = |s: f64| self.track.psi_at(s);
-                let (mut lo, mut hi) = (psi(flank_pts[k].0), psi(flank_pts[k + 1].0));
-                loop {
-                    let mid = 0.5 * (lo + hi);
-                    if mid == lo || mid == hi {
-                        break;
-                    }
-                    let (s, _, f) = self.frame_at_psi(mid);
-                    if factor(s, &f) <= 0.0 {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                Some(self.track.arc(hi))
+                let (sk, fk, _) = &flank_pts[k];
+                let (sn, fn_, _) = &flank_pts[k + 1];
+                let lo = (self.track.psi_at(*sk), factor(*sk, fk));
+                let hi = (self.track.psi_at(*sn), factor(*sn, fn_));
+                let factor_at = |psi: f64| {
+                    let (s, _, f) = self.frame_at_psi(psi);
+                    factor(s, &f)
+                };
+                Some(self.track.arc(regula_falsi(factor_at, lo, hi)))
             }
             Some(k) => {
                 let (s, f, _) = &flank_pts[k];
@@ -511,7 +509,7 @@ impl Cut<'_> {
                 // regular branch rises from the cusp. Where the two first meet again, seen
                 // from the tip, the cut flank starts.
                 let lower = self.sample(flank, form, cusp, 8);
-                let regular = self.sample(flank, cusp, s_tip, self.flank_samples);
+                let regular = self.sample(flank, cusp, s_tip, UNDERCUT_SEARCH_SAMPLES);
                 let chain: Vec<(Piece, f64, Vec2)> =
                     (fillet_pts.iter().map(|x| (fillet, x.0, x.2)))
                         .chain(lower.iter().skip(1).map(|x| (flank, x.0, x.2)))
@@ -762,6 +760,46 @@ impl Cut<'_> {
     }
 }
 
+/// The root of `f` between `lo` and `hi` (each `(x, f(x))`, `f(lo) ≤ 0 < f(hi)`) by the
+/// Illinois variant of regula falsi, to 1e-13 of the bracket: a handful of evaluations
+/// where bisection to the last bit takes fifty. Returns a point where `f > 0`.
+fn regula_falsi(f: impl Fn(f64) -> f64, mut lo: (f64, f64), mut hi: (f64, f64)) -> f64 {
+    let tolerance = 1e-13 * (hi.0 - lo.0).abs();
+    let mut last_side = 0;
+    for _ in 0..100 {
+        if (hi.0 - lo.0).abs() <= tolerance {
+            break;
+        }
+        let x = (lo.0 * hi.1 - hi.0 * lo.1) / (hi.1 - lo.1);
+        // Keep each trial inside the bracket and off its ends.
+        let x = if x > lo.0.min(hi.0) && x < lo.0.max(hi.0) {
+            x
+        } else {
+            0.5 * (lo.0 + hi.0)
+        };
+        let y = f(x);
+        if y <= 0.0 {
+            lo = (x, y);
+            if last_side == -1 {
+                hi.1 *= 0.5;
+            }
+            last_side = -1;
+        } else {
+            hi = (x, y);
+            if last_side == 1 {
+                lo.1 *= 0.5;
+            }
+            last_side = 1;
+        }
+    }
+    hi.0
+}
+
+/// Segments of the regular flank in the search for the fillet's crossing: enough to find
+/// the segment it crosses ([`Cut::meet`] then refines it; a crossing too shallow for them
+/// gets the close look).
+const UNDERCUT_SEARCH_SAMPLES: usize = 8;
+
 /// Segments of each branch in the close look at a shallow undercut's crossing: enough to
 /// start Newton ([`Cut::meet`]) inside its basin.
 const CLOSE_UP_SAMPLES: usize = 24;
@@ -815,4 +853,37 @@ struct SideChain {
     root_end: f64,
     undercut: Option<Undercut>,
     active: (f64, f64),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::regula_falsi;
+    use std::cell::Cell;
+
+    #[test]
+    fn regula_falsi_finds_roots_in_few_evaluations() {
+        // A convex function, where plain regula falsi keeps one end and crawls.
+        for (f, root) in [
+            (
+                &(|x: f64| x * x * x - 2.0) as &dyn Fn(f64) -> f64,
+                2f64.cbrt(),
+            ),
+            (&|x: f64| x.exp() - 10.0, 10f64.ln()),
+            (&|x: f64| 1.0 - (-x).exp() * 50.0, 50f64.ln()),
+        ] {
+            let calls = Cell::new(0);
+            let (lo, hi) = (0.0, 8.0);
+            let x = regula_falsi(
+                |x| {
+                    calls.set(calls.get() + 1);
+                    f(x)
+                },
+                (lo, f(lo)),
+                (hi, f(hi)),
+            );
+            assert!((x - root).abs() < 1e-11, "{x} vs {root}");
+            assert!(f(x) > 0.0);
+            assert!(calls.get() < 30, "{} evaluations", calls.get());
+        }
+    }
 }
