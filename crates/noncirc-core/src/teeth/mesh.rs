@@ -77,13 +77,9 @@ pub fn check(
             let centre_tooth = (s / pitch - phase).round() as i64;
             for dj in -1..=1 {
                 let j = (centre_tooth + dj).rem_euclid(teeth as i64) as usize;
-                let (outline, (start, count)) = (gear.outline(), gear.tooth_points[j]);
-                let n = outline.len();
-                for i in (start..start + count).map(|i| if i < n { i } else { i - n }) {
-                    if !gear.probes[i] {
-                        continue;
-                    }
-                    let Some(d) = other.signed_distance(outline[i].rotated(turn) + shift) else {
+                let (start, end) = gear.tooth_probes[j];
+                for probe in &gear.probes[start..end] {
+                    let Some(d) = other.signed_distance(probe.point.rotated(turn) + shift) else {
                         continue;
                     };
                     if d >= reach {
@@ -92,7 +88,7 @@ pub fn check(
                     if d < least.0 {
                         least = (d, s);
                     }
-                    if let Some((_, side)) = gear.flank_of[i] {
+                    if let Some(side) = probe.side {
                         let pair_side = match (g, side) {
                             (0, Side::Right) | (1, Side::Left) => 0,
                             _ => 1,

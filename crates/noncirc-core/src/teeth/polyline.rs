@@ -52,11 +52,12 @@ pub struct OutlineGrid {
     /// Distance (mm) up to which [`Self::signed_distance`] answers.
     reach: f64,
     origin: Vec2,
-    /// Cell width (mm), at least twice the reach: a query's square of half-width `reach`
-    /// overlaps at most two cells a side.
-    cell: f64,
+    /// Inverse of the cell width (1/mm); the width is at least twice the reach, so a
+    /// query's square of half-width `reach` overlaps at most two cells a side.
+    inv_cell: f64,
     cols: usize,
-    rows: usize,
+    /// Columns and rows, as numbers.
+    size: Vec2,
     /// Where each cell's segment indices start in `items` (row-major; one more entry than
     /// cells, the last one `items.len()`).
     starts: Vec<u32>,
@@ -77,7 +78,7 @@ impl OutlineGrid {
             hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
         }
         let cell = (2.0 * reach).max((hi.x - lo.x).max(hi.y - lo.y) / MAX_CELLS_PER_SIDE);
-        let origin = lo - Vec2::new(cell, cell);
+        let (origin, inv_cell) = (lo - Vec2::new(cell, cell), 1.0 / cell);
         let cols = ((hi.x - origin.x) / cell).ceil() as usize + 2;
         let rows = ((hi.y - origin.y) / cell).ceil() as usize + 2;
         let n = points.len();
@@ -90,18 +91,24 @@ impl OutlineGrid {
                 (d, if len2 > 0.0 { 1.0 / len2 } else { 0.0 })
             })
             .collect();
-        // Each segment's cells, by its bounding box.
-        let cells_of = |i: usize| {
-            let [c0, c1, r0, r1] = Self::box_cells(origin, cell, points[i], points[i + 1]);
-            (r0..=r1).flat_map(move |r| (r * cols + c0)..=(r * cols + c1))
-        };
+        // Each segment's cells, by its bounding box: `(first cell of each row, columns,
+        // rows)`.
+        let boxes: Vec<(usize, usize, usize)> = (0..n)
+            .map(|i| {
+                let [c0, c1, r0, r1] = Self::box_cells(origin, inv_cell, points[i], points[i + 1]);
+                (r0 * cols + c0, c1 - c0 + 1, r1 - r0 + 1)
+            })
+            .collect();
         // Counting sort: count per cell, running sums (each cell's end), then fill each
         // cell from its end down, leaving `starts[k]` at its start.
         let cells = cols * rows;
         let mut starts = vec![0u32; cells + 1];
-        for i in 0..n {
-            for k in cells_of(i) {
-                starts[k] += 1;
+        for &(first, width, height) in &boxes {
+            for row in 0..height {
+                let k = first + row * cols;
+                for count in &mut starts[k..k + width] {
+                    *count += 1;
+                }
             }
         }
         for k in 1..cells {
@@ -109,10 +116,13 @@ impl OutlineGrid {
         }
         starts[cells] = starts[cells - 1];
         let mut items = vec![0u32; starts[cells] as usize];
-        for i in (0..n).rev() {
-            for k in cells_of(i) {
-                starts[k] -= 1;
-                items[starts[k] as usize] = i as u32;
+        for (i, &(first, width, height)) in boxes.iter().enumerate().rev() {
+            for row in 0..height {
+                let k = first + row * cols;
+                for start in &mut starts[k..k + width] {
+                    *start -= 1;
+                    items[*start as usize] = i as u32;
+                }
             }
         }
         Self {
@@ -120,9 +130,9 @@ impl OutlineGrid {
             segments,
             reach,
             origin,
-            cell,
+            inv_cell,
             cols,
-            rows,
+            size: Vec2::new(cols as f64, rows as f64),
             starts,
             items,
         }
@@ -137,8 +147,9 @@ impl OutlineGrid {
     /// The cells `[first column, last column, first row, last row]` of the bounding box
     /// of segment `a→b`.
     #[inline]
-    fn box_cells(origin: Vec2, cell: f64, a: Vec2, b: Vec2) -> [usize; 4] {
-        let at = |v: f64, o: f64| ((v - o) / cell).max(0.0) as usize;
+    fn box_cells(origin: Vec2, inv_cell: f64, a: Vec2, b: Vec2) -> [usize; 4] {
+        // Through `u32`: a float-to-`usize` cast is a longer instruction sequence.
+        let at = |v: f64, o: f64| ((v - o) * inv_cell).max(0.0) as u32 as usize;
         [
             at(a.x.min(b.x), origin.x),
             at(a.x.max(b.x), origin.x),
@@ -155,21 +166,16 @@ impl OutlineGrid {
     /// Signed distance (mm) from `p` to the outline, negative inside the material, if the
     /// outline passes within the reach of `p` (exact then); `None` if it does not.
     pub fn signed_distance(&self, p: Vec2) -> Option<f64> {
-        let inv = 1.0 / self.cell;
-        let to_cell = |x: f64, o: f64, limit: usize| {
-            let c = (x - o) * inv;
-            // Truncation is the floor here: `c` is not negative.
-            (c >= 0.0 && c < limit as f64).then_some(c as usize)
-        };
-        let (r, o) = (self.reach, self.origin);
-        let (c0, c1) = (
-            to_cell(p.x - r, o.x, self.cols)?,
-            to_cell(p.x + r, o.x, self.cols)?,
-        );
-        let (r0, r1) = (
-            to_cell(p.y - r, o.y, self.rows)?,
-            to_cell(p.y + r, o.y, self.rows)?,
-        );
+        // The query's square in cell units, inside the grid or answered at once.
+        let inv = self.inv_cell;
+        let (x, y) = ((p.x - self.origin.x) * inv, (p.y - self.origin.y) * inv);
+        let w = self.reach * inv;
+        if !(x - w >= 0.0 && y - w >= 0.0 && x + w < self.size.x && y + w < self.size.y) {
+            return None;
+        }
+        // Truncation is the floor here: the coordinates are not negative.
+        let cell = |v: f64| v as u32 as usize;
+        let (c0, c1, r0, r1) = (cell(x - w), cell(x + w), cell(y - w), cell(y + w));
         let mut best = (f64::INFINITY, 0usize, 0.0);
         for row in r0..=r1 {
             for col in c0..=c1 {
@@ -184,7 +190,7 @@ impl OutlineGrid {
                 }
             }
         }
-        if best.0 >= r * r {
+        if best.0 >= self.reach * self.reach {
             return None;
         }
         let (d2, i, t) = best;
@@ -225,12 +231,14 @@ impl OutlineGrid {
         for i in 0..n {
             let (a0, a1) = (self.points[i], self.points[i + 1]);
             let (x0, x1, y0, y1) = bounds(a0, a1);
-            let [c0, c1, r0, r1] = Self::box_cells(self.origin, self.cell, a0, a1);
+            let [c0, c1, r0, r1] = Self::box_cells(self.origin, self.inv_cell, a0, a1);
             for row in r0..=r1 {
                 for col in c0..=c1 {
                     for &j in self.cell_items(row * self.cols + col) {
                         let j = j as usize;
-                        if j <= i + 1 || (j + 1) % n == i {
+                        // Adjacent segments share a point; `j > i + 1` leaves the pair
+                        // that closes the outline.
+                        if j <= i + 1 || (i == 0 && j == n - 1) {
                             continue;
                         }
                         let (b0, b1) = (self.points[j], self.points[j + 1]);

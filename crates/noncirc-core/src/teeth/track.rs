@@ -52,10 +52,18 @@ pub struct PairTrack {
     /// Centre distance (mm), closed by this track's quadrature.
     a: f64,
     panels: usize,
+    /// Panel width (rad) and its inverse.
+    panel_width: f64,
+    panels_per_radian: f64,
+    /// `panels` over the perimeter (1/mm): the steps of [`Self::panel_at_arc`].
+    steps_per_mm: f64,
     /// Arc length cells, one per panel.
     arc: Vec<QuinticCell>,
     /// `s` at the panel nodes (mm), `panels + 1` values.
     s_nodes: Vec<f64>,
+    /// For each of `panels` equal steps of arc length, the panel where the step starts:
+    /// [`Self::psi_at`] starts there rather than search `s_nodes`.
+    panel_at_arc: Vec<u32>,
     /// `∫ ρ/(a − ρ) dψ` cells, one per panel.
     turn: Vec<QuinticCell>,
     /// Least curvature (1/mm) of the driver and of the driven curve over the Gauss nodes,
@@ -127,7 +135,22 @@ impl PairTrack {
                 })
                 .collect()
         };
+        let perimeter = s_nodes[panels];
+        let mut panel = 0;
+        let panel_at_arc = (0..panels)
+            .map(|k| {
+                let s = perimeter * k as f64 / panels as f64;
+                while panel + 1 < panels && s_nodes[panel + 1] <= s {
+                    panel += 1;
+                }
+                panel as u32
+            })
+            .collect();
         Ok(Self {
+            panel_at_arc,
+            panel_width: h,
+            panels_per_radian: 1.0 / h,
+            steps_per_mm: panels as f64 / perimeter,
             arc: cells(&s_nodes, &arc_d),
             turn: cells(&t_nodes, &turn_d),
             curve: curve.clone(),
@@ -162,9 +185,10 @@ impl PairTrack {
         } else {
             (psi / TAU).floor()
         };
-        let x = (psi - turns * TAU) / TAU * self.panels as f64;
-        let i = (x as usize).min(self.panels - 1);
-        (turns, i, x - i as f64)
+        // (Casts through `u32`: float-`usize` conversions are longer instruction sequences.)
+        let x = (psi - turns * TAU) * self.panels_per_radian;
+        let i = (x as u32 as usize).min(self.panels - 1);
+        (turns, i, x - i as u32 as f64)
     }
 
     /// Arc length `s(ψ)` (mm) from `ψ = 0`, over any number of turns.
@@ -200,12 +224,12 @@ impl PairTrack {
             (s / perimeter).floor()
         };
         let local = s - turns * perimeter;
-        let i = self
-            .s_nodes
-            .partition_point(|&v| v <= local)
-            .clamp(1, self.panels)
-            - 1;
-        let h = TAU / self.panels as f64;
+        let step = ((local * self.steps_per_mm) as u32 as usize).min(self.panels - 1);
+        let mut i = self.panel_at_arc[step] as usize;
+        while i + 1 < self.panels && self.s_nodes[i + 1] <= local {
+            i += 1;
+        }
+        let h = self.panel_width;
         let (s0, s1) = (self.s_nodes[i], self.s_nodes[i + 1]);
         // The root lies in panel `i`: Newton on that cell's polynomial.
         let cell = &self.arc[i];
@@ -214,12 +238,13 @@ impl PairTrack {
             let (value, rate) = cell.eval(x);
             let step = (value - local) / (rate * h);
             x -= step;
-            // Quadratic convergence: a step this small leaves an error far below it.
-            if step.abs() < 1e-9 {
+            // Quadratic convergence: a step this small (in panel widths) leaves an error
+            // of the order of its square.
+            if step.abs() < 1e-7 {
                 break;
             }
         }
-        (i as f64 + x) * h + turns * TAU
+        (i as u32 as f64 + x) * h + turns * TAU
     }
 
     /// The frame of `member` at driver parameter `psi` (rad), in that gear's own frame.
