@@ -46,9 +46,8 @@ pub struct OutlineGrid {
     /// The outline's points with the first repeated at the end: segment `i` is
     /// `points[i]→points[i + 1]`.
     points: Vec<Vec2>,
-    /// Segment `i`'s direction and the inverse of its squared length (0 for a degenerate
-    /// segment): the queries' inner loop, without a division.
-    segments: Vec<(Vec2, f64)>,
+    /// The segments as the queries' inner loop reads them, without a division.
+    segments: Vec<Segment>,
     /// Distance (mm) up to which [`Self::signed_distance`] answers.
     reach: f64,
     origin: Vec2,
@@ -62,6 +61,68 @@ pub struct OutlineGrid {
     /// cells, the last one `items.len()`).
     starts: Vec<u32>,
     items: Vec<u32>,
+}
+
+/// A segment `start → start + direction` with the inverse of its squared length (0 for a
+/// degenerate segment).
+#[derive(Debug, Clone, Copy)]
+struct Segment {
+    start: Vec2,
+    direction: Vec2,
+    inv_len2: f64,
+}
+
+/// The grid's three large buffers. A search cuts pair after pair, and fresh buffers for
+/// each would leave the allocator to hand the heap's top back to the system and fault it
+/// in again every time (glibc trims a free top above 128 kB; a pair's grids are twice
+/// that): a dropped grid leaves its buffers, emptied, to the next one on the thread.
+#[derive(Default)]
+struct GridBuffers {
+    segments: Vec<Segment>,
+    starts: Vec<u32>,
+    items: Vec<u32>,
+}
+
+/// Buffer sets kept per thread (a pair needs two).
+const POOLED_GRIDS: usize = 4;
+
+thread_local! {
+    static GRID_POOL: std::cell::RefCell<Vec<GridBuffers>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+impl GridBuffers {
+    /// Empty buffers, from the thread's pool if it has some.
+    fn take() -> Self {
+        GRID_POOL
+            .try_with(|pool| pool.borrow_mut().pop())
+            .ok()
+            .flatten()
+            .unwrap_or_default()
+    }
+
+    /// Empties the buffers and leaves them to the thread's pool, unless it is full.
+    fn give_back(mut self) {
+        self.segments.clear();
+        self.starts.clear();
+        self.items.clear();
+        let _ = GRID_POOL.try_with(|pool| {
+            let mut pool = pool.borrow_mut();
+            if pool.len() < POOLED_GRIDS {
+                pool.push(self);
+            }
+        });
+    }
+}
+
+impl Drop for OutlineGrid {
+    fn drop(&mut self) {
+        GridBuffers {
+            segments: std::mem::take(&mut self.segments),
+            starts: std::mem::take(&mut self.starts),
+            items: std::mem::take(&mut self.items),
+        }
+        .give_back();
+    }
 }
 
 /// Most cells along either side of a grid: a small reach on a large outline widens the
@@ -83,27 +144,32 @@ impl OutlineGrid {
         let rows = ((hi.y - origin.y) / cell).ceil() as usize + 2;
         let n = points.len();
         points.push(points[0]);
-        let segments = points
-            .windows(2)
-            .map(|w| {
-                let d = w[1] - w[0];
-                let len2 = d.hypot2();
-                (d, if len2 > 0.0 { 1.0 / len2 } else { 0.0 })
-            })
-            .collect();
+        let GridBuffers {
+            mut segments,
+            mut starts,
+            mut items,
+        } = GridBuffers::take();
+        segments.extend(points.windows(2).map(|w| {
+            let d = w[1] - w[0];
+            let len2 = d.hypot2();
+            Segment {
+                start: w[0],
+                direction: d,
+                inv_len2: if len2 > 0.0 { 1.0 / len2 } else { 0.0 },
+            }
+        }));
         // Each segment's cells, by its bounding box: `(first cell of each row, columns,
         // rows)`.
-        let boxes: Vec<(usize, usize, usize)> = (0..n)
-            .map(|i| {
-                let [c0, c1, r0, r1] = Self::box_cells(origin, inv_cell, points[i], points[i + 1]);
-                (r0 * cols + c0, c1 - c0 + 1, r1 - r0 + 1)
-            })
-            .collect();
+        let box_of = |i: usize| {
+            let [c0, c1, r0, r1] = Self::box_cells(origin, inv_cell, points[i], points[i + 1]);
+            (r0 * cols + c0, c1 - c0 + 1, r1 - r0 + 1)
+        };
         // Counting sort: count per cell, running sums (each cell's end), then fill each
         // cell from its end down, leaving `starts[k]` at its start.
         let cells = cols * rows;
-        let mut starts = vec![0u32; cells + 1];
-        for &(first, width, height) in &boxes {
+        starts.resize(cells + 1, 0);
+        for i in 0..n {
+            let (first, width, height) = box_of(i);
             for row in 0..height {
                 let k = first + row * cols;
                 for count in &mut starts[k..k + width] {
@@ -115,8 +181,9 @@ impl OutlineGrid {
             starts[k] += starts[k - 1];
         }
         starts[cells] = starts[cells - 1];
-        let mut items = vec![0u32; starts[cells] as usize];
-        for (i, &(first, width, height)) in boxes.iter().enumerate().rev() {
+        items.resize(starts[cells] as usize, 0);
+        for i in (0..n).rev() {
+            let (first, width, height) = box_of(i);
             for row in 0..height {
                 let k = first + row * cols;
                 for start in &mut starts[k..k + width] {
@@ -181,7 +248,11 @@ impl OutlineGrid {
             for col in c0..=c1 {
                 for &i in self.cell_items(row * self.cols + col) {
                     let i = i as usize;
-                    let (a, (d, inv_len2)) = (self.points[i], self.segments[i]);
+                    let Segment {
+                        start: a,
+                        direction: d,
+                        inv_len2,
+                    } = self.segments[i];
                     let t = ((p - a).dot(d) * inv_len2).clamp(0.0, 1.0);
                     let d2 = (a + d * t - p).hypot2();
                     if d2 < best.0 {
@@ -196,8 +267,8 @@ impl OutlineGrid {
         let (d2, i, t) = best;
         let n = self.points.len() - 1;
         let side = |k: usize| {
-            let (a, b) = (self.points[k], self.points[k + 1]);
-            (b - a).cross(p - a)
+            let segment = &self.segments[k];
+            segment.direction.cross(p - segment.start)
         };
         // Inside (left of a counter-clockwise outline) by the nearest segment, or at a
         // vertex by both of its segments: left of both at a convex corner, of either at a
@@ -211,8 +282,8 @@ impl OutlineGrid {
             } else {
                 (if i == 0 { n - 1 } else { i - 1 }, i)
             };
-            let (a, b, c) = (self.points[prev], self.points[next], self.points[next + 1]);
-            let convex = (b - a).cross(c - b) >= 0.0;
+            let convex =
+                (self.segments[prev].direction).cross(self.segments[next].direction) >= 0.0;
             if convex {
                 side(prev) > 0.0 && side(next) > 0.0
             } else {
