@@ -20,7 +20,7 @@ pub struct MeshReport {
     /// Rolling positions checked over one turn.
     pub positions: usize,
     /// Least signed distance between the tooth bodies over the turn (mm; negative: they
-    /// overlap); the check's reach (0.1 m plus the backlash) if nothing comes closer.
+    /// overlap); the check's reach (0.05 m plus the backlash) if nothing comes closer.
     pub least_clearance_mm: f64,
     /// Pitch arc (mm) of the rolling position where it occurs.
     pub least_clearance_at_mm: f64,
