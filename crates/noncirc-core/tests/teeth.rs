@@ -393,3 +393,33 @@ fn a_shift_that_lifts_the_rounding_centre_outside_the_pitch_curve_cuts_the_shift
         "{driven_root} mm"
     );
 }
+
+/// The outline grids' buffers go back to a per-thread pool when a pair is dropped and are
+/// handed to the next pair: a pair cut on used buffers (after a larger and a smaller pair)
+/// is the pair cut on fresh ones, point for point and verdict for verdict.
+#[test]
+fn a_pair_cut_on_reused_grid_buffers_is_the_pair_cut_on_fresh_ones() {
+    let ellipse = |k: f64| {
+        CurveSpec::Ellipse {
+            semi_major_mm: 30.0,
+            eccentricity: k,
+        }
+        .build()
+        .unwrap()
+    };
+    let spec = ToothSpec::default();
+    let fresh = std::thread::spawn(move || {
+        ToothedPair::cut(&ellipse(0.27), 60.0, 18, &ToothSpec::default()).unwrap()
+    })
+    .join()
+    .unwrap();
+    for (k, z) in [(0.1, 40), (0.0, 6), (0.27, 18), (0.2, 24)] {
+        drop(ToothedPair::cut(&ellipse(k), 60.0, z, &spec).unwrap());
+    }
+    let reused = ToothedPair::cut(&ellipse(0.27), 60.0, 18, &spec).unwrap();
+    assert_eq!(reused.report, fresh.report);
+    for (a, b) in reused.gears.iter().zip(&fresh.gears) {
+        assert_eq!(a.outline(), b.outline());
+        assert_eq!(a.flank_of, b.flank_of);
+    }
+}
