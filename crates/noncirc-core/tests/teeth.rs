@@ -423,3 +423,36 @@ fn a_pair_cut_on_reused_grid_buffers_is_the_pair_cut_on_fresh_ones() {
         assert_eq!(a.flank_of, b.flank_of);
     }
 }
+
+/// ncgears' five-lobe curve (curvature through zero) cut by a 40-tooth shaper: the mate's
+/// tips reach a little deeper into the concave roots than the shaper cut. The check says
+/// so, where, and why; a deeper root (1.5 m) clears it.
+#[test]
+fn an_overlap_by_a_concave_arc_is_reported_with_its_cause() {
+    let five_lobe = CurveSpec::Fourier {
+        c0_mm: 30.0,
+        cos_mm: vec![0.0, 0.0, 0.0, 0.0, 1.2],
+        sin_mm: vec![],
+    }
+    .build()
+    .unwrap();
+    let overlap = |dedendum: f64| {
+        let spec = ToothSpec {
+            cutter: noncirc_core::Cutter::Shaper { teeth: 40 },
+            dedendum,
+            tip_radius: 0.2,
+            ..ToothSpec::default()
+        };
+        let pair = ToothedPair::cut(&five_lobe, 60.0, 100, &spec).unwrap();
+        (-pair.report.mesh.least_clearance_mm, pair.report.failures)
+    };
+    let (shallow, failures) = overlap(1.25);
+    assert!(shallow > 1e-3, "{shallow}");
+    assert!(
+        failures.iter().any(|f| f.contains("by a concave arc")),
+        "{failures:?}"
+    );
+    let (deep, _) = overlap(1.5);
+    println!("overlap at dedendum 1.25 m: {shallow} mm, 1.5 m: {deep} mm");
+    assert!(deep < shallow && deep < 1e-3, "{deep} vs {shallow}");
+}

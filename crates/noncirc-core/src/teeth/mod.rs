@@ -406,9 +406,25 @@ fn verdict(
     }
     if mesh.least_clearance_mm < -OVERLAP_TOLERANCE_MM {
         violation += (-mesh.least_clearance_mm - OVERLAP_TOLERANCE_MM) / m;
+        // Near a concave arc the mate's tips, rolling on the mate's own pitch curve rather
+        // than on a shaper's pitch circle, reach deeper into the root than the shaper cut.
+        let pitch = track.perimeter() / f64::from(teeth);
+        let concave_near = (-6..=6).any(|k| {
+            let psi = track.psi_at(mesh.least_clearance_at_mm + f64::from(k) * 0.25 * pitch);
+            [Member::Driver, Member::Driven]
+                .into_iter()
+                .any(|member| track.frame(member, psi).curvature < 0.0)
+        });
         failures.push(format!(
-            "the teeth overlap by {:.4} mm at pitch arc {:.3} mm",
-            -mesh.least_clearance_mm, mesh.least_clearance_at_mm
+            "the teeth overlap by {:.4} mm at pitch arc {:.3} mm{}",
+            -mesh.least_clearance_mm,
+            mesh.least_clearance_at_mm,
+            if concave_near {
+                ", by a concave arc: the mate's tips reach deeper into the root than the \
+                 cutter did (a deeper root, gear.teeth.dedendum, reduces it)"
+            } else {
+                ""
+            }
         ));
     }
     if mesh.contact_ratio_min < 1.0 {
