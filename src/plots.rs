@@ -47,12 +47,19 @@ pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>> {
         },
         &dir.join("convergence"),
     )?;
-    let pareto = &outcome.confirmed.pareto;
-    if outcome.problem.goals() >= 2 {
-        let pts: Vec<(f64, f64)> = pareto.iter().map(|(_, f)| (f.f[0], f.f[1])).collect();
+    // Only feasible designs form the front: with none, the report holds the best
+    // infeasible design, whose goals may be the invalid design's sentinel, not values.
+    let pts: Vec<(f64, f64)> = (outcome.confirmed.pareto.iter())
+        .filter(|(_, f)| f.feasible())
+        .map(|(_, f)| (f.f[0], f.f[1]))
+        .collect();
+    if outcome.problem.goals() >= 2 && !pts.is_empty() {
         files.extend(save(
             &LinesFigure {
-                title: "Pareto set (confirmed at the default resolution)".into(),
+                title: format!(
+                    "Pareto set: {} designs, confirmed at the default resolution",
+                    pts.len()
+                ),
                 x_desc: outcome.problem.goal_names()[0].clone(),
                 y_desc: outcome.problem.goal_names()[1].clone(),
                 series: vec![("first front".into(), pts)],

@@ -54,6 +54,27 @@ impl Goal {
         }
     }
 
+    /// The goal as a person reads it, with its unit once (it is minimised: a maximised
+    /// measure is negated).
+    pub fn label(self) -> String {
+        match self {
+            Goal::LeastMargin => "−(least normalised margin)".to_string(),
+            Goal::Margin(k) => format!("−({} normalised margin)", k.name()),
+            Goal::PickingTipSpeed => "picking tip speed (m/s)".to_string(),
+            Goal::BoxTravel => "box travel while picking (mm)".to_string(),
+            Goal::Measure { measure, maximise } => {
+                // A measure's name may end in its unit (`…_mm`, `…_m_s`).
+                let (name, unit) = (measure.name(), measure.unit());
+                let suffix = format!("_{}", unit.replace('/', "_"));
+                format!(
+                    "{}{} ({unit})",
+                    if maximise { "−" } else { "" },
+                    name.strip_suffix(&suffix).unwrap_or(&name),
+                )
+            }
+        }
+    }
+
     /// The goal's name, as [`Goal::parse`] reads it.
     pub fn name(self) -> String {
         match self {
@@ -154,6 +175,29 @@ mod tests {
         for g in goals {
             assert_eq!(Goal::parse(&g.name()).unwrap(), g, "{}", g.name());
         }
+    }
+
+    #[test]
+    fn a_measure_goal_label_carries_its_unit_once() {
+        for measure in Measure::all() {
+            let label = Goal::Measure {
+                measure,
+                maximise: false,
+            }
+            .label();
+            let unit = measure.unit();
+            assert!(label.ends_with(&format!(" ({unit})")), "{label}");
+            let bare = &label[..label.len() - unit.len() - 3];
+            assert!(
+                !bare.ends_with(&format!("_{}", unit.replace('/', "_"))),
+                "{label}"
+            );
+        }
+        let speed = Goal::Measure {
+            measure: Measure::parse("picking_tip_speed_m_s").unwrap(),
+            maximise: true,
+        };
+        assert_eq!(speed.label(), "−picking_tip_speed (m/s)");
     }
 
     #[test]

@@ -133,21 +133,7 @@ impl SceneProblem {
 
     /// The goals' names, as a person reads them (all minimised).
     pub fn goal_names(&self) -> Vec<String> {
-        self.goals
-            .iter()
-            .map(|g| match g {
-                Goal::LeastMargin => "−(least normalised margin)".to_string(),
-                Goal::Margin(k) => format!("−({} normalised margin)", k.name()),
-                Goal::PickingTipSpeed => "picking tip speed (m/s)".to_string(),
-                Goal::BoxTravel => "box travel while picking (mm)".to_string(),
-                Goal::Measure { measure, maximise } => format!(
-                    "{}{} ({})",
-                    if *maximise { "−" } else { "" },
-                    measure.name(),
-                    measure.unit()
-                ),
-            })
-            .collect()
+        self.goals.iter().map(|g| g.label()).collect()
     }
 
     /// The free parameters' names.
