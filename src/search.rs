@@ -250,7 +250,8 @@ pub struct Confirmed {
 }
 
 impl Confirmed {
-    fn new(problem: &SceneProblem, state: &SearchState) -> Self {
+    /// Confirms the reported designs of `state` at the problem's base resolution.
+    pub fn new(problem: &SceneProblem, state: &SearchState) -> Self {
         // Under `search.confirm_with_teeth`, the same problem with the module rule `teeth`.
         let with_teeth = problem.base().search.confirm_with_teeth.then(|| {
             let mut scene = problem.base().clone();
@@ -461,20 +462,29 @@ pub struct Summary {
     pub stopped_early: bool,
 }
 
-impl Outcome {
-    /// Summary with the reported design confirmed at the scene's resolution.
-    pub fn summary(&self) -> Summary {
-        let base = self.problem.base();
+impl Summary {
+    /// The summary of a search's `state` on `problem`, with its `confirmed` designs; the
+    /// front end that ran it gives the threads, times and whether it stopped early.
+    pub fn new(
+        problem: &SceneProblem,
+        state: &SearchState,
+        confirmed: &Confirmed,
+        threads: usize,
+        seconds: f64,
+        seconds_to_first_feasible: Option<f64>,
+        stopped_early: bool,
+    ) -> Self {
+        let base = problem.base();
         let mut best = BTreeMap::new();
         let mut violations = BTreeMap::new();
         let mut objectives = BTreeMap::new();
         let mut feasible = false;
-        if let Some(c) = self.state.reported() {
-            for (name, x) in self.problem.names().iter().zip(self.problem.decode(&c.u)) {
+        if let Some(c) = state.reported() {
+            for (name, x) in problem.names().iter().zip(problem.decode(&c.u)) {
                 best.insert(name.to_string(), x);
             }
         }
-        if let Some((_, Some(eval))) = &self.confirmed.best {
+        if let Some((_, Some(eval))) = &confirmed.best {
             feasible = eval.total_violation() == 0.0;
             for o in &eval.objectives {
                 violations.insert(o.kind.name().to_string(), o.violation);
@@ -483,31 +493,53 @@ impl Outcome {
         }
         Summary {
             scene: base.name.clone(),
-            algorithm: self.state.algorithm.name(),
+            algorithm: state.algorithm.name(),
             seed: base.search.seed,
-            threads: self.threads,
+            threads,
             feasible,
             best,
             violations,
             objectives,
-            evaluations: self.state.evaluations,
-            confirmations: self.state.confirmations,
-            first_feasible_evaluations: self.state.first_feasible_at,
-            seconds: self.seconds,
-            seconds_to_first_feasible: self.seconds_to_first_feasible,
-            screening_samples_per_turn: self.problem.screening().samples_per_turn,
+            evaluations: state.evaluations,
+            confirmations: state.confirmations,
+            first_feasible_evaluations: state.first_feasible_at,
+            seconds,
+            seconds_to_first_feasible,
+            screening_samples_per_turn: problem.screening().samples_per_turn,
             confirming_samples_per_turn: base.resolution.samples_per_turn,
-            stopped_early: self.stopped_early,
+            stopped_early,
         }
+    }
+}
+
+/// The reported design's scene as `best.toml` holds it: named `<scene>-best`, with no
+/// free parameters (it is one design).
+pub fn best_scene(problem: &SceneProblem, confirmed: &Confirmed) -> Option<Scene> {
+    let (scene, _) = confirmed.best.as_ref()?;
+    let mut scene = scene.clone();
+    scene.name = format!("{}-best", problem.base().name);
+    scene.search.free.clear();
+    Some(scene)
+}
+
+impl Outcome {
+    /// Summary with the reported design confirmed at the scene's resolution.
+    pub fn summary(&self) -> Summary {
+        Summary::new(
+            &self.problem,
+            &self.state,
+            &self.confirmed,
+            self.threads,
+            self.seconds,
+            self.seconds_to_first_feasible,
+            self.stopped_early,
+        )
     }
 
     /// Writes best.toml, pareto.csv/json, history.csv and summary.json into `dir`.
     pub fn write(&self, dir: &Path) -> Result<()> {
         create_dir(dir)?;
-        if let Some((scene, _)) = &self.confirmed.best {
-            let mut scene = scene.clone();
-            scene.name = format!("{}-best", self.problem.base().name);
-            scene.search.free.clear();
+        if let Some(scene) = best_scene(&self.problem, &self.confirmed) {
             write_file(
                 &dir.join("best.toml"),
                 toml_text(&scene, "the best scene")?.as_bytes(),

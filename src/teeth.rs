@@ -172,6 +172,18 @@ impl TeethRun {
     /// `pitch_driver.csv` (the pitch curve to `tolerance_mm` of chord), into `dir`.
     pub fn export(&self, dir: &Path, tolerance_mm: f64) -> Result<Vec<PathBuf>> {
         create_dir(dir)?;
+        let mut paths = Vec::new();
+        for (name, text) in self.files(tolerance_mm) {
+            let path = dir.join(name);
+            write_file(&path, text.as_bytes())?;
+            paths.push(path);
+        }
+        Ok(paths)
+    }
+
+    /// The files [`Self::export`] writes, as `(name, contents)`, for front ends without a
+    /// file system (the studio downloads them).
+    pub fn files(&self, tolerance_mm: f64) -> Vec<(&'static str, String)> {
         let gears = &self.pair.gears;
         let fitted: Vec<Vec<cad::Piece>> = gears
             .iter()
@@ -179,12 +191,6 @@ impl TeethRun {
             .collect();
         let mark = 0.5 * self.pair.module_mm;
         let mut files = Vec::new();
-        let mut write = |name: &str, text: String| -> Result<()> {
-            let path = dir.join(name);
-            write_file(&path, text.as_bytes())?;
-            files.push(path);
-            Ok(())
-        };
         for (k, name) in ["driver", "driven"].iter().enumerate() {
             let own = [cad::Placed {
                 layer: &name.to_uppercase(),
@@ -192,15 +198,15 @@ impl TeethRun {
                 centre: Vec2::ZERO,
                 angle: 0.0,
             }];
-            write(
-                &format!("{name}.dxf"),
+            files.push((
+                ["driver.dxf", "driven.dxf"][k],
                 cad::dxf(&own, &[Vec2::ZERO], mark, &[]),
-            )?;
+            ));
             let mut csv = String::from("x_mm,y_mm\n");
             for p in gears[k].outline() {
                 let _ = writeln!(csv, "{:.9},{:.9}", p.x, p.y);
             }
-            write(&format!("{name}.csv"), csv)?;
+            files.push((["driver.csv", "driven.csv"][k], csv));
         }
         let layers: Vec<String> = self.layout.iter().map(|g| g.name.to_uppercase()).collect();
         let placed: Vec<cad::Placed> = self
@@ -215,15 +221,15 @@ impl TeethRun {
             })
             .collect();
         let marks: Vec<Vec2> = self.layout.iter().map(|g| g.centre_mm).collect();
-        write("train.dxf", cad::dxf(&placed, &marks, mark, &[]))?;
-        write("train.svg", cad::svg(&placed, &marks))?;
+        files.push(("train.dxf", cad::dxf(&placed, &marks, mark, &[])));
+        files.push(("train.svg", cad::svg(&placed, &marks)));
         let mut csv = String::from("x_mm,y_mm\n");
         let [pitch, _] = crate::export::pitch_points(&self.pair.track, 0.0, tolerance_mm);
         for p in pitch {
             let _ = writeln!(csv, "{:.9},{:.9}", p.x, p.y);
         }
-        write("pitch_driver.csv", csv)?;
-        Ok(files)
+        files.push(("pitch_driver.csv", csv));
+        files
     }
 
     /// Lines and arcs per gear at `tolerance_mm`, and the raw point counts.

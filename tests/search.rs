@@ -228,6 +228,52 @@ fn results_do_not_depend_on_the_thread_count() {
     }
 }
 
+/// The studio's worker runs the core's executor on the serial evaluator, a generation at a
+/// time: that is the CLI's run, state and summary alike, for every algorithm.
+#[test]
+fn the_serial_evaluator_run_a_generation_at_a_time_is_the_cli_run() {
+    use noncirc::core::{execute, stop_after_generations, Ending, SceneProblem, SerialEvaluator};
+    use noncirc::search::{Confirmed, Summary};
+    for &algorithm in Algorithm::ALL {
+        let scene = short_search(algorithm);
+        let cli = run(&scene, &options(2, None, None, None)).unwrap();
+        let problem = SceneProblem::new(&scene).unwrap();
+        let mut state = SearchState::new(
+            algorithm,
+            problem.dim(),
+            problem.goals(),
+            scene.search.population,
+            scene.search.seed,
+        );
+        let mut evaluator = SerialEvaluator::new(problem);
+        let budget = scene.search.budget;
+        let mut calls = 0;
+        while execute(
+            &mut state,
+            &mut evaluator,
+            budget,
+            &mut [&mut stop_after_generations(1)],
+        ) == Ending::Stopped
+        {
+            calls += 1;
+        }
+        assert!(calls > 3, "{algorithm:?}: {calls} slices");
+        assert_eq!(
+            fingerprint(&state),
+            fingerprint(&cli.state),
+            "{algorithm:?}"
+        );
+        let confirmed = Confirmed::new(evaluator.problem(), &state);
+        let summary = Summary::new(evaluator.problem(), &state, &confirmed, 2, 0.0, None, false);
+        let expected = cli.summary();
+        assert_eq!(
+            (&summary.best, &summary.objectives, summary.feasible),
+            (&expected.best, &expected.objectives, expected.feasible),
+            "{algorithm:?}"
+        );
+    }
+}
+
 #[test]
 fn a_killed_and_resumed_run_ends_where_an_uninterrupted_one_does() {
     let scene = short_search(Algorithm::De);

@@ -14,6 +14,7 @@ mod nonfinite;
 mod nsga;
 pub mod problem;
 mod rng;
+mod serial;
 #[cfg(test)]
 mod test_problem;
 
@@ -26,6 +27,7 @@ pub use guided::ParameterGuided;
 pub use nsga::{das_dennis, non_dominated_fronts, Nsga, Survival};
 pub use problem::{scale, SceneProblem, INVALID_CV};
 pub use rng::Rng;
+pub use serial::SerialEvaluator;
 
 use crate::error::Error;
 use serde::{Deserialize, Serialize};
