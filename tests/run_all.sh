@@ -7,9 +7,9 @@ echo "== cargo fmt --check"
 cargo fmt --all -- --check
 echo "== cargo clippy --all-targets -- -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
-echo "== the core builds for the browser (wasm32-unknown-unknown)"
-if command -v rustup >/dev/null; then rustup target add wasm32-unknown-unknown >/dev/null 2>&1 || true; fi
-cargo build -p noncirc-core --target wasm32-unknown-unknown
+echo "== the core builds for the browser: the design studio's WebAssembly module"
+bash studio/build.sh
+cargo clippy --target wasm32-unknown-unknown -p noncirc-wasm -- -D warnings
 echo "== the library builds without figures; the Python extension without the CLI's crates"
 cargo check -p noncirc --no-default-features --all-targets
 if cargo tree -p noncirc-py -e normal | grep -E "^[^a-z]*(clap|indicatif|ctrlc|plotters) "; then
@@ -46,3 +46,14 @@ if [ -f python/pyproject.toml ]; then
   cargo build --release --quiet -p noncirc-cli # the teeth peers' tests run the CLI
   "$VENV/bin/python" -m pytest python/tests -q
 fi
+
+echo "== the design studio in a browser (Playwright driving Debian's chromium; docs/studio.md)"
+# .ci/run installs chromium and Node.js; elsewhere set CHROMIUM to a Chromium binary.
+CHROMIUM=${CHROMIUM:-/usr/bin/chromium}
+if [ ! -x "$CHROMIUM" ]; then
+  echo "no Chromium at $CHROMIUM: install Debian's chromium (apt-get install chromium) or set CHROMIUM" >&2
+  exit 1
+fi
+cargo build --release --quiet -p noncirc-cli
+cargo build --release --quiet --example evaluation_time # the native side of the speed comparison
+(cd studio && npm ci --no-audit --no-fund --loglevel=error && CHROMIUM="$CHROMIUM" npm test)

@@ -13,6 +13,8 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
+mod studio;
+
 #[derive(Parser)]
 #[command(
     name = "noncirc",
@@ -170,6 +172,19 @@ enum Command {
     Scenes,
     /// List every measure (`sweep --measure`, goals `min:NAME`/`max:NAME`) with its unit.
     Measures,
+    /// Serve the design studio (build it first: `bash studio/build.sh`) on 127.0.0.1 and
+    /// print its address. docs/studio.md
+    Studio(StudioArgs),
+}
+
+#[derive(clap::Args)]
+struct StudioArgs {
+    /// Port on 127.0.0.1 (0: any free port).
+    #[arg(long, default_value_t = 8737)]
+    port: u16,
+    /// The studio's folder (default: this repository's `studio/`).
+    #[arg(long, value_name = "DIR")]
+    dir: Option<std::path::PathBuf>,
 }
 
 /// The search's progress bar (indicatif), an observer of the core's executor.
@@ -489,6 +504,10 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
                 .map(|m| format!("{:<32} {:<4} {}\n", m.name(), m.unit(), m.description()))
                 .collect();
             out(&lines)?;
+        }
+        Command::Studio(args) => {
+            let dir = args.dir.unwrap_or_else(studio::default_dir);
+            studio::serve(&dir, args.port)?;
         }
         Command::Scenes => {
             let mut lines = String::new();

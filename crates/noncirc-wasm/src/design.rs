@@ -1,0 +1,337 @@
+//! One design being edited: its scene, evaluated on every change, with the views, the
+//! parameter guide, the live sweep and the exports the studio shows.
+
+use noncirc::core::{scale, Evaluation, Evaluator, ObjectiveValue, Param, Scene, SceneProblem};
+use noncirc::report::{check_finite, EvaluationReport};
+use noncirc::scene_file::{apply_overrides, parse_scene, BUILTIN};
+use noncirc::teeth::TeethRun;
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+use crate::{js_error, to_json};
+
+/// A design: a checked scene and its last evaluation.
+#[wasm_bindgen]
+pub struct Design {
+    scene: Scene,
+    evaluator: Evaluator,
+    /// The last successful evaluation of `scene` (`None` until [`Design::evaluate`]).
+    evaluation: Option<Evaluation>,
+    /// The design's toothed gears once cut ([`Design::cut_teeth`]); a change drops them.
+    teeth: Option<TeethRun>,
+}
+
+/// A free parameter of the scene's search space with its current value.
+#[derive(Serialize)]
+struct FreeValue {
+    name: String,
+    value: f64,
+    lower: f64,
+    upper: f64,
+}
+
+/// Beside one parameter: how the worst objective's normalised margin moves with it.
+#[derive(Serialize)]
+struct GuideRow {
+    name: String,
+    /// Change of the worst objective's margin over its scale per tenth of the parameter's
+    /// range (positive: raise the parameter); `None` where the model refuses a neighbour.
+    slope: Option<f64>,
+}
+
+/// The parameter guide: the worst objective and every parameter's pull on it.
+#[derive(Serialize)]
+struct Guide {
+    worst: &'static str,
+    worst_margin: f64,
+    rows: Vec<GuideRow>,
+}
+
+/// One step of a live sweep: each objective's margin over its scale (`None`: refused).
+#[derive(Serialize)]
+struct SweepStep {
+    value: f64,
+    margins: Option<Vec<f64>>,
+}
+
+/// Least change of a normalised margin per tenth of a parameter's range that counts as
+/// the parameter moving the objective (below it, finite differences see rounding).
+const MOVED: f64 = 5e-4;
+
+/// A file for the page to download.
+#[derive(Serialize)]
+struct File {
+    name: String,
+    text: String,
+}
+
+/// Names of the built-in scenes, as JSON.
+#[wasm_bindgen(js_name = builtinScenes)]
+pub fn builtin_scenes() -> String {
+    let names: Vec<&str> = BUILTIN.iter().map(|(name, _)| *name).collect();
+    serde_json::to_string(&names).unwrap_or_default()
+}
+
+/// A built-in scene's file text.
+#[wasm_bindgen(js_name = builtinScene)]
+pub fn builtin_scene(name: &str) -> Result<String, JsError> {
+    BUILTIN
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, text)| text.to_string())
+        .ok_or_else(|| js_error(format!("unknown built-in scene '{name}'")))
+}
+
+/// Each objective's margin over its normalising scale (negative when violated).
+fn normalised_margins(eval: &Evaluation, scene: &Scene) -> Vec<f64> {
+    (eval.objectives.iter())
+        .map(|o: &ObjectiveValue| o.margin / scale(o.kind, &scene.bounds))
+        .collect()
+}
+
+#[wasm_bindgen]
+impl Design {
+    /// Reads scene text (TOML, or JSON if it starts with `{`) exactly as the CLI reads a
+    /// file; `origin` names it in messages.
+    #[wasm_bindgen(constructor)]
+    pub fn new(text: &str, origin: &str) -> Result<Design, JsError> {
+        let scene = parse_scene(text, origin).map_err(js_error)?;
+        Ok(Self {
+            scene,
+            evaluator: Evaluator::new(),
+            evaluation: None,
+            teeth: None,
+        })
+    }
+
+    /// The scene as a TOML file (the CLI's format).
+    #[wasm_bindgen(js_name = toToml)]
+    pub fn to_toml(&self) -> Result<String, JsError> {
+        noncirc::files::toml_text(&self.scene, "the scene").map_err(js_error)
+    }
+
+    /// The scene as a JSON file (the CLI reads it too).
+    #[wasm_bindgen(js_name = toJson)]
+    pub fn to_json(&self) -> Result<String, JsError> {
+        noncirc::files::json_text(&self.scene, "the scene").map_err(js_error)
+    }
+
+    /// Applies `key.path=value` assignments (one per line) as `--set` does, checks the
+    /// scene and evaluates it, returning what [`Design::evaluate`] returns. On an error
+    /// (a bad value, or a design the model refuses) the design and its evaluation are
+    /// unchanged and the message names the bad value.
+    pub fn set(&mut self, assignments: &str) -> Result<String, JsError> {
+        let list: Vec<String> = assignments.lines().map(str::to_string).collect();
+        let scene = apply_overrides(self.scene.clone(), &list).map_err(js_error)?;
+        let previous = std::mem::replace(&mut self.scene, scene);
+        match self.evaluate() {
+            Ok(json) => {
+                self.teeth = None;
+                Ok(json)
+            }
+            Err(e) => {
+                self.scene = previous;
+                Err(e)
+            }
+        }
+    }
+
+    /// The pitch curve's kind (`spline`, `bspline`, `fourier`, …).
+    #[wasm_bindgen(js_name = curveKind)]
+    pub fn curve_kind(&self) -> String {
+        serde_json::to_value(&self.scene.gear.curve)
+            .ok()
+            .and_then(|v| Some(v.get("kind")?.as_str()?.to_string()))
+            .unwrap_or_default()
+    }
+
+    /// A numeric parameter's value (`train.phi0_deg`, `gear.curve.radii_mm[3]`, …).
+    pub fn get(&self, path: &str) -> Result<f64, JsError> {
+        let param = Param::parse(path, &self.scene).map_err(js_error)?;
+        param
+            .get(&self.scene)
+            .ok_or_else(|| js_error(format!("{path} is not set in this scene")))
+    }
+
+    /// The search space's parameters (the scene's `[[search.free]]`, else the default
+    /// space around the design) with their current values, as JSON.
+    #[wasm_bindgen(js_name = freeParameters)]
+    pub fn free_parameters(&self) -> Result<String, JsError> {
+        let problem = SceneProblem::new(&self.scene).map_err(js_error)?;
+        let dim = problem.dim();
+        let (lower, upper) = (
+            problem.decode(&vec![0.0; dim]),
+            problem.decode(&vec![1.0; dim]),
+        );
+        let rows: Vec<FreeValue> = (problem.names().iter().enumerate())
+            .map(|(i, name)| FreeValue {
+                name: name.to_string(),
+                value: self.get(name).unwrap_or(f64::NAN),
+                lower: lower[i],
+                upper: upper[i],
+            })
+            .collect();
+        to_json(&rows)
+    }
+
+    /// Evaluates the design and returns the CLI's `evaluate --format json` report with the
+    /// drawings' data (`{report, view}`), as JSON; a design the model refuses is an error
+    /// and the previous evaluation stays.
+    pub fn evaluate(&mut self) -> Result<String, JsError> {
+        let eval = self.evaluator.evaluate(&self.scene).map_err(js_error)?;
+        let report = EvaluationReport::new(&self.scene, &eval);
+        check_finite(&report).map_err(js_error)?;
+        let view = crate::view::View::new(&self.scene, &eval);
+        self.evaluation = Some(eval);
+        to_json(&serde_json::json!({ "report": report, "view": view }))
+    }
+
+    /// The mechanism at carrier angle `carrier_deg` (after [`Design::evaluate`]), as JSON.
+    pub fn frame(&self, carrier_deg: f64) -> Result<String, JsError> {
+        let kin = (self.evaluation.as_ref())
+            .and_then(|e| e.kinematics.as_ref())
+            .ok_or_else(|| js_error("no three-arm mechanism evaluated yet"))?;
+        let frame = crate::view::Frame::new(kin, self.teeth.as_ref(), carrier_deg.to_radians());
+        to_json(&frame)
+    }
+
+    /// Evaluates the design `n` times without building a report (the page times it).
+    #[wasm_bindgen(js_name = evaluateRepeatedly)]
+    pub fn evaluate_repeatedly(&mut self, n: u32) -> Result<f64, JsError> {
+        let mut sum = 0.0;
+        for _ in 0..n {
+            sum += (self.evaluator.evaluate(&self.scene).map_err(js_error)?).total_violation();
+        }
+        Ok(sum)
+    }
+
+    /// The parameter guide (the paper's heuristic made visible): the objective with the
+    /// least normalised margin among those the free parameters move (an objective pinned
+    /// at its bound whatever the design, as "does not push the seedling" usually is, guides
+    /// nothing), and for each free parameter the central difference of that margin over
+    /// ±0.1 % of the parameter's range, per tenth of the range, as JSON.
+    pub fn guide(&mut self) -> Result<String, JsError> {
+        let problem = SceneProblem::new(&self.scene).map_err(js_error)?;
+        let eval = self.evaluator.evaluate(&self.scene).map_err(js_error)?;
+        let margins = normalised_margins(&eval, &self.scene);
+        let dim = problem.dim();
+        let (lower, upper) = (
+            problem.decode(&vec![0.0; dim]),
+            problem.decode(&vec![1.0; dim]),
+        );
+        let mut scratch = self.scene.clone();
+        // Per parameter: every objective's margin change per tenth of its range.
+        let mut slopes: Vec<Option<Vec<f64>>> = Vec::with_capacity(dim);
+        for (i, name) in problem.names().iter().enumerate() {
+            let param = Param::parse(name, &self.scene).map_err(js_error)?;
+            let x = param.get(&self.scene).unwrap_or(f64::NAN);
+            let h = 1e-3 * (upper[i] - lower[i]);
+            let mut margins_at = |v: f64| {
+                param.set(&mut scratch, v);
+                let m = (self.evaluator.evaluate(&scratch).ok())
+                    .map(|e| normalised_margins(&e, &scratch));
+                param.set(&mut scratch, x);
+                m
+            };
+            slopes.push(match (margins_at(x + h), margins_at(x - h)) {
+                (Some(up), Some(down)) => Some(
+                    (up.iter().zip(&down))
+                        .map(|(u, d)| (u - d) / (2.0 * h) * 0.1 * (upper[i] - lower[i]))
+                        .collect(),
+                ),
+                _ => None,
+            });
+        }
+        let moved =
+            |k: usize| (slopes.iter().flatten()).any(|s| s[k].is_finite() && s[k].abs() > MOVED);
+        let least = |candidates: &mut dyn Iterator<Item = usize>| {
+            candidates.min_by(|&a, &b| margins[a].total_cmp(&margins[b]))
+        };
+        let worst = least(&mut (0..margins.len()).filter(|&k| moved(k)))
+            .or_else(|| least(&mut (0..margins.len())))
+            .ok_or_else(|| js_error("the scene has no objectives"))?;
+        let rows = (problem.names().iter().zip(&slopes))
+            .map(|(name, s)| GuideRow {
+                name: name.to_string(),
+                slope: s.as_ref().map(|s| s[worst]).filter(|s| s.is_finite()),
+            })
+            .collect();
+        to_json(&Guide {
+            worst: eval.objectives[worst].kind.name(),
+            worst_margin: margins[worst],
+            rows,
+        })
+    }
+
+    /// Every objective's normalised margin at `steps` values of `path` from `from` to `to`
+    /// (the paper's §4.2 one parameter at a time), as JSON.
+    pub fn sweep(&mut self, path: &str, from: f64, to: f64, steps: u32) -> Result<String, JsError> {
+        let param = Param::parse(path, &self.scene).map_err(js_error)?;
+        if !(2..=1000).contains(&steps) || !from.is_finite() || !to.is_finite() {
+            return Err(js_error(format!(
+                "sweep of {path}: expected finite ends and 2 to 1000 steps (got {from}, {to}, {steps})"
+            )));
+        }
+        let mut scratch = self.scene.clone();
+        let rows: Vec<SweepStep> = (0..steps)
+            .map(|i| {
+                let value = from + (to - from) * f64::from(i) / f64::from(steps - 1);
+                param.set(&mut scratch, value);
+                let margins = (self.evaluator.evaluate(&scratch).ok())
+                    .map(|e| normalised_margins(&e, &scratch));
+                SweepStep { value, margins }
+            })
+            .collect();
+        to_json(&rows)
+    }
+
+    /// The pitch curves as the CLI's `gear --export` writes them: DXF and SVG, as JSON
+    /// `[{name, text}]`.
+    #[wasm_bindgen(js_name = pitchFiles)]
+    pub fn pitch_files(&self) -> Result<String, JsError> {
+        let pair = (self.evaluation.as_ref())
+            .and_then(Evaluation::pair)
+            .ok_or_else(|| js_error("no gear pair evaluated yet"))?;
+        let outlines = noncirc::export::outlines(pair).map_err(js_error)?;
+        to_json(&[
+            File {
+                name: "pitch_curves.dxf".into(),
+                text: noncirc::export::dxf(&outlines),
+            },
+            File {
+                name: "pitch_curves.svg".into(),
+                text: noncirc::export::svg(&outlines),
+            },
+        ])
+    }
+
+    /// Cuts the design's teeth as `noncirc teeth` does (the frames then draw them) and
+    /// returns its table of checks; a pair that cannot be cut is an error naming why.
+    #[wasm_bindgen(js_name = cutTeeth)]
+    pub fn cut_teeth(&mut self) -> Result<String, JsError> {
+        let run = TeethRun::from_scene(&self.scene, 0.0).map_err(js_error)?;
+        let table = run.table();
+        self.teeth = Some(run);
+        Ok(table)
+    }
+
+    /// Draws pitch curves again instead of teeth.
+    #[wasm_bindgen(js_name = dropTeeth)]
+    pub fn drop_teeth(&mut self) {
+        self.teeth = None;
+    }
+
+    /// The toothed gears as `noncirc teeth --export` writes them (assembled at carrier
+    /// angle `carrier_deg`, chord tolerance 1 µm), as JSON `[{name, text}]`.
+    #[wasm_bindgen(js_name = teethFiles)]
+    pub fn teeth_files(&self, carrier_deg: f64) -> Result<String, JsError> {
+        let run = TeethRun::from_scene(&self.scene, carrier_deg).map_err(js_error)?;
+        let files: Vec<File> = (run.files(1e-3).into_iter())
+            .map(|(name, text)| File {
+                name: name.into(),
+                text,
+            })
+            .collect();
+        to_json(&files)
+    }
+}

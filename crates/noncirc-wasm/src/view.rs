@@ -1,0 +1,156 @@
+//! What the studio draws, as plain numbers (mm, degrees): the pitch curve in polar form,
+//! the tip trajectory by section with its events, tray and ground, and the mechanism at a
+//! carrier angle. The page only scales and strokes them.
+
+use noncirc::core::{unit, Evaluation, Kinematics, Scene, Section, Vec2};
+use noncirc::teeth::{train_layout, TeethRun};
+use serde::Serialize;
+use std::f64::consts::TAU;
+
+/// A polyline (mm).
+type Line = Vec<[f64; 2]>;
+
+/// Points of the pitch curve per turn in the polar plot.
+const CURVE_POINTS: usize = 360;
+
+/// The design's drawings.
+#[derive(Serialize)]
+pub struct View {
+    /// The sun's pitch curve: `[ψ (deg), ρ (mm)]` over one turn.
+    curve: Line,
+    /// The tip's path over one carrier turn, one point per sample (mm).
+    trajectory: Line,
+    /// The trajectory's four sections in the order of motion: `(name, label, path)`.
+    sections: Vec<(&'static str, &'static str, Line)>,
+    picking_mm: Option<[f64; 2]>,
+    planting_mm: Option<[f64; 2]>,
+    /// The tray surface through the picking point's tray (a segment, mm).
+    tray: Option<Line>,
+    /// The ground's height (mm): the planting depth above the lowest point.
+    ground_y_mm: Option<f64>,
+}
+
+impl View {
+    pub fn new(scene: &Scene, eval: &Evaluation) -> Self {
+        let curve = eval.pair().map_or_else(Vec::new, |pair| {
+            (0..=CURVE_POINTS)
+                .map(|i| {
+                    let psi = TAU * i as f64 / CURVE_POINTS as f64;
+                    [psi.to_degrees(), pair.curve().eval(psi).rho]
+                })
+                .collect()
+        });
+        let mut view = Self {
+            curve,
+            trajectory: Vec::new(),
+            sections: Vec::new(),
+            picking_mm: None,
+            planting_mm: None,
+            tray: None,
+            ground_y_mm: None,
+        };
+        let (Some(kin), Some(events)) = (&eval.kinematics, &eval.events) else {
+            return view;
+        };
+        let agro = &scene.agronomy;
+        view.trajectory = kin.tips().iter().map(|&p| p.into()).collect();
+        if let Some(anatomy) = eval.anatomy(agro) {
+            view.sections = (Section::ALL.into_iter())
+                .map(|s| {
+                    let span = anatomy.section(s).carrier_deg;
+                    (s.name(), s.label(), tip_path(kin, span))
+                })
+                .collect();
+        }
+        view.picking_mm = Some(events.picking.tip_mm.into());
+        view.planting_mm = Some(events.planting.tip_mm.into());
+        let n = unit(agro.tray_normal_deg.to_radians());
+        let surface = events.picking.tip_mm - n * agro.tray_depth_mm;
+        let along = n.turn_90() * 120.0;
+        view.tray = Some(vec![(surface - along).into(), (surface + along).into()]);
+        view.ground_y_mm = Some(events.y_min_mm + agro.planting_depth_mm);
+        view
+    }
+}
+
+/// The tip's path over a carrier span (deg), a point per degree and both ends.
+fn tip_path(kin: &Kinematics, span_deg: [f64; 2]) -> Line {
+    let steps = (span_deg[1] - span_deg[0]).abs().ceil().max(1.0) as u32;
+    (0..=steps)
+        .map(|i| {
+            let deg = span_deg[0] + (span_deg[1] - span_deg[0]) * f64::from(i) / f64::from(steps);
+            kin.state_at(deg.to_radians()).tip.into()
+        })
+        .collect()
+}
+
+/// One arm set at a carrier angle: its intermediate gear, planet gear and arm.
+#[derive(Serialize)]
+struct ArmSet {
+    intermediate: Line,
+    planet: Line,
+    /// From the planet's centre to the tip (mm).
+    arm: Line,
+}
+
+/// The mechanism at one carrier angle: the sun and the three arm sets (arm k where arm I
+/// stands 120°·k of carrier earlier), pitch curves or, when cut, teeth.
+#[derive(Serialize)]
+pub struct Frame {
+    carrier_deg: f64,
+    sun: Line,
+    arms: Vec<ArmSet>,
+}
+
+/// An outline in its own frame, turned by `angle` (rad) and moved to `centre`.
+fn place(outline: &[Vec2], centre: Vec2, angle: f64) -> Line {
+    let turn = unit(angle);
+    outline
+        .iter()
+        .map(|p| (centre + p.rotated(turn)).into())
+        .collect()
+}
+
+impl Frame {
+    pub fn new(kin: &Kinematics, teeth: Option<&TeethRun>, theta: f64) -> Self {
+        let pair = kin.pair();
+        let (sun_outline, inter_outline) = match teeth {
+            Some(run) => (
+                run.pair.gears[0].outline().to_vec(),
+                run.pair.gears[1].outline().to_vec(),
+            ),
+            None => (pair.driver_points(), pair.driven_points()),
+        };
+        let sun_angle = kin.spec().sun_angle();
+        let arms = (0..3)
+            .map(|k| {
+                let at = theta - TAU * k as f64 / 3.0;
+                let st = kin.state_at(at);
+                let (intermediate, planet) = match teeth {
+                    Some(run) => {
+                        let layout = train_layout(kin, &run.pair, at);
+                        let (i, p) = (&layout[1], &layout[2]);
+                        (
+                            place(&inter_outline, i.centre_mm, i.angle_deg.to_radians()),
+                            place(&sun_outline, p.centre_mm, p.angle_deg.to_radians()),
+                        )
+                    }
+                    None => (
+                        place(&inter_outline, st.o2, st.theta2),
+                        place(&sun_outline, st.o3, st.theta3),
+                    ),
+                };
+                ArmSet {
+                    intermediate,
+                    planet,
+                    arm: vec![st.o3.into(), st.tip.into()],
+                }
+            })
+            .collect();
+        Self {
+            carrier_deg: theta.to_degrees(),
+            sun: place(&sun_outline, Vec2::ZERO, sun_angle),
+            arms,
+        }
+    }
+}

@@ -1,0 +1,592 @@
+// The design studio: edit a design, see the mechanism and its objectives on every change,
+// search in a worker, export. All numbers come from the noncirc core compiled to
+// WebAssembly (pkg/, built by studio/build.sh): the page draws, it computes nothing.
+
+import init, { Design, builtinScene, builtinScenes } from './pkg/noncirc_wasm.js';
+import * as P from './plots.js';
+
+const $ = (id) => document.getElementById(id);
+
+/** The train's parameters: path, the paper's symbol, unit, meaning. */
+const TRAIN = [
+  ['train.phi0_deg', 'Φ0', 'deg', 'initial carrier (housing) angle'],
+  ['train.beta0_deg', 'β0', 'deg', 'arm installation angle'],
+  ['train.arm_length_mm', 'S', 'mm', 'arm length'],
+  ['train.pusher_offset_mm', 'H1', 'mm', 'pusher offset'],
+  ['train.gamma0_deg', 'γ0', 'deg', 'initial planet-carrier angle'],
+];
+/** Agronomic inputs and the carrier speed: path, label, unit. */
+const AGRONOMY = [
+  ['train.carrier_speed_rpm', 'carrier speed', 'rpm'],
+  ['agronomy.tray_normal_deg', 'tray normal', 'deg'],
+  ['agronomy.tray_depth_mm', 'tray depth', 'mm'],
+  ['agronomy.plant_spacing_mm', 'plant spacing', 'mm'],
+  ['agronomy.seedling_height_mm', 'seedling height', 'mm'],
+  ['agronomy.planting_depth_mm', 'planting depth', 'mm'],
+  ['agronomy.arm_half_width_mm', 'arm half width', 'mm'],
+  ['agronomy.housing_margin_mm', 'housing margin', 'mm'],
+];
+const RESOLUTION = [['resolution.samples_per_turn', 'samples per turn', '1/turn']];
+/** Measures shown in the table (the report has every measure). */
+const SHOWN_MEASURES = /^(loop_|picking_|planting_|return_|trajectory_|section_)/;
+
+const state = {
+  design: null,
+  /** The last good evaluation: `{report, view}`. */
+  out: null,
+  free: [],
+  undo: [],
+  redo: [],
+  /** The scene text of the last committed change (the undo stack's next entry). */
+  committed: '',
+  carrier: 0,
+  playing: false,
+  worker: null,
+  searchResult: null,
+  /** Milliseconds of each live update (set + evaluate + draw), for the browser test. */
+  timings: [],
+  /** Bounds of the mechanism plot, fixed per design so that the picture does not jump. */
+  mechanismBounds: null,
+};
+window.studio = { state, ready: null };
+
+// ---------------------------------------------------------------- fields and messages
+
+/** Shows `message` beside `field` (the field keeps what the user typed), or clears it. */
+function fieldMessage(field, message) {
+  const box = field.closest('.row, td')?.querySelector('.msg') ?? $('file-error');
+  field.classList.toggle('invalid', Boolean(message));
+  field.setAttribute('aria-invalid', message ? 'true' : 'false');
+  if (box) { box.textContent = message ?? ''; box.hidden = !message && box.id === 'file-error'; }
+}
+
+/**
+ * Applies `key=value` assignments; on success redraws and returns true, on an error shows
+ * the core's message beside `field` and keeps the last good design.
+ */
+function apply(assignments, field = null) {
+  const t0 = performance.now();
+  let text;
+  try {
+    text = state.design.set(assignments);
+  } catch (e) {
+    if (field) fieldMessage(field, e.message); else showFileError(e.message);
+    return false;
+  }
+  if (field) fieldMessage(field, null);
+  show(JSON.parse(text), field);
+  state.timings.push(performance.now() - t0);
+  return true;
+}
+
+/** Records the current design as a step of the undo history, if it changed. */
+function commit() {
+  const now = state.design.toToml();
+  if (now === state.committed) return;
+  state.undo.push(state.committed);
+  state.redo = [];
+  state.committed = now;
+  updateUndoButtons();
+}
+
+function updateUndoButtons() {
+  $('undo').disabled = state.undo.length === 0;
+  $('redo').disabled = state.redo.length === 0;
+}
+
+/** Replaces the design with scene text (a file, a built-in, an undo step); false on error. */
+function load(text, origin) {
+  let design, out;
+  try {
+    design = new Design(text, origin);
+    out = JSON.parse(design.evaluate());
+  } catch (e) {
+    design?.free();
+    showFileError(e.message);
+    return false;
+  }
+  state.design?.free();
+  state.design = design;
+  state.mechanismBounds = null;
+  $('teeth').checked = false;
+  $('teeth-msg').textContent = '';
+  showFileError(null);
+  buildFields();
+  show(out, null);
+  return true;
+}
+
+function showFileError(message) {
+  const box = $('file-error');
+  box.textContent = message ?? '';
+  box.hidden = !message;
+}
+
+/** A labelled numeric field (with a slider when `range` is given) bound to `path`. */
+function numberRow(parent, path, label, unit, { range = null, title = '' } = {}) {
+  const row = document.createElement('div');
+  row.className = range ? 'row slider' : 'row';
+  const id = 'f-' + path.replace(/[^a-z0-9]/gi, '-');
+  row.innerHTML = `<label for="${id}" title="${title}">${label}</label>`;
+  let slider = null;
+  if (range) {
+    slider = document.createElement('input');
+    Object.assign(slider, { type: 'range', min: range[0], max: range[1], step: (range[1] - range[0]) / 400 });
+    slider.setAttribute('aria-label', `${label} (${unit})`);
+    row.appendChild(slider);
+  }
+  const input = document.createElement('input');
+  Object.assign(input, { type: 'number', id, step: 'any' });
+  input.dataset.path = path;
+  row.appendChild(input);
+  const u = document.createElement('span'); u.className = 'unit'; u.textContent = unit; row.appendChild(u);
+  const guide = document.createElement('span'); guide.className = 'guide'; guide.dataset.guide = path; row.appendChild(guide);
+  const msg = document.createElement('span'); msg.className = 'msg'; row.appendChild(msg);
+  parent.appendChild(row);
+  input.addEventListener('input', () => {
+    if (input.value.trim() === '' || !input.checkValidity()) {
+      fieldMessage(input, `${path}: '${input.value}' is not a number`);
+      return;
+    }
+    if (apply(`${path}=${input.value}`, input) && slider) slider.value = input.value;
+  });
+  input.addEventListener('change', () => { if (!input.classList.contains('invalid')) commit(); });
+  if (slider) {
+    slider.addEventListener('input', () => { if (apply(`${path}=${slider.value}`, input)) input.value = slider.value; });
+    slider.addEventListener('change', commit);
+  }
+}
+
+/** The editing fields of the current design (its kind, control points and train). */
+function buildFields() {
+  state.free = JSON.parse(state.design.freeParameters());
+  const range = (path) => state.free.find((f) => f.name === path);
+  const train = $('train'); train.replaceChildren();
+  for (const [path, sym, unit, title] of TRAIN) {
+    const f = range(path);
+    numberRow(train, path, `${sym} <span class="unit">${path.split('.')[1]}</span>`, unit, { range: f ? [f.lower, f.upper] : null, title });
+  }
+  const agro = $('agronomy'); agro.replaceChildren();
+  for (const [path, label, unit] of AGRONOMY) numberRow(agro, path, label, unit);
+  const res = $('resolution'); res.replaceChildren();
+  for (const [path, label, unit] of RESOLUTION) numberRow(res, path, label, unit);
+  const body = $('points').tBodies[0]; body.replaceChildren();
+  const radii = pointValues('radii_mm');
+  radii.forEach((_, i) => {
+    const tr = body.insertRow();
+    tr.insertCell().textContent = i;
+    for (const list of ['radii_mm', 'angles_deg']) {
+      const td = tr.insertCell();
+      const input = document.createElement('input');
+      const path = `gear.curve.${list}[${i}]`;
+      Object.assign(input, { type: 'number', step: 'any' });
+      input.dataset.path = path;
+      input.setAttribute('aria-label', `control point ${i} ${list === 'radii_mm' ? 'radius (mm)' : 'angle (deg)'}`);
+      td.appendChild(input);
+      const msg = document.createElement('span'); msg.className = 'msg'; td.appendChild(msg);
+      input.addEventListener('input', () => {
+        if (input.value.trim() === '') { fieldMessage(input, `${path}: empty`); return; }
+        apply(`${path}=${input.value}`, input);
+      });
+      input.addEventListener('change', () => { if (!input.classList.contains('invalid')) commit(); });
+    }
+    const guide = tr.insertCell();
+    guide.className = 'guide';
+    guide.dataset.guide = `gear.curve.radii_mm[${i}]`;
+  });
+  const sweep = $('sweep-param');
+  const chosen = sweep.value;
+  sweep.replaceChildren(...state.free.map((f) => new Option(f.name, f.name)));
+  if (state.free.some((f) => f.name === chosen)) sweep.value = chosen;
+}
+
+/** The control points' list (`radii_mm` or `angles_deg`) of the current design. */
+function pointValues(list) {
+  const out = [];
+  for (let i = 0; ; i++) {
+    try { out.push(state.design.get(`gear.curve.${list}[${i}]`)); } catch { return out; }
+  }
+}
+
+/** Writes the design's values into every field not being edited or in error. */
+function refreshFields(except) {
+  for (const input of document.querySelectorAll('input[data-path]')) {
+    if (input === except || input.classList.contains('invalid')) continue;
+    try { input.value = +state.design.get(input.dataset.path).toPrecision(7); } catch { input.value = ''; }
+    const slider = input.parentElement.querySelector('input[type=range]');
+    if (slider) slider.value = input.value;
+  }
+  const kind = $('curve-kind');
+  const current = state.design.curveKind();
+  if (![...kind.options].some((o) => o.value === current)) kind.add(new Option(current, current));
+  kind.value = current;
+}
+
+// ---------------------------------------------------------------- drawing
+
+/** Redraws everything from an evaluation. */
+function show(out, except) {
+  state.out = out;
+  refreshFields(except);
+  drawGauges(out.report);
+  drawPolar(out.view);
+  drawTrajectory(out.view, out.report);
+  drawMechanism();
+  drawMeasures(out.report);
+  drawGuide();
+  drawSweep();
+  const r = out.report;
+  $('status').textContent = `${r.scene} — ${r.samples_per_turn} samples/turn` +
+    (r.centre_distance_mm ? `, centre distance ${r.centre_distance_mm.toFixed(3)} mm` : '');
+}
+
+function drawGauges(report) {
+  const box = $('gauges'); box.replaceChildren();
+  let met = 0;
+  for (const o of report.objectives) {
+    const ok = o.violation === 0;
+    met += ok;
+    const lo = o.lower ?? null, hi = o.upper ?? null;
+    // The bar spans the bounds with room either side; a one-sided bound gets a span from it.
+    const span = lo !== null && hi !== null ? hi - lo : Math.max(Math.abs(lo ?? hi) * 0.5, 1);
+    const a = (lo ?? hi - 2 * span) - span * 0.5, b = (hi ?? lo + 2 * span) + span * 0.5;
+    const pos = (v) => Math.min(100, Math.max(0, (v - a) / (b - a) * 100));
+    const g = document.createElement('div');
+    g.className = `gauge ${ok ? 'met' : 'missed'}`;
+    g.dataset.objective = o.name;
+    const bound = lo !== null && hi !== null ? `[${lo}, ${hi}]` : lo !== null ? `≥ ${lo}` : `≤ ${hi}`;
+    g.innerHTML = `<div class="head"><span>${o.label}</span><span><b class="value-text">${P.fmt(+o.value.toPrecision(4))}</b> ${o.unit} <span class="unit">${bound}</span> <span class="verdict">${ok ? 'met' : 'missed'}</span></span></div>
+      <div class="bar" role="meter" aria-label="${o.label}" aria-valuenow="${o.value}"><div class="ok" style="left:${pos(lo ?? a)}%;right:${100 - pos(hi ?? b)}%"></div><div class="value" style="left:calc(${pos(o.value)}% - 1px)"></div></div>`;
+    box.appendChild(g);
+  }
+  const v = $('verdict');
+  v.textContent = `${met} of ${report.objectives.length} met`;
+  v.className = met === report.objectives.length ? 'met' : 'missed';
+}
+
+function drawPolar(view) {
+  const svg = $('polar'); P.clear(svg);
+  const angles = pointValues('angles_deg'), radii = pointValues('radii_mm');
+  const rmax = Math.max(...view.curve.map(([, r]) => r), ...radii) * 1.08;
+  const c = 180, s = 160 / rmax;
+  const xy = (deg, r) => [c + r * s * Math.cos(deg * Math.PI / 180), c - r * s * Math.sin(deg * Math.PI / 180)];
+  for (const r of P.ticks(0, rmax, 4).filter((r) => r > 0)) {
+    P.el('circle', { cx: c, cy: c, r: r * s, fill: 'none', stroke: '#e3e7eb' }, svg);
+    P.el('text', { x: c + 3, y: c - r * s - 2, fill: '#5b6573' }, svg).textContent = `${r} mm`;
+  }
+  for (let d = 0; d < 360; d += 30) {
+    const [x, y] = xy(d, rmax);
+    P.el('line', { x1: c, y1: c, x2: x, y2: y, stroke: '#eef1f4' }, svg);
+    const [tx, ty] = xy(d, rmax * 1.0);
+    P.el('text', { x: tx, y: ty + 4, 'text-anchor': d > 90 && d < 270 ? 'start' : 'end', fill: '#5b6573' }, svg).textContent = `${d}°`;
+  }
+  const d = view.curve.map(([deg, r], i) => `${i ? 'L' : 'M'}${xy(deg, r).map((v) => v.toFixed(2)).join(',')}`).join('') + 'Z';
+  P.el('path', { d, fill: '#1f5fa81a', stroke: '#1f5fa8', 'stroke-width': 2 }, svg);
+  radii.forEach((r, i) => {
+    const [x, y] = xy(angles[i], r);
+    const h = P.el('circle', { cx: x, cy: y, r: 6, fill: '#1f5fa8', stroke: '#fff', 'stroke-width': 1.5, tabindex: 0, class: 'handle', 'data-point': i, role: 'slider', 'aria-label': `control point ${i} radius`, 'aria-valuenow': r }, svg);
+    P.el('title', {}, h).textContent = `point ${i}: ${r.toFixed(2)} mm at ${angles[i]}°`;
+  });
+  svg.dataset.scale = s;
+}
+
+/** Drags control points along their rays (pointer) or steps them (arrow keys). */
+function wireDragging() {
+  const svg = $('polar');
+  let dragging = null, pending = null;
+  const toRadius = (ev, i) => {
+    const pt = svg.createSVGPoint(); pt.x = ev.clientX; pt.y = ev.clientY;
+    const p = pt.matrixTransform(svg.getScreenCTM().inverse());
+    const a = pointValues('angles_deg')[i] * Math.PI / 180;
+    const along = ((p.x - 180) * Math.cos(a) - (p.y - 180) * Math.sin(a)) / +svg.dataset.scale;
+    return Math.max(0.5, +along.toFixed(3));
+  };
+  const flush = () => {
+    if (pending) { apply(`gear.curve.radii_mm[${pending.i}]=${pending.r}`, null); pending = null; }
+  };
+  svg.addEventListener('pointerdown', (ev) => {
+    const i = ev.target.dataset?.point;
+    if (i === undefined) return;
+    dragging = +i;
+    svg.setPointerCapture(ev.pointerId);
+    ev.preventDefault();
+  });
+  svg.addEventListener('pointermove', (ev) => {
+    if (dragging === null) return;
+    const first = pending === null;
+    pending = { i: dragging, r: toRadius(ev, dragging) };
+    if (first) requestAnimationFrame(flush);
+  });
+  const end = () => { if (dragging !== null) { flush(); dragging = null; commit(); } };
+  svg.addEventListener('pointerup', end);
+  svg.addEventListener('pointercancel', end);
+  svg.addEventListener('keydown', (ev) => {
+    const i = ev.target.dataset?.point;
+    if (i === undefined) return;
+    const step = { ArrowUp: 0.5, ArrowRight: 0.5, ArrowDown: -0.5, ArrowLeft: -0.5 }[ev.key];
+    if (!step) return;
+    ev.preventDefault();
+    const r = pointValues('radii_mm')[+i] + step * (ev.shiftKey ? 10 : 1);
+    if (apply(`gear.curve.radii_mm[${i}]=${r}`, null)) { commit(); svg.querySelector(`[data-point="${i}"]`)?.focus(); }
+  });
+}
+
+function drawTrajectory(view, report) {
+  const svg = $('trajectory'); P.clear(svg);
+  if (!view.trajectory.length) return;
+  const [x, y] = P.bounds([view.trajectory, view.tray ?? [], [[0, 0]]], 0.06);
+  const { sx, sy, plot, box } = P.axes(svg, { x, y, equal: true, xlabel: 'x (mm)', ylabel: 'y (mm)' });
+  P.el('circle', { cx: sx(0), cy: sy(0), r: 3, fill: '#5b6573' }, plot);
+  if (view.ground_y_mm !== null) P.line(plot, [[x[0] - 1e4, view.ground_y_mm], [x[1] + 1e4, view.ground_y_mm]], sx, sy, { stroke: '#8d5a2b', 'stroke-width': 2 });
+  if (view.tray) P.line(plot, view.tray, sx, sy, { stroke: '#7f8c8d', 'stroke-width': 2, 'stroke-dasharray': '6 3' });
+  for (const [name, , pts] of view.sections) P.line(plot, pts, sx, sy, { stroke: P.SECTION_COLOURS[name], 'stroke-width': 2.5 });
+  if (view.picking_mm) P.dot(plot, view.picking_mm, sx, sy, { fill: '#000', r: 5 });
+  if (view.planting_mm) P.dot(plot, view.planting_mm, sx, sy, { fill: '#fff', stroke: '#000', 'stroke-width': 2, r: 5 });
+  const ev = report.events;
+  const items = view.sections.map(([name, label]) => [label, P.SECTION_COLOURS[name]]);
+  items.push(['ground', '#8d5a2b'], ['tray surface', '#7f8c8d']);
+  P.legend(svg, box, items);
+  if (ev) {
+    const anchor = (p) => (sx(p[0]) > box[0] + box[2] * 0.6 ? { x: sx(p[0]) - 8, 'text-anchor': 'end' } : { x: sx(p[0]) + 8 });
+    P.el('text', { ...anchor(view.picking_mm), y: sy(view.picking_mm[1]) - 8, fill: '#000' }, plot).textContent =
+      `picking θ=${ev.picking_carrier_deg.toFixed(1)}°, ${ev.picking_tip_speed_m_s.toFixed(2)} m/s`;
+    P.el('text', { ...anchor(view.planting_mm), y: sy(view.planting_mm[1]) + 16, fill: '#000' }, plot).textContent =
+      `planting θ=${ev.planting_carrier_deg.toFixed(1)}°`;
+  }
+}
+
+function drawMechanism() {
+  const svg = $('mechanism'); P.clear(svg);
+  if (!state.out?.view.trajectory.length) {
+    P.el('text', { x: 20, y: 40 }, svg).textContent = 'This scene has no three-arm mechanism.';
+    return;
+  }
+  const frame = JSON.parse(state.design.frame(state.carrier));
+  if (!state.mechanismBounds) {
+    const parts = [frame.sun, state.out.view.trajectory, ...frame.arms.flatMap((a) => [a.intermediate, a.planet, a.arm])];
+    state.mechanismBounds = P.bounds(parts, 0.08);
+  }
+  const [x, y] = state.mechanismBounds;
+  const { sx, sy, plot } = P.axes(svg, { x, y, equal: true, xlabel: 'x (mm)', ylabel: 'y (mm)' });
+  P.line(plot, state.out.view.trajectory.concat([state.out.view.trajectory[0]]), sx, sy, { stroke: '#b8c0c9', 'stroke-width': 1 });
+  if (state.out.view.ground_y_mm !== null) P.line(plot, [[x[0] - 1e4, state.out.view.ground_y_mm], [x[1] + 1e4, state.out.view.ground_y_mm]], sx, sy, { stroke: '#8d5a2b', 'stroke-width': 2 });
+  if (state.out.view.tray) P.line(plot, state.out.view.tray, sx, sy, { stroke: '#7f8c8d', 'stroke-width': 2, 'stroke-dasharray': '6 3' });
+  const closed = (pts) => pts.concat([pts[0]]);
+  P.line(plot, closed(frame.sun), sx, sy, { stroke: '#3c3c3c', 'stroke-width': 1.2, fill: '#3c3c3c14' });
+  frame.arms.forEach((arm, k) => {
+    const colour = P.ARM_COLOURS[k];
+    P.line(plot, closed(arm.intermediate), sx, sy, { stroke: colour, 'stroke-width': 1.2 });
+    P.line(plot, closed(arm.planet), sx, sy, { stroke: colour, 'stroke-width': 1.2 });
+    P.line(plot, arm.arm, sx, sy, { stroke: colour, 'stroke-width': 5, 'stroke-linecap': 'round', 'stroke-opacity': 0.8 });
+    P.dot(plot, arm.arm[1], sx, sy, { fill: colour, r: 4 });
+  });
+  $('carrier-out').textContent = `${Math.round(state.carrier)}°`;
+}
+
+function drawMeasures(report) {
+  const table = $('measures'); table.replaceChildren();
+  for (const m of report.measures) {
+    if (!SHOWN_MEASURES.test(m.name)) continue;
+    const tr = table.insertRow();
+    tr.insertCell().textContent = m.description;
+    const v = tr.insertCell(); v.className = 'num'; v.textContent = P.fmt(+m.value.toPrecision(5));
+    tr.insertCell().textContent = m.unit;
+    tr.title = m.name;
+  }
+}
+
+/** The guide's advice for one parameter: which way, and how much the worst margin moves. */
+function guideText(slope, worst, short) {
+  if (slope === null) return 'a neighbour is refused';
+  if (Math.abs(slope) < 5e-4) return short ? '· no effect' : `· no effect on ${worst}`;
+  const arrow = slope > 0 ? '▲' : '▼';
+  const size = `${slope > 0 ? '+' : '−'}${Math.abs(slope).toPrecision(2)}`;
+  return short ? `${arrow} ${size}` : `${arrow} ${slope > 0 ? 'raise' : 'lower'} it: ${worst} margin ${size} per tenth of range`;
+}
+
+function drawGuide() {
+  let guide;
+  try { guide = JSON.parse(state.design.guide()); } catch { return; }
+  for (const span of document.querySelectorAll('[data-guide]')) span.textContent = '';
+  for (const row of guide.rows) {
+    const span = document.querySelector(`[data-guide="${CSS.escape(row.name)}"]`);
+    const radius = /radii_mm/.test(row.name);
+    const text = guideText(row.slope, guide.worst, radius);
+    if (span) { span.textContent = text; span.title = `${row.name}: raising it by a tenth of its search range moves the ${guide.worst} margin (over its scale) by ${row.slope}`; }
+    const handle = $('polar').querySelector(`[data-point="${row.name.match(/radii_mm\[(\d+)\]/)?.[1]}"]`);
+    if (handle && row.slope !== null) handle.querySelector('title').textContent += ` — guide: ${text}`;
+  }
+  $('verdict').title = `worst objective: ${guide.worst} (margin/scale ${guide.worst_margin.toPrecision(3)})`;
+  $('guide-head').textContent = `guide: ${guide.worst}`;
+}
+
+function drawSweep() {
+  const svg = $('sweep'); P.clear(svg);
+  const name = $('sweep-param').value;
+  const f = state.free.find((p) => p.name === name);
+  if (!f) return;
+  let rows;
+  try { rows = JSON.parse(state.design.sweep(name, f.lower, f.upper, 41)); } catch (e) { P.el('text', { x: 20, y: 30 }, svg).textContent = e.message; return; }
+  const clip = (v) => Math.max(-2.5, Math.min(2.5, v));
+  const { sx, sy, plot, box } = P.axes(svg, { x: [f.lower, f.upper], y: [-2.5, 2.5], xlabel: name, ylabel: 'margin / scale (clipped to ±2.5)', margin: [46, 150, 10, 36] });
+  P.line(plot, [[f.lower, 0], [f.upper, 0]], sx, sy, { stroke: '#5b6573', 'stroke-width': 1, 'stroke-dasharray': '4 3' });
+  const names = state.out.report.objectives.map((o) => o.name);
+  names.forEach((n, k) => {
+    const pts = rows.map((r) => [r.value, r.margins ? clip(r.margins[k]) : NaN]);
+    P.line(plot, pts, sx, sy, { stroke: P.COLOURS[k], 'stroke-width': 1.6 });
+  });
+  const value = state.design.get(name);
+  P.line(plot, [[value, -3], [value, 3]], sx, sy, { stroke: '#000', 'stroke-width': 1 });
+  const [l, t, pw] = box;
+  names.forEach((n, k) => {
+    P.el('line', { x1: l + pw + 8, x2: l + pw + 24, y1: t + 10 + 14 * k, y2: t + 10 + 14 * k, stroke: P.COLOURS[k], 'stroke-width': 3 }, svg);
+    P.el('text', { x: l + pw + 28, y: t + 14 + 14 * k }, svg).textContent = n;
+  });
+}
+
+// ---------------------------------------------------------------- search
+
+function drawConvergence(history) {
+  const svg = $('convergence'); P.clear(svg);
+  if (!history.length) return;
+  const evals = history.map((h) => h.evaluations);
+  const logcv = history.map((h) => Math.log10(Math.max(h.best_cv, 1e-6)));
+  const { sx, sy, plot } = P.axes(svg, { x: [0, Math.max(...evals)], y: [Math.min(-6.2, ...logcv), Math.max(0.5, ...logcv) + 0.2], xlabel: 'evaluations', ylabel: 'log10 best violation (−6: feasible)' });
+  P.line(plot, history.map((h, i) => [h.evaluations, logcv[i]]), sx, sy, { stroke: '#c62828', 'stroke-width': 2 });
+}
+
+function startSearch() {
+  const budget = Number($('budget').value), seed = Number($('seed').value);
+  for (const [field, v] of [[$('budget'), budget], [$('seed'), seed]]) {
+    if (!Number.isSafeInteger(v) || v < (field.id === 'budget' ? 1 : 0)) {
+      fieldMessage(field, `${field.id} = '${field.value}': expected a whole number${field.id === 'budget' ? ' ≥ 1' : ' ≥ 0'}`);
+      return;
+    }
+    fieldMessage(field, null);
+  }
+  state.worker ??= new Worker('worker.js', { type: 'module' });
+  const history = [];
+  state.searchResult = null;
+  $('search-start').disabled = true; $('search-stop').disabled = false;
+  $('search-load').disabled = true; $('search-checkpoint').disabled = true;
+  $('search-status').textContent = 'starting…';
+  $('search-result').textContent = '';
+  state.worker.onmessage = ({ data }) => {
+    if (data.type === 'error') {
+      $('search-status').textContent = data.message;
+      $('search-start').disabled = false; $('search-stop').disabled = true;
+    } else if (data.type === 'progress') {
+      const p = data.progress;
+      if (p.last) history.push(p.last);
+      $('search-progress').value = Math.min(1, p.evaluations / p.budget);
+      const rate = p.evaluations / (data.searchingMs / 1000);
+      $('search-status').textContent = `${p.evaluations} / ${p.budget} evaluations, ${Math.round(rate)} per s` +
+        (p.first_feasible_evaluations !== null ? `, feasible since ${p.first_feasible_evaluations}` : ', none feasible yet');
+      drawConvergence(history);
+    } else if (data.type === 'result') {
+      state.searchResult = data;
+      const s = data.result.summary;
+      drawConvergence(data.result.history);
+      $('search-start').disabled = false; $('search-stop').disabled = true;
+      $('search-load').disabled = false; $('search-checkpoint').disabled = false;
+      $('search-status').textContent = `${s.stopped_early ? 'stopped' : 'done'}: ${s.evaluations} evaluations in ${s.seconds.toFixed(2)} s — ` +
+        (s.feasible ? 'the best design meets every objective' : 'no design meeting every objective was found');
+      $('search-result').textContent = Object.entries(s.best).map(([k, v]) => `${k} = ${+v.toPrecision(8)}`).join('\n');
+      window.studio.lastSearch = { ...data, rate: s.evaluations / (data.searchingMs / 1000) };
+    }
+  };
+  state.worker.postMessage({ type: 'start', scene: state.design.toToml(), algorithm: $('algorithm').value, budget, seed });
+}
+
+function loadSearchResult() {
+  const s = state.searchResult?.result.summary;
+  if (!s) return;
+  const assignments = Object.entries(s.best).map(([k, v]) => `${k}=${v}`).join('\n');
+  if (apply(assignments, null)) { state.mechanismBounds = null; drawMechanism(); commit(); }
+}
+
+// ---------------------------------------------------------------- wiring
+
+function wire() {
+  const builtin = $('builtin');
+  for (const name of JSON.parse(builtinScenes())) builtin.add(new Option(name, name));
+  builtin.value = 'paper-search';
+  builtin.addEventListener('change', () => {
+    const before = state.design.toToml();
+    if (load(builtinScene(builtin.value), builtin.value)) { state.undo.push(before); state.redo = []; state.committed = state.design.toToml(); updateUndoButtons(); }
+  });
+  $('open').addEventListener('change', async (ev) => {
+    const file = ev.target.files[0];
+    if (!file) return;
+    const before = state.design.toToml();
+    if (load(await file.text(), file.name)) { state.undo.push(before); state.redo = []; state.committed = state.design.toToml(); updateUndoButtons(); }
+    ev.target.value = '';
+  });
+  const name = () => state.out?.report.scene || 'scene';
+  $('save-toml').addEventListener('click', () => P.download(`${name()}.toml`, state.design.toToml(), 'application/toml'));
+  $('save-json').addEventListener('click', () => P.download(`${name()}.json`, state.design.toJson(), 'application/json'));
+  const step = (from, to) => {
+    if (!from.length) return;
+    const text = from.pop();
+    to.push(state.design.toToml());
+    load(text, 'undo history');
+    state.committed = state.design.toToml();
+    updateUndoButtons();
+  };
+  $('undo').addEventListener('click', () => step(state.undo, state.redo));
+  $('redo').addEventListener('click', () => step(state.redo, state.undo));
+  document.addEventListener('keydown', (ev) => {
+    if (!(ev.ctrlKey || ev.metaKey) || ev.target.matches('input[type=number]')) return;
+    if (ev.key === 'z' && !ev.shiftKey) { ev.preventDefault(); step(state.undo, state.redo); }
+    if (ev.key === 'y' || (ev.key === 'z' && ev.shiftKey)) { ev.preventDefault(); step(state.redo, state.undo); }
+  });
+  $('curve-kind').addEventListener('change', (ev) => { if (apply(`gear.curve.kind="${ev.target.value}"`, ev.target)) commit(); });
+  $('carrier').addEventListener('input', (ev) => { state.carrier = +ev.target.value; drawMechanism(); });
+  $('play').addEventListener('click', () => {
+    state.playing = !state.playing;
+    $('play').textContent = state.playing ? 'Pause' : 'Play';
+    let last = performance.now();
+    const tick = (now) => {
+      if (!state.playing) return;
+      // One carrier turn in 6 s.
+      state.carrier = (state.carrier + (now - last) * 0.06) % 360;
+      last = now;
+      $('carrier').value = Math.floor(state.carrier);
+      drawMechanism();
+      requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  });
+  $('teeth').addEventListener('change', (ev) => {
+    const msg = $('teeth-msg');
+    if (ev.target.checked) {
+      try { msg.textContent = ''; state.design.cutTeeth(); msg.className = 'guide'; msg.textContent = 'teeth cut and checked over a full turn (noncirc teeth)'; } catch (e) { msg.className = 'msg'; msg.textContent = e.message; ev.target.checked = false; }
+    } else state.design.dropTeeth();
+    drawMechanism();
+  });
+  const files = (json) => { for (const f of JSON.parse(json)) P.download(f.name, f.text); };
+  $('export-pitch').addEventListener('click', () => { try { files(state.design.pitchFiles()); } catch (e) { $('teeth-msg').className = 'msg'; $('teeth-msg').textContent = e.message; } });
+  $('export-teeth').addEventListener('click', () => { try { files(state.design.teethFiles(state.carrier)); } catch (e) { $('teeth-msg').className = 'msg'; $('teeth-msg').textContent = e.message; } });
+  for (const b of document.querySelectorAll('button.fig')) {
+    b.addEventListener('click', () => {
+      const svg = $(b.dataset.fig);
+      if (b.classList.contains('png')) P.downloadPng(svg, `${b.dataset.fig}.png`);
+      else P.download(`${b.dataset.fig}.svg`, P.svgText(svg), 'image/svg+xml');
+    });
+  }
+  $('sweep-param').addEventListener('change', drawSweep);
+  $('search-start').addEventListener('click', startSearch);
+  $('search-stop').addEventListener('click', () => state.worker?.postMessage({ type: 'stop' }));
+  $('search-load').addEventListener('click', loadSearchResult);
+  $('search-checkpoint').addEventListener('click', () => P.download('checkpoint.json', state.searchResult.checkpoint, 'application/json'));
+  wireDragging();
+}
+
+window.studio.ready = (async () => {
+  await init();
+  wire();
+  load(builtinScene('paper-search'), 'paper-search');
+  state.committed = state.design.toToml();
+  updateUndoButtons();
+  document.body.dataset.ready = 'true';
+})();

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Builds the design studio's WebAssembly module into studio/pkg/: the noncirc-wasm crate
+# for wasm32-unknown-unknown, then wasm-bindgen at the crate's exact version (installed
+# with `cargo install --locked` when missing or of another version).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if command -v rustup >/dev/null; then rustup target add wasm32-unknown-unknown >/dev/null 2>&1 || true; fi
+version=$(sed -n 's/^wasm-bindgen = "=\(.*\)"$/\1/p' crates/noncirc-wasm/Cargo.toml)
+if [ "$(wasm-bindgen --version 2>/dev/null)" != "wasm-bindgen $version" ]; then
+  echo "installing wasm-bindgen-cli $version"
+  cargo install --locked --quiet wasm-bindgen-cli --version "$version"
+fi
+cargo build --release --quiet --target wasm32-unknown-unknown -p noncirc-wasm
+wasm-bindgen --target web --no-typescript --out-dir studio/pkg \
+  target/wasm32-unknown-unknown/release/noncirc_wasm.wasm
+echo "studio built: studio/pkg/ ($(du -h studio/pkg/noncirc_wasm_bg.wasm | cut -f1) of WebAssembly)"

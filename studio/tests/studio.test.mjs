@@ -1,0 +1,297 @@
+// The design studio in a real browser (Debian's chromium driven by Playwright): the page
+// loads cleanly, a dragged control point changes the gauges and the page's numbers equal
+// the CLI's, a search equals the CLI's one-thread run, bad input is reported and loses
+// nothing, undo/redo and exports work; speeds are measured and written to
+// test-results/speed.json (docs/studio.md reports them; they are not asserted).
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawn, execFileSync } from 'node:child_process';
+import { mkdtempSync, writeFileSync, readFileSync, mkdirSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, dirname } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const studioDir = join(dirname(fileURLToPath(import.meta.url)), '..');
+const repo = join(studioDir, '..');
+const cli = join(repo, 'target/release/noncirc');
+const results = join(studioDir, 'test-results');
+const tmp = mkdtempSync(join(tmpdir(), 'noncirc-studio-'));
+mkdirSync(results, { recursive: true });
+
+let server, browser, page;
+const problems = [];
+const speed = {};
+
+/** The CLI's output for `args`, as JSON. */
+function cliJson(...args) {
+  return JSON.parse(execFileSync(cli, [...args, '--format', 'json'], { encoding: 'utf8' }));
+}
+
+/** Writes `text` to a temporary scene file and returns its path. */
+function sceneFile(name, text) {
+  const path = join(tmp, name);
+  writeFileSync(path, text);
+  return path;
+}
+
+/**
+ * Asserts that two JSON values agree: the same keys and strings, numbers within `rel` of
+ * each other (relative to the larger, with an absolute floor of 1e-300 for zeros).
+ * Returns the largest relative difference seen.
+ */
+function assertClose(a, b, rel, path = '') {
+  if (typeof a === 'number' && typeof b === 'number') {
+    const d = Math.abs(a - b) / Math.max(Math.abs(a), Math.abs(b), 1e-300);
+    assert.ok(a === b || d <= rel, `${path}: ${a} against ${b} (relative ${d})`);
+    return a === b ? 0 : d;
+  }
+  if (a === null || b === null || typeof a !== 'object') {
+    assert.deepEqual(a, b, path);
+    return 0;
+  }
+  assert.deepEqual(Object.keys(a).sort(), Object.keys(b).sort(), `${path}: keys`);
+  return Math.max(0, ...Object.keys(a).map((k) => assertClose(a[k], b[k], rel, `${path}.${k}`)));
+}
+
+/** Median, least and largest of a list. */
+function spread(xs) {
+  const s = [...xs].sort((p, q) => p - q);
+  return { median: s[Math.floor(s.length / 2)], min: s[0], max: s[s.length - 1], n: s.length };
+}
+
+const pageScene = () => page.evaluate(() => window.studio.state.design.toToml());
+const pageReport = () => page.evaluate(() => window.studio.state.out.report);
+
+before(async () => {
+  server = spawn(cli, ['studio', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+  const url = await new Promise((resolve, reject) => {
+    server.stdout.on('data', (d) => { const m = String(d).match(/http:\/\/[0-9.:]+\//); if (m) resolve(m[0]); });
+    server.on('exit', (code) => reject(new Error(`noncirc studio exited with ${code}`)));
+  });
+  browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+  });
+  const context = await browser.newContext({ viewport: { width: 1500, height: 1100 }, acceptDownloads: true });
+  page = await context.newPage();
+  page.on('console', (m) => { if (m.type() === 'error' || m.type() === 'warning') problems.push(`${m.type()}: ${m.text()}`); });
+  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  page.on('requestfailed', (r) => problems.push(`request failed: ${r.url()}`));
+  // Nothing may come from the network: every request stays on the studio's server.
+  page.on('request', (r) => { if (!r.url().startsWith(url) && !r.url().startsWith('data:') && !r.url().startsWith('blob:')) problems.push(`outside request: ${r.url()}`); });
+  await page.goto(url);
+  await page.waitForSelector('body[data-ready=true]', { timeout: 30000 });
+});
+
+after(async () => {
+  writeFileSync(join(results, 'speed.json'), JSON.stringify(speed, null, 2) + '\n');
+  console.log(JSON.stringify(speed, null, 2));
+  await browser?.close();
+  server?.kill();
+});
+
+test('the page loads the default design and its numbers are the CLI\'s', async () => {
+  const report = await pageReport();
+  const expected = cliJson('evaluate', sceneFile('loaded.toml', await pageScene()));
+  speed.loaded_max_relative_difference = assertClose(report, expected, 1e-12);
+  assert.equal(await page.locator('.gauge').count(), expected.objectives.length);
+});
+
+test('a control point dragged with the mouse changes the gauges, and the page equals the CLI', async () => {
+  const before = await pageReport();
+  const handle = page.locator('[data-point="7"]');
+  const box = await handle.boundingBox();
+  const [x, y] = [box.x + box.width / 2, box.y + box.height / 2];
+  const timingsBefore = await page.evaluate(() => window.studio.state.timings.length);
+  // Point 7 sits at 225°: outward is down and to the left on the screen. The pointer goes
+  // 20 px along the ray in 20 moves; the radius follows by the plot's scale (px per mm).
+  const scale = await page.evaluate(() => {
+    const svg = document.getElementById('polar');
+    return svg.getScreenCTM().a * Number(svg.dataset.scale);
+  });
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  const step = Math.SQRT1_2;
+  for (let i = 1; i <= 20; i++) await page.mouse.move(x - i * step, y + i * step);
+  await page.mouse.up();
+  const after = await pageReport();
+  const radius = await page.evaluate(() => window.studio.state.design.get('gear.curve.radii_mm[7]'));
+  // Within a pixel: the browser rounds pointer positions.
+  assert.ok(Math.abs(radius - (12 + 20 / scale)) < 1 / scale, `radius 7 is ${radius} mm, expected ${12 + 20 / scale}`);
+  const module = (r) => r.objectives.find((o) => o.name === 'module').value;
+  assert.notEqual(module(after), module(before), 'the module changed');
+  for (const o of after.objectives) {
+    const shown = await page.locator(`[data-objective="${o.name}"] .value-text`).textContent();
+    assert.equal(Number(shown), +o.value.toPrecision(4), `the ${o.name} gauge shows the new value`);
+  }
+  const expected = cliJson('evaluate', sceneFile('dragged.toml', await pageScene()));
+  speed.dragged_max_relative_difference = assertClose(after, expected, 1e-12);
+  const timings = await page.evaluate((n) => window.studio.state.timings.slice(n), timingsBefore);
+  assert.ok(timings.length >= 5, `the drag updated the design ${timings.length} times`);
+  speed.drag_update_ms = spread(timings);
+});
+
+test('undo and redo step through the design\'s history', async () => {
+  const dragged = await pageScene();
+  await page.click('#undo');
+  assert.equal(await page.evaluate(() => window.studio.state.design.get('gear.curve.radii_mm[7]')), 12);
+  await page.click('#redo');
+  assert.equal(await pageScene(), dragged);
+});
+
+test('a bad value in a field is reported beside it, kept as typed, and the design stays', async () => {
+  const scene = await pageScene();
+  const field = page.locator('input[data-path="train.arm_length_mm"]');
+  await field.fill('-5');
+  const message = page.locator('.row:has(input[data-path="train.arm_length_mm"]) .msg');
+  assert.match(await message.textContent(), /train\.arm_length_mm = -5 is out of range/);
+  assert.equal(await field.inputValue(), '-5');
+  assert.equal(await pageScene(), scene);
+  await field.fill('145');
+  assert.equal(await message.textContent(), '');
+  assert.equal(await pageScene(), scene);
+});
+
+test('a scene file that does not parse, or that the model refuses, gives the message and keeps the design', async () => {
+  const scene = await pageScene();
+  const bad = readFileSync(join(repo, 'scenes/paper.toml'), 'utf8').replace('phi0_deg = 86', 'phi0_deg = "86"');
+  await page.setInputFiles('#open', { name: 'bad.toml', mimeType: 'text/plain', buffer: Buffer.from(bad) });
+  await page.waitForSelector('#file-error:not([hidden])');
+  assert.match(await page.locator('#file-error').textContent(), /bad\.toml: line \d+: key 'train\.phi0_deg'/);
+  assert.equal(await pageScene(), scene);
+  const refused = readFileSync(join(repo, 'scenes/paper.toml'), 'utf8').replace('arm_length_mm = 145', 'arm_length_mm = -145');
+  await page.setInputFiles('#open', { name: 'refused.toml', mimeType: 'text/plain', buffer: Buffer.from(refused) });
+  await page.waitForFunction(() => /arm_length_mm/.test(document.getElementById('file-error').textContent));
+  assert.match(await page.locator('#file-error').textContent(), /train\.arm_length_mm = -145 is out of range/);
+  assert.equal(await pageScene(), scene);
+});
+
+test('exported pitch curves are the CLI\'s files', async () => {
+  const downloads = [];
+  page.on('download', (d) => downloads.push(d));
+  await page.click('#export-pitch');
+  await page.waitForFunction(() => true);
+  for (let i = 0; i < 50 && downloads.length < 2; i++) await page.waitForTimeout(100);
+  assert.deepEqual(downloads.map((d) => d.suggestedFilename()).sort(), ['pitch_curves.dxf', 'pitch_curves.svg']);
+  const dir = join(tmp, 'gear');
+  execFileSync(cli, ['gear', sceneFile('export.toml', await pageScene()), '--export', dir]);
+  for (const d of downloads) {
+    const path = join(tmp, `page-${d.suggestedFilename()}`);
+    await d.saveAs(path);
+    assert.equal(readFileSync(path, 'utf8'), readFileSync(join(dir, d.suggestedFilename()), 'utf8'), d.suggestedFilename());
+  }
+});
+
+test('one evaluation in the browser against the native one', async () => {
+  const wasm = await page.evaluate(() => {
+    const d = window.studio.state.design;
+    d.evaluateRepeatedly(200);
+    const rounds = [];
+    for (let r = 0; r < 15; r++) {
+      const t0 = performance.now();
+      d.evaluateRepeatedly(2000);
+      rounds.push((performance.now() - t0) / 2000 * 1000);
+    }
+    return rounds;
+  });
+  const file = sceneFile('timed.toml', await pageScene());
+  const native = JSON.parse(execFileSync('cargo', ['run', '--release', '--quiet', '--example', 'evaluation_time', '--', file], { cwd: repo, encoding: 'utf8' }));
+  speed.evaluation_us = { wasm: spread(wasm), native };
+  speed.evaluation_ratio = spread(wasm).median / native.median_us;
+  assert.ok(Number.isFinite(speed.evaluation_ratio));
+});
+
+test('a search in the worker reaches a feasible design equal to the CLI\'s one-thread run', async () => {
+  await page.selectOption('#builtin', 'paper-search');
+  await page.waitForFunction(() => window.studio.state.design.get('gear.curve.radii_mm[7]') === 12);
+  await page.selectOption('#algorithm', 'de');
+  await page.fill('#budget', '20000');
+  await page.fill('#seed', '1');
+  const scene = await pageScene();
+  await page.click('#search-start');
+  await page.waitForSelector('#search-load:not([disabled])', { timeout: 180000 });
+  const run = await page.evaluate(() => window.studio.lastSearch);
+  const s = run.result.summary;
+  assert.equal(s.feasible, true, 'the search found a design meeting every objective');
+  const native = cliJson('optimise', sceneFile('search.toml', scene), '--algorithm', 'de', '--budget', '20000', '--seed', '1', '--threads', '1');
+  assert.deepEqual(s.best, native.best, 'the same design, bit for bit');
+  speed.search_objectives_max_relative_difference = assertClose(s.objectives, native.objectives, 1e-12);
+  assert.equal(s.evaluations, native.evaluations);
+  assert.equal(s.first_feasible_evaluations, native.first_feasible_evaluations);
+  // Throughput: a longer native run, so that its start-up does not count.
+  const long = cliJson('optimise', sceneFile('search.toml', scene), '--algorithm', 'de', '--budget', '60000', '--seed', '1', '--threads', '1');
+  speed.search_per_s = { wasm_worker: run.rate, native_one_thread: long.evaluations / long.seconds };
+  speed.search_ratio = run.rate / speed.search_per_s.native_one_thread;
+  await page.click('#search-load');
+  const loaded = await pageReport();
+  assert.equal(loaded.feasible, true, 'the loaded result meets every objective in the editor');
+  assert.equal(await page.locator('#verdict').textContent(), `${loaded.objectives.length} of ${loaded.objectives.length} met`);
+});
+
+test('the cut teeth are drawn and exported as the CLI cuts them', async () => {
+  const pitchPoints = await page.evaluate(() => JSON.parse(window.studio.state.design.frame(0)).sun.length);
+  await page.check('#teeth');
+  assert.match(await page.locator('#teeth-msg').textContent(), /teeth cut/);
+  const toothedPoints = await page.evaluate(() => JSON.parse(window.studio.state.design.frame(0)).sun.length);
+  assert.ok(toothedPoints > 5 * pitchPoints, `a toothed outline has ${toothedPoints} points against the pitch curve's ${pitchPoints}`);
+  const downloads = [];
+  page.on('download', (d) => downloads.push(d));
+  await page.click('#export-teeth');
+  for (let i = 0; i < 50 && downloads.length < 7; i++) await page.waitForTimeout(100);
+  const dir = join(tmp, 'teeth');
+  execFileSync(cli, ['teeth', sceneFile('teeth.toml', await pageScene()), '--export', dir, '--carrier-deg', '0']);
+  const names = downloads.map((d) => d.suggestedFilename()).sort();
+  assert.deepEqual(names, ['driven.csv', 'driven.dxf', 'driver.csv', 'driver.dxf', 'pitch_driver.csv', 'train.dxf', 'train.svg']);
+  for (const d of downloads) {
+    const path = join(tmp, `page-${d.suggestedFilename()}`);
+    await d.saveAs(path);
+    assert.equal(readFileSync(path, 'utf8'), readFileSync(join(dir, d.suggestedFilename()), 'utf8'), d.suggestedFilename());
+  }
+  await page.uncheck('#teeth');
+});
+
+test('a figure downloads as standalone SVG', async () => {
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('button.fig[data-fig="trajectory"]:not(.png)')]);
+  const path = join(tmp, 'trajectory.svg');
+  await download.saveAs(path);
+  const text = readFileSync(path, 'utf8');
+  assert.match(text, /^<svg[^>]*xmlns="http:\/\/www\.w3\.org\/2000\/svg"/);
+  assert.match(text, /seedling removal/);
+});
+
+test('the keyboard reaches a control point and steps its radius', async () => {
+  const r0 = await page.evaluate(() => window.studio.state.design.get('gear.curve.radii_mm[3]'));
+  await page.locator('[data-point="3"]').focus();
+  await page.keyboard.press('ArrowUp');
+  await page.keyboard.press('ArrowUp');
+  assert.equal(await page.evaluate(() => window.studio.state.design.get('gear.curve.radii_mm[3]')), r0 + 1);
+  await page.keyboard.press('Control+z');
+  assert.equal(await page.evaluate(() => window.studio.state.design.get('gear.curve.radii_mm[3]')), r0 + 0.5);
+});
+
+test('a stopped search\'s checkpoint resumes in the CLI to the uninterrupted run\'s result', async () => {
+  await page.fill('#budget', '200000');
+  await page.fill('#seed', '4');
+  const scene = await pageScene();
+  await page.click('#search-start');
+  await page.waitForFunction(() => /evaluations,/.test(document.getElementById('search-status').textContent));
+  await page.click('#search-stop');
+  await page.waitForSelector('#search-checkpoint:not([disabled])', { timeout: 60000 });
+  const stopped = await page.evaluate(() => window.studio.lastSearch);
+  assert.equal(stopped.result.summary.stopped_early, true);
+  assert.ok(stopped.result.summary.evaluations < 200000);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#search-checkpoint')]);
+  const checkpoint = join(tmp, 'checkpoint.json');
+  await download.saveAs(checkpoint);
+  const resumed = cliJson('optimise', '--resume', checkpoint, '--threads', '1');
+  const whole = cliJson('optimise', sceneFile('whole.toml', scene), '--algorithm', 'de', '--budget', '200000', '--seed', '4', '--threads', '1');
+  assert.deepEqual(resumed.best, whole.best);
+  assert.equal(resumed.evaluations, whole.evaluations);
+});
+
+test('a screenshot of the page is saved, and nothing went wrong in the console', async () => {
+  await page.screenshot({ path: join(results, 'studio.png'), fullPage: true });
+  assert.deepEqual(problems, []);
+});
