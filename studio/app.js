@@ -27,6 +27,8 @@ const AGRONOMY = [
   ['agronomy.housing_margin_mm', 'housing margin', 'mm'],
 ];
 const RESOLUTION = [['resolution.samples_per_turn', 'samples per turn', '1/turn']];
+/** Most samples per turn at which the guide and the sweep follow every change. */
+const LIVE_SAMPLES = 1440;
 /** Measures shown in the table (the report has every measure). */
 const SHOWN_MEASURES = /^(loop_|picking_|planting_|return_|trajectory_|section_)/;
 
@@ -43,10 +45,12 @@ const state = {
   playing: false,
   worker: null,
   searchResult: null,
-  /** Milliseconds of each live update (set + evaluate + draw), for the browser test. */
+  /** Milliseconds of each live update (set, evaluate, draw, style and layout), for the browser test. */
   timings: [],
-  /** Bounds of the mechanism plot, fixed per design so that the picture does not jump. */
+  /** Bounds of the mechanism and trajectory plots, kept while they hold the drawing (so
+   *  that a drag does not rescale the picture at every step). */
   mechanismBounds: null,
+  trajectoryBounds: null,
 };
 window.studio = { state, ready: null };
 
@@ -75,6 +79,9 @@ function apply(assignments, field = null) {
   }
   if (field) fieldMessage(field, null);
   show(JSON.parse(text), field);
+  // Style and layout now, so that the timing covers them (the browser would do them before
+  // the next paint anyway; raster happens off this thread).
+  void document.body.offsetHeight;
   state.timings.push(performance.now() - t0);
   return true;
 }
@@ -108,6 +115,7 @@ function load(text, origin) {
   state.design?.free();
   state.design = design;
   state.mechanismBounds = null;
+  state.trajectoryBounds = null;
   $('teeth').checked = false;
   $('teeth-msg').textContent = '';
   showFileError(null);
@@ -145,7 +153,7 @@ function numberRow(parent, path, label, unit, { range = null, title = '' } = {})
   parent.appendChild(row);
   input.addEventListener('input', () => {
     if (input.value.trim() === '' || !input.checkValidity()) {
-      fieldMessage(input, `${path}: '${input.value}' is not a number`);
+      fieldMessage(input, `${path}: expected a finite number`);
       return;
     }
     if (apply(`${path}=${input.value}`, input) && slider) slider.value = input.value;
@@ -185,7 +193,7 @@ function buildFields() {
       td.appendChild(input);
       const msg = document.createElement('span'); msg.className = 'msg'; td.appendChild(msg);
       input.addEventListener('input', () => {
-        if (input.value.trim() === '') { fieldMessage(input, `${path}: empty`); return; }
+        if (input.value.trim() === '') { fieldMessage(input, `${path}: expected a finite number`); return; }
         apply(`${path}=${input.value}`, input);
       });
       input.addEventListener('change', () => { if (!input.classList.contains('invalid')) commit(); });
@@ -212,9 +220,12 @@ function pointValues(list) {
 function refreshFields(except) {
   for (const input of document.querySelectorAll('input[data-path]')) {
     if (input === except || input.classList.contains('invalid')) continue;
-    try { input.value = +state.design.get(input.dataset.path).toPrecision(7); } catch { input.value = ''; }
+    let text = '';
+    try { text = String(+state.design.get(input.dataset.path).toPrecision(7)); } catch { /* unset */ }
+    if (input.value === text) continue;
+    input.value = text;
     const slider = input.parentElement.querySelector('input[type=range]');
-    if (slider) slider.value = input.value;
+    if (slider) slider.value = text;
   }
   const kind = $('curve-kind');
   const current = state.design.curveKind();
@@ -233,17 +244,33 @@ function show(out, except) {
   drawTrajectory(out.view, out.report);
   drawMechanism();
   drawMeasures(out.report);
-  drawGuide();
-  drawSweep();
+  // The guide and the sweep evaluate about 80 neighbours: live at the usual resolutions,
+  // on request above LIVE_SAMPLES (at 786 432 samples a turn they would take seconds).
+  const live = out.report.samples_per_turn <= LIVE_SAMPLES;
+  $('update-response').hidden = live;
+  if (live) { drawGuide(); drawSweep(); } else clearGuide();
   const r = out.report;
   $('status').textContent = `${r.scene} — ${r.samples_per_turn} samples/turn` +
     (r.centre_distance_mm ? `, centre distance ${r.centre_distance_mm.toFixed(3)} mm` : '');
 }
 
+/** The gauges: built once per set of objectives, then updated in place. */
 function drawGauges(report) {
-  const box = $('gauges'); box.replaceChildren();
+  const box = $('gauges');
+  const names = report.objectives.map((o) => o.name).join();
+  if (box.dataset.names !== names) {
+    box.replaceChildren();
+    for (const o of report.objectives) {
+      const g = document.createElement('div');
+      g.dataset.objective = o.name;
+      g.innerHTML = `<div class="head"><span>${o.label}</span><span><b class="value-text"></b> ${o.unit} <span class="unit bound"></span> <span class="verdict"></span></span></div>
+        <div class="bar" role="meter" aria-label="${o.label}"><div class="ok"></div><div class="value"></div></div>`;
+      box.appendChild(g);
+    }
+    box.dataset.names = names;
+  }
   let met = 0;
-  for (const o of report.objectives) {
+  report.objectives.forEach((o, k) => {
     const ok = o.violation === 0;
     met += ok;
     const lo = o.lower ?? null, hi = o.upper ?? null;
@@ -251,43 +278,58 @@ function drawGauges(report) {
     const span = lo !== null && hi !== null ? hi - lo : Math.max(Math.abs(lo ?? hi) * 0.5, 1);
     const a = (lo ?? hi - 2 * span) - span * 0.5, b = (hi ?? lo + 2 * span) + span * 0.5;
     const pos = (v) => Math.min(100, Math.max(0, (v - a) / (b - a) * 100));
-    const g = document.createElement('div');
+    const g = box.children[k];
     g.className = `gauge ${ok ? 'met' : 'missed'}`;
-    g.dataset.objective = o.name;
-    const bound = lo !== null && hi !== null ? `[${lo}, ${hi}]` : lo !== null ? `≥ ${lo}` : `≤ ${hi}`;
-    g.innerHTML = `<div class="head"><span>${o.label}</span><span><b class="value-text">${P.fmt(+o.value.toPrecision(4))}</b> ${o.unit} <span class="unit">${bound}</span> <span class="verdict">${ok ? 'met' : 'missed'}</span></span></div>
-      <div class="bar" role="meter" aria-label="${o.label}" aria-valuenow="${o.value}"><div class="ok" style="left:${pos(lo ?? a)}%;right:${100 - pos(hi ?? b)}%"></div><div class="value" style="left:calc(${pos(o.value)}% - 1px)"></div></div>`;
-    box.appendChild(g);
-  }
+    g.querySelector('.value-text').textContent = P.fmt(+o.value.toPrecision(4));
+    g.querySelector('.bound').textContent = lo !== null && hi !== null ? `[${lo}, ${hi}]` : lo !== null ? `≥ ${lo}` : `≤ ${hi}`;
+    g.querySelector('.verdict').textContent = ok ? 'met' : 'missed';
+    g.querySelector('.bar').setAttribute('aria-valuenow', o.value);
+    const band = g.querySelector('.ok');
+    band.style.left = `${pos(lo ?? a)}%`;
+    band.style.right = `${100 - pos(hi ?? b)}%`;
+    g.querySelector('.value').style.left = `calc(${pos(o.value)}% - 1px)`;
+  });
   const v = $('verdict');
   v.textContent = `${met} of ${report.objectives.length} met`;
   v.className = met === report.objectives.length ? 'met' : 'missed';
 }
 
 function drawPolar(view) {
-  const svg = $('polar'); P.clear(svg);
+  const svg = $('polar');
   const angles = pointValues('angles_deg'), radii = pointValues('radii_mm');
-  const rmax = Math.max(...view.curve.map(([, r]) => r), ...radii) * 1.08;
+  const reach = Math.max(...view.curve.map(([, r]) => r), ...radii);
+  // The scale stays while the curve fills 70 % to 100 % of it (no rescaling at each step of
+  // a drag), so the grid is drawn again only when the scale changes.
+  if (!(state.polarMax >= reach && state.polarMax <= reach / 0.7)) state.polarMax = reach * 1.12;
+  const rmax = state.polarMax;
   const c = 180, s = 160 / rmax;
   const xy = (deg, r) => [c + r * s * Math.cos(deg * Math.PI / 180), c - r * s * Math.sin(deg * Math.PI / 180)];
-  for (const r of P.ticks(0, rmax, 4).filter((r) => r > 0)) {
-    P.el('circle', { cx: c, cy: c, r: r * s, fill: 'none', stroke: '#e3e7eb' }, svg);
-    P.el('text', { x: c + 3, y: c - r * s - 2, fill: '#5b6573' }, svg).textContent = `${r} mm`;
+  if (svg.dataset.rmax !== String(rmax)) {
+    P.clear(svg);
+    for (const r of P.ticks(0, rmax, 4).filter((r) => r > 0)) {
+      P.el('circle', { cx: c, cy: c, r: r * s, fill: 'none', stroke: '#e3e7eb' }, svg);
+      P.el('text', { x: c + 3, y: c - r * s - 2, fill: '#5b6573' }, svg).textContent = `${r} mm`;
+    }
+    for (let d = 0; d < 360; d += 30) {
+      const [x, y] = xy(d, rmax);
+      P.el('line', { x1: c, y1: c, x2: x, y2: y, stroke: '#eef1f4' }, svg);
+      P.el('text', { x, y: y + 4, 'text-anchor': d > 90 && d < 270 ? 'start' : 'end', fill: '#5b6573' }, svg).textContent = `${d}°`;
+    }
+    P.el('g', { id: 'polar-data' }, svg);
+    svg.dataset.rmax = rmax;
+    svg.dataset.scale = s;
   }
-  for (let d = 0; d < 360; d += 30) {
-    const [x, y] = xy(d, rmax);
-    P.el('line', { x1: c, y1: c, x2: x, y2: y, stroke: '#eef1f4' }, svg);
-    const [tx, ty] = xy(d, rmax * 1.0);
-    P.el('text', { x: tx, y: ty + 4, 'text-anchor': d > 90 && d < 270 ? 'start' : 'end', fill: '#5b6573' }, svg).textContent = `${d}°`;
-  }
+  const data = svg.querySelector('#polar-data');
+  const focused = document.activeElement?.dataset?.point;
+  data.replaceChildren();
   const d = view.curve.map(([deg, r], i) => `${i ? 'L' : 'M'}${xy(deg, r).map((v) => v.toFixed(2)).join(',')}`).join('') + 'Z';
-  P.el('path', { d, fill: '#1f5fa81a', stroke: '#1f5fa8', 'stroke-width': 2 }, svg);
+  P.el('path', { d, fill: '#1f5fa81a', stroke: '#1f5fa8', 'stroke-width': 2 }, data);
   radii.forEach((r, i) => {
     const [x, y] = xy(angles[i], r);
-    const h = P.el('circle', { cx: x, cy: y, r: 6, fill: '#1f5fa8', stroke: '#fff', 'stroke-width': 1.5, tabindex: 0, class: 'handle', 'data-point': i, role: 'slider', 'aria-label': `control point ${i} radius`, 'aria-valuenow': r }, svg);
+    const h = P.el('circle', { cx: x, cy: y, r: 6, fill: '#1f5fa8', stroke: '#fff', 'stroke-width': 1.5, tabindex: 0, class: 'handle', 'data-point': i, role: 'slider', 'aria-label': `control point ${i} radius (mm)`, 'aria-valuenow': r }, data);
     P.el('title', {}, h).textContent = `point ${i}: ${r.toFixed(2)} mm at ${angles[i]}°`;
   });
-  svg.dataset.scale = s;
+  if (focused !== undefined) data.querySelector(`[data-point="${focused}"]`)?.focus();
 }
 
 /** Drags control points along their rays (pointer) or steps them (arrow keys). */
@@ -327,15 +369,16 @@ function wireDragging() {
     if (!step) return;
     ev.preventDefault();
     const r = pointValues('radii_mm')[+i] + step * (ev.shiftKey ? 10 : 1);
-    if (apply(`gear.curve.radii_mm[${i}]=${r}`, null)) { commit(); svg.querySelector(`[data-point="${i}"]`)?.focus(); }
+    if (apply(`gear.curve.radii_mm[${i}]=${r}`, null)) commit();
   });
 }
 
 function drawTrajectory(view, report) {
-  const svg = $('trajectory'); P.clear(svg);
-  if (!view.trajectory.length) return;
-  const [x, y] = P.bounds([view.trajectory, view.tray ?? [], [[0, 0]]], 0.06);
-  const { sx, sy, plot, box } = P.axes(svg, { x, y, equal: true, xlabel: 'x (mm)', ylabel: 'y (mm)' });
+  const svg = $('trajectory');
+  if (!view.trajectory.length) { P.clear(svg); return; }
+  state.trajectoryBounds = P.stableBounds(state.trajectoryBounds, P.bounds([view.trajectory, view.tray ?? [], [[0, 0]]], 0));
+  const [x, y] = state.trajectoryBounds;
+  const { sx, sy, plot, overlay, box } = P.axes(svg, { x, y, equal: true, xlabel: 'x (mm)', ylabel: 'y (mm)' });
   P.el('circle', { cx: sx(0), cy: sy(0), r: 3, fill: '#5b6573' }, plot);
   if (view.ground_y_mm !== null) P.line(plot, [[x[0] - 1e4, view.ground_y_mm], [x[1] + 1e4, view.ground_y_mm]], sx, sy, { stroke: '#8d5a2b', 'stroke-width': 2 });
   if (view.tray) P.line(plot, view.tray, sx, sy, { stroke: '#7f8c8d', 'stroke-width': 2, 'stroke-dasharray': '6 3' });
@@ -345,7 +388,7 @@ function drawTrajectory(view, report) {
   const ev = report.events;
   const items = view.sections.map(([name, label]) => [label, P.SECTION_COLOURS[name]]);
   items.push(['ground', '#8d5a2b'], ['tray surface', '#7f8c8d']);
-  P.legend(svg, box, items);
+  P.legend(overlay, box, items);
   if (ev) {
     const anchor = (p) => (sx(p[0]) > box[0] + box[2] * 0.6 ? { x: sx(p[0]) - 8, 'text-anchor': 'end' } : { x: sx(p[0]) + 8 });
     P.el('text', { ...anchor(view.picking_mm), y: sy(view.picking_mm[1]) - 8, fill: '#000' }, plot).textContent =
@@ -356,16 +399,15 @@ function drawTrajectory(view, report) {
 }
 
 function drawMechanism() {
-  const svg = $('mechanism'); P.clear(svg);
+  const svg = $('mechanism');
   if (!state.out?.view.trajectory.length) {
+    P.clear(svg);
     P.el('text', { x: 20, y: 40 }, svg).textContent = 'This scene has no three-arm mechanism.';
     return;
   }
   const frame = JSON.parse(state.design.frame(state.carrier));
-  if (!state.mechanismBounds) {
-    const parts = [frame.sun, state.out.view.trajectory, ...frame.arms.flatMap((a) => [a.intermediate, a.planet, a.arm])];
-    state.mechanismBounds = P.bounds(parts, 0.08);
-  }
+  const parts = [frame.sun, state.out.view.trajectory, ...frame.arms.flatMap((a) => [a.intermediate, a.planet, a.arm])];
+  state.mechanismBounds = P.stableBounds(state.mechanismBounds, P.bounds(parts, 0));
   const [x, y] = state.mechanismBounds;
   const { sx, sy, plot } = P.axes(svg, { x, y, equal: true, xlabel: 'x (mm)', ylabel: 'y (mm)' });
   P.line(plot, state.out.view.trajectory.concat([state.out.view.trajectory[0]]), sx, sy, { stroke: '#b8c0c9', 'stroke-width': 1 });
@@ -383,16 +425,23 @@ function drawMechanism() {
   $('carrier-out').textContent = `${Math.round(state.carrier)}°`;
 }
 
+/** The measures' table: rows built once per set of measures, values updated in place. */
 function drawMeasures(report) {
-  const table = $('measures'); table.replaceChildren();
-  for (const m of report.measures) {
-    if (!SHOWN_MEASURES.test(m.name)) continue;
-    const tr = table.insertRow();
-    tr.insertCell().textContent = m.description;
-    const v = tr.insertCell(); v.className = 'num'; v.textContent = P.fmt(+m.value.toPrecision(5));
-    tr.insertCell().textContent = m.unit;
-    tr.title = m.name;
+  const table = $('measures');
+  const shown = report.measures.filter((m) => SHOWN_MEASURES.test(m.name));
+  const names = shown.map((m) => m.name).join();
+  if (table.dataset.names !== names) {
+    table.replaceChildren();
+    for (const m of shown) {
+      const tr = table.insertRow();
+      tr.title = m.name;
+      tr.insertCell().textContent = m.description;
+      tr.insertCell().className = 'num';
+      tr.insertCell().textContent = m.unit;
+    }
+    table.dataset.names = names;
   }
+  shown.forEach((m, k) => { table.rows[k].cells[1].textContent = P.fmt(+m.value.toPrecision(5)); });
 }
 
 /** The guide's advice for one parameter: which way, and how much the worst margin moves. */
@@ -402,6 +451,13 @@ function guideText(slope, worst, short) {
   const arrow = slope > 0 ? '▲' : '▼';
   const size = `${slope > 0 ? '+' : '−'}${Math.abs(slope).toPrecision(2)}`;
   return short ? `${arrow} ${size}` : `${arrow} ${slope > 0 ? 'raise' : 'lower'} it: ${worst} margin ${size} per tenth of range`;
+}
+
+function clearGuide() {
+  for (const span of document.querySelectorAll('[data-guide]')) span.textContent = '';
+  $('guide-head').textContent = 'guide';
+  P.clear($('sweep'));
+  P.el('text', { x: 20, y: 30 }, $('sweep')).textContent = `Above ${LIVE_SAMPLES} samples per turn: press "Update guide and response".`;
 }
 
 function drawGuide() {
@@ -421,14 +477,14 @@ function drawGuide() {
 }
 
 function drawSweep() {
-  const svg = $('sweep'); P.clear(svg);
+  const svg = $('sweep');
   const name = $('sweep-param').value;
   const f = state.free.find((p) => p.name === name);
-  if (!f) return;
+  if (!f) { P.clear(svg); return; }
   let rows;
-  try { rows = JSON.parse(state.design.sweep(name, f.lower, f.upper, 41)); } catch (e) { P.el('text', { x: 20, y: 30 }, svg).textContent = e.message; return; }
+  try { rows = JSON.parse(state.design.sweep(name, f.lower, f.upper, 41)); } catch (e) { P.clear(svg); P.el('text', { x: 20, y: 30 }, svg).textContent = e.message; return; }
   const clip = (v) => Math.max(-2.5, Math.min(2.5, v));
-  const { sx, sy, plot, box } = P.axes(svg, { x: [f.lower, f.upper], y: [-2.5, 2.5], xlabel: name, ylabel: 'margin / scale (clipped to ±2.5)', margin: [46, 150, 10, 36] });
+  const { sx, sy, plot, overlay, box } = P.axes(svg, { x: [f.lower, f.upper], y: [-2.5, 2.5], xlabel: name, ylabel: 'margin / scale (clipped to ±2.5)', margin: [46, 150, 10, 36] });
   P.line(plot, [[f.lower, 0], [f.upper, 0]], sx, sy, { stroke: '#5b6573', 'stroke-width': 1, 'stroke-dasharray': '4 3' });
   const names = state.out.report.objectives.map((o) => o.name);
   names.forEach((n, k) => {
@@ -439,16 +495,16 @@ function drawSweep() {
   P.line(plot, [[value, -3], [value, 3]], sx, sy, { stroke: '#000', 'stroke-width': 1 });
   const [l, t, pw] = box;
   names.forEach((n, k) => {
-    P.el('line', { x1: l + pw + 8, x2: l + pw + 24, y1: t + 10 + 14 * k, y2: t + 10 + 14 * k, stroke: P.COLOURS[k], 'stroke-width': 3 }, svg);
-    P.el('text', { x: l + pw + 28, y: t + 14 + 14 * k }, svg).textContent = n;
+    P.el('line', { x1: l + pw + 8, x2: l + pw + 24, y1: t + 10 + 14 * k, y2: t + 10 + 14 * k, stroke: P.COLOURS[k], 'stroke-width': 3 }, overlay);
+    P.el('text', { x: l + pw + 28, y: t + 14 + 14 * k }, overlay).textContent = n;
   });
 }
 
 // ---------------------------------------------------------------- search
 
 function drawConvergence(history) {
-  const svg = $('convergence'); P.clear(svg);
-  if (!history.length) return;
+  const svg = $('convergence');
+  if (!history.length) { P.clear(svg); return; }
   const evals = history.map((h) => h.evaluations);
   const logcv = history.map((h) => Math.log10(Math.max(h.best_cv, 1e-6)));
   const { sx, sy, plot } = P.axes(svg, { x: [0, Math.max(...evals)], y: [Math.min(-6.2, ...logcv), Math.max(0.5, ...logcv) + 0.2], xlabel: 'evaluations', ylabel: 'log10 best violation (−6: feasible)' });
@@ -491,7 +547,10 @@ function startSearch() {
       $('search-load').disabled = false; $('search-checkpoint').disabled = false;
       $('search-status').textContent = `${s.stopped_early ? 'stopped' : 'done'}: ${s.evaluations} evaluations in ${s.seconds.toFixed(2)} s — ` +
         (s.feasible ? 'the best design meets every objective' : 'no design meeting every objective was found');
-      $('search-result').textContent = Object.entries(s.best).map(([k, v]) => `${k} = ${+v.toPrecision(8)}`).join('\n');
+      // In the search space's order (radius 0, 1, …, 11, then the train), not the map's.
+      const order = (k) => { const i = state.free.findIndex((f) => f.name === k); return i < 0 ? Infinity : i; };
+      $('search-result').textContent = Object.keys(s.best).sort((a, b) => order(a) - order(b))
+        .map((k) => `${k} = ${+s.best[k].toPrecision(8)}`).join('\n');
       window.studio.lastSearch = { ...data, rate: s.evaluations / (data.searchingMs / 1000) };
     }
   };
@@ -575,6 +634,7 @@ function wire() {
     });
   }
   $('sweep-param').addEventListener('change', drawSweep);
+  $('update-response').addEventListener('click', () => { drawGuide(); drawSweep(); });
   $('search-start').addEventListener('click', startSearch);
   $('search-stop').addEventListener('click', () => state.worker?.postMessage({ type: 'stop' }));
   $('search-load').addEventListener('click', loadSearchResult);

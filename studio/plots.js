@@ -17,6 +17,7 @@ export function el(tag, attrs = {}, parent = null) {
 /** Empties an SVG and sets its font (kept in exported files). */
 export function clear(svg) {
   svg.replaceChildren();
+  svg.axesCache = null;
   svg.setAttribute('font-family', 'system-ui, DejaVu Sans, sans-serif');
   svg.setAttribute('font-size', '11');
   el('rect', { x: 0, y: 0, width: '100%', height: '100%', fill: '#fff' }, svg);
@@ -46,10 +47,36 @@ export function bounds(lists, pad = 0.05) {
 }
 
 /**
- * Axes in `svg` (its viewBox size) for data ranges `x`, `y`; `equal` keeps one scale for
- * both (a plane in mm). Returns the maps from data to pixels and the plot group.
+ * Bounds to draw `next` in: `previous` while it holds `next` and is not much larger (so a
+ * drag does not rescale the plot at every step, and the axes need not be redrawn), else
+ * `next` with room to grow.
  */
-export function axes(svg, { x, y, equal = false, xlabel = '', ylabel = '', title = '', margin = [46, 14, 22, 36] }) {
+export function stableBounds(previous, next) {
+  if (previous) {
+    const fits = [0, 1].every((k) => {
+      const [a, b] = previous[k], [c, d] = next[k];
+      return a <= c && d <= b && (b - a) < 1.4 * (d - c);
+    });
+    if (fits) return previous;
+  }
+  return next.map(([a, b]) => [a - 0.08 * (b - a), b + 0.08 * (b - a)]);
+}
+
+/**
+ * Axes in `svg` (its viewBox size) for data ranges `x`, `y`; `equal` keeps one scale for
+ * both (a plane in mm). Returns the maps from data to pixels, the clipped plot group and an
+ * overlay group (legends), both empty. Axes asked for again with the same settings are
+ * kept: only the two groups are emptied (redrawing tick labels is most of a redraw's cost).
+ */
+export function axes(svg, options) {
+  const key = JSON.stringify(options);
+  if (svg.axesCache?.key === key) {
+    svg.axesCache.plot.replaceChildren();
+    svg.axesCache.overlay.replaceChildren();
+    return svg.axesCache;
+  }
+  clear(svg);
+  const { x, y, equal = false, xlabel = '', ylabel = '', title = '', margin = [46, 14, 22, 36] } = options;
   const [w, h] = [svg.viewBox.baseVal.width, svg.viewBox.baseVal.height];
   const [l, r, t, b] = margin;
   let [x0, x1] = x, [y0, y1] = y;
@@ -77,7 +104,9 @@ export function axes(svg, { x, y, equal = false, xlabel = '', ylabel = '', title
   if (title) el('text', { x: l, y: t - 5, fill: '#1d232b', 'font-weight': 600 }, g).textContent = title;
   el('clipPath', { id: `${svg.id}-clip` }, svg).appendChild(el('rect', { x: l, y: t, width: pw, height: ph }));
   const plot = el('g', { 'clip-path': `url(#${svg.id}-clip)` }, svg);
-  return { sx, sy, plot, box: [l, t, pw, ph] };
+  const overlay = el('g', {}, svg);
+  svg.axesCache = { key, sx, sy, plot, overlay, box: [l, t, pw, ph] };
+  return svg.axesCache;
 }
 
 /** A number as a tick label. */

@@ -55,10 +55,11 @@ function assertClose(a, b, rel, path = '') {
   return Math.max(0, ...Object.keys(a).map((k) => assertClose(a[k], b[k], rel, `${path}.${k}`)));
 }
 
-/** Median, least and largest of a list. */
+/** Median, least, 90th percentile and largest of a list. */
 function spread(xs) {
   const s = [...xs].sort((p, q) => p - q);
-  return { median: s[Math.floor(s.length / 2)], min: s[0], max: s[s.length - 1], n: s.length };
+  const at = (q) => s[Math.min(s.length - 1, Math.floor(q * s.length))];
+  return { median: at(0.5), min: s[0], p90: at(0.9), max: s[s.length - 1], n: s.length };
 }
 
 const pageScene = () => page.evaluate(() => window.studio.state.design.toToml());
@@ -96,6 +97,7 @@ test('the page loads the default design and its numbers are the CLI\'s', async (
   const report = await pageReport();
   const expected = cliJson('evaluate', sceneFile('loaded.toml', await pageScene()));
   speed.loaded_max_relative_difference = assertClose(report, expected, 1e-12);
+  await page.screenshot({ path: join(results, 'studio_loaded.png'), fullPage: true });
   assert.equal(await page.locator('.gauge').count(), expected.objectives.length);
 });
 
@@ -106,7 +108,7 @@ test('a control point dragged with the mouse changes the gauges, and the page eq
   const [x, y] = [box.x + box.width / 2, box.y + box.height / 2];
   const timingsBefore = await page.evaluate(() => window.studio.state.timings.length);
   // Point 7 sits at 225°: outward is down and to the left on the screen. The pointer goes
-  // 20 px along the ray in 20 moves; the radius follows by the plot's scale (px per mm).
+  // 20 px along the ray in 40 moves; the radius follows by the plot's scale (px per mm).
   const scale = await page.evaluate(() => {
     const svg = document.getElementById('polar');
     return svg.getScreenCTM().a * Number(svg.dataset.scale);
@@ -114,7 +116,7 @@ test('a control point dragged with the mouse changes the gauges, and the page eq
   await page.mouse.move(x, y);
   await page.mouse.down();
   const step = Math.SQRT1_2;
-  for (let i = 1; i <= 20; i++) await page.mouse.move(x - i * step, y + i * step);
+  for (let i = 1; i <= 40; i++) await page.mouse.move(x - i * step / 2, y + i * step / 2);
   await page.mouse.up();
   const after = await pageReport();
   const radius = await page.evaluate(() => window.studio.state.design.get('gear.curve.radii_mm[7]'));
@@ -228,6 +230,7 @@ test('a search in the worker reaches a feasible design equal to the CLI\'s one-t
   const loaded = await pageReport();
   assert.equal(loaded.feasible, true, 'the loaded result meets every objective in the editor');
   assert.equal(await page.locator('#verdict').textContent(), `${loaded.objectives.length} of ${loaded.objectives.length} met`);
+  await page.screenshot({ path: join(results, 'studio_search.png'), fullPage: true });
 });
 
 test('the cut teeth are drawn and exported as the CLI cuts them', async () => {
@@ -236,6 +239,7 @@ test('the cut teeth are drawn and exported as the CLI cuts them', async () => {
   assert.match(await page.locator('#teeth-msg').textContent(), /teeth cut/);
   const toothedPoints = await page.evaluate(() => JSON.parse(window.studio.state.design.frame(0)).sun.length);
   assert.ok(toothedPoints > 5 * pitchPoints, `a toothed outline has ${toothedPoints} points against the pitch curve's ${pitchPoints}`);
+  await page.locator('#mechanism').screenshot({ path: join(results, 'mechanism_teeth.png') });
   const downloads = [];
   page.on('download', (d) => downloads.push(d));
   await page.click('#export-teeth');

@@ -13,12 +13,22 @@ type Line = Vec<[f64; 2]>;
 /// Points of the pitch curve per turn in the polar plot.
 const CURVE_POINTS: usize = 360;
 
+/// Most points of a drawn trajectory or pitch outline: a finer resolution (up to 786 432
+/// samples a turn) is thinned to this, which is finer than a screen shows.
+const MAX_DRAWN: usize = 1440;
+
+/// Every `k`-th point, `k` the least step that keeps at most [`MAX_DRAWN`].
+fn thinned(points: &[Vec2]) -> Vec<Vec2> {
+    let step = points.len().div_ceil(MAX_DRAWN).max(1);
+    points.iter().step_by(step).copied().collect()
+}
+
 /// The design's drawings.
 #[derive(Serialize)]
 pub struct View {
     /// The sun's pitch curve: `[ψ (deg), ρ (mm)]` over one turn.
     curve: Line,
-    /// The tip's path over one carrier turn, one point per sample (mm).
+    /// The tip's path over one carrier turn, one point per sample up to [`MAX_DRAWN`] (mm).
     trajectory: Line,
     /// The trajectory's four sections in the order of motion: `(name, label, path)`.
     sections: Vec<(&'static str, &'static str, Line)>,
@@ -53,7 +63,7 @@ impl View {
             return view;
         };
         let agro = &scene.agronomy;
-        view.trajectory = kin.tips().iter().map(|&p| p.into()).collect();
+        view.trajectory = thinned(kin.tips()).into_iter().map(Into::into).collect();
         if let Some(anatomy) = eval.anatomy(agro) {
             view.sections = (Section::ALL.into_iter())
                 .map(|s| {
@@ -119,7 +129,10 @@ impl Frame {
                 run.pair.gears[0].outline().to_vec(),
                 run.pair.gears[1].outline().to_vec(),
             ),
-            None => (pair.driver_points(), pair.driven_points()),
+            None => (
+                thinned(&pair.driver_points()),
+                thinned(&pair.driven_points()),
+            ),
         };
         let sun_angle = kin.spec().sun_angle();
         let arms = (0..3)
