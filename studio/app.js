@@ -44,6 +44,8 @@ const state = {
   carrier: 0,
   playing: false,
   worker: null,
+  /** Whether the worker is running a search (one at a time). */
+  searching: false,
   searchResult: null,
   /** Milliseconds of each live update (set, evaluate, draw, style and layout), for the browser test. */
   timings: [],
@@ -511,9 +513,12 @@ function drawConvergence(history) {
   P.line(plot, history.map((h, i) => [h.evaluations, logcv[i]]), sx, sy, { stroke: '#c62828', 'stroke-width': 2 });
 }
 
-function startSearch() {
+/** Starts a search of the current design with the page's settings, or, given a
+ *  checkpoint's text, resumes it with its own scene, settings and budget. */
+function startSearch(checkpoint = null) {
+  if (state.searching) { $('search-status').textContent = 'a search is running: stop it first'; return; }
   const budget = Number($('budget').value), seed = Number($('seed').value);
-  for (const [field, v] of [[$('budget'), budget], [$('seed'), seed]]) {
+  for (const [field, v] of checkpoint ? [] : [[$('budget'), budget], [$('seed'), seed]]) {
     if (!Number.isSafeInteger(v) || v < (field.id === 'budget' ? 1 : 0)) {
       fieldMessage(field, `${field.id} = '${field.value}': expected a whole number${field.id === 'budget' ? ' ≥ 1' : ' ≥ 0'}`);
       return;
@@ -521,6 +526,7 @@ function startSearch() {
     fieldMessage(field, null);
   }
   state.worker ??= new Worker('worker.js', { type: 'module' });
+  state.searching = true;
   const history = [];
   state.searchResult = null;
   $('search-start').disabled = true; $('search-stop').disabled = false;
@@ -529,6 +535,7 @@ function startSearch() {
   $('search-result').textContent = '';
   state.worker.onmessage = ({ data }) => {
     if (data.type === 'error') {
+      state.searching = false;
       $('search-status').textContent = data.message;
       $('search-start').disabled = false; $('search-stop').disabled = true;
     } else if (data.type === 'progress') {
@@ -540,6 +547,7 @@ function startSearch() {
         (p.first_feasible_evaluations !== null ? `, feasible since ${p.first_feasible_evaluations}` : ', none feasible yet');
       drawConvergence(history);
     } else if (data.type === 'result') {
+      state.searching = false;
       state.searchResult = data;
       const s = data.result.summary;
       drawConvergence(data.result.history);
@@ -554,7 +562,9 @@ function startSearch() {
       window.studio.lastSearch = { ...data, rate: s.evaluations / (data.searchingMs / 1000) };
     }
   };
-  state.worker.postMessage({ type: 'start', scene: state.design.toToml(), algorithm: $('algorithm').value, budget, seed });
+  state.worker.postMessage(checkpoint
+    ? { type: 'start', checkpoint }
+    : { type: 'start', scene: state.design.toToml(), algorithm: $('algorithm').value, budget, seed });
 }
 
 function loadSearchResult() {
@@ -635,7 +645,12 @@ function wire() {
   }
   $('sweep-param').addEventListener('change', drawSweep);
   $('update-response').addEventListener('click', () => { drawGuide(); drawSweep(); });
-  $('search-start').addEventListener('click', startSearch);
+  $('search-start').addEventListener('click', () => startSearch());
+  $('search-resume').addEventListener('change', async (ev) => {
+    const file = ev.target.files[0];
+    if (file) startSearch(await file.text());
+    ev.target.value = '';
+  });
   $('search-stop').addEventListener('click', () => state.worker?.postMessage({ type: 'stop' }));
   $('search-load').addEventListener('click', loadSearchResult);
   $('search-checkpoint').addEventListener('click', () => P.download('checkpoint.json', state.searchResult.checkpoint, 'application/json'));

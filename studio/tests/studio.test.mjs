@@ -293,6 +293,12 @@ test('a stopped search\'s checkpoint resumes in the CLI to the uninterrupted run
   const whole = cliJson('optimise', sceneFile('whole.toml', scene), '--algorithm', 'de', '--budget', '200000', '--seed', '4', '--threads', '1');
   assert.deepEqual(resumed.best, whole.best);
   assert.equal(resumed.evaluations, whole.evaluations);
+  // And in the page itself.
+  await page.setInputFiles('#search-resume', checkpoint);
+  await page.waitForFunction(() => window.studio.lastSearch?.result.summary.evaluations >= 200000, null, { timeout: 180000 });
+  const inPage = await page.evaluate(() => window.studio.lastSearch.result.summary);
+  assert.deepEqual(inPage.best, whole.best);
+  assert.equal(inPage.stopped_early, false);
 });
 
 test('a screenshot of the page is saved, and nothing went wrong in the console', async () => {
