@@ -8,7 +8,8 @@ if command -v rustup >/dev/null; then rustup target add wasm32-unknown-unknown >
 version=$(sed -n 's/^wasm-bindgen = "=\(.*\)"$/\1/p' crates/noncirc-wasm/Cargo.toml)
 if [ "$(wasm-bindgen --version 2>/dev/null)" != "wasm-bindgen $version" ]; then
   echo "installing wasm-bindgen-cli $version"
-  cargo install --locked --quiet wasm-bindgen-cli --version "$version"
+  # --force: a copy recorded as installed but missing or replaced is built again.
+  cargo install --locked --force --quiet wasm-bindgen-cli --version "$version"
 fi
 cargo build --release --quiet --target wasm32-unknown-unknown -p noncirc-wasm
 wasm-bindgen --target web --no-typescript --out-dir studio/pkg \
