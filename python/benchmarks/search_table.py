@@ -12,7 +12,7 @@ import subprocess
 import sys
 
 ALGORITHMS = ["guided", "de", "cmaes", "nsga2", "nsga3"]
-# (lower, upper, scale) as in docs/search.md; the seedling-push margin is left out.
+# (lower, upper, scale) as in docs/search.md and the core's `scale`; the seedling-push margin is left out.
 BOUNDS = {
     "interference": (0.0, None, 1.0),
     "picking_angle": (-5.0, 15.0, 10.0),
@@ -20,8 +20,8 @@ BOUNDS = {
     "angle_difference": (50.0, 60.0, 5.0),
     "ground_clearance": (20.0, None, 2.0),
     "trajectory_height": (260.0, None, 26.0),
-    "module": (2.5, None, 0.25),
-    "picking_admissible": (0.0, None, 10.0),
+    "module": (2.5, None, 1.0),
+    "picking_admissible": (0.0, None, 1.0),
 }
 
 

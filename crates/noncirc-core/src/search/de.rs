@@ -58,45 +58,9 @@ impl SolverState for DifferentialEvolution {
             self.population = evaluate_all(eval, points);
             return self.population.clone();
         }
-        let n = self.population.len();
-        let mut trials = Vec::with_capacity(n);
-        for i in 0..n {
-            let pick = |rng: &mut Rng, not: &[usize]| loop {
-                let r = rng.below(n);
-                if !not.contains(&r) {
-                    break r;
-                }
-            };
-            let r1 = pick(&mut self.rng, &[i]);
-            let r2 = pick(&mut self.rng, &[i, r1]);
-            let r3 = pick(&mut self.rng, &[i, r1, r2]);
-            let f = 0.5 + 0.5 * self.rng.uniform();
-            let forced = self.rng.below(self.dim);
-            let target = &self.population[i].u;
-            let (a, b, c) = (
-                &self.population[r1].u,
-                &self.population[r2].u,
-                &self.population[r3].u,
-            );
-            let trial: Vec<f64> = (0..self.dim)
-                .map(|j| {
-                    if j == forced || self.rng.uniform() < self.crossover {
-                        let v = a[j] + f * (b[j] - c[j]);
-                        // Midpoint repair towards the violated bound.
-                        if v < 0.0 {
-                            0.5 * target[j]
-                        } else if v > 1.0 {
-                            0.5 * (target[j] + 1.0)
-                        } else {
-                            v
-                        }
-                    } else {
-                        target[j]
-                    }
-                })
-                .collect();
-            trials.push(trial);
-        }
+        let trials = (0..self.population.len())
+            .map(|i| trial(&self.population, i, self.crossover, &mut self.rng))
+            .collect();
         let evaluated = evaluate_all(eval, trials);
         for (i, t) in evaluated.iter().enumerate() {
             if !self.population[i].fitness.better_than(&t.fitness) {
@@ -105,4 +69,43 @@ impl SolverState for DifferentialEvolution {
         }
         evaluated
     }
+}
+
+/// The rand/1/bin trial of member `i` of `population` (at least 4 members): a random
+/// member plus a dithered difference of two others (F in [0.5, 1)), crossed with member
+/// `i` at rate `crossover` (one coordinate always from the mutant), repaired into the unit
+/// cube halfway towards the violated bound. NSGA's feasibility phase uses it too.
+pub(super) fn trial(population: &[Candidate], i: usize, crossover: f64, rng: &mut Rng) -> Vec<f64> {
+    let n = population.len();
+    let pick = |rng: &mut Rng, not: &[usize]| loop {
+        let r = rng.below(n);
+        if !not.contains(&r) {
+            break r;
+        }
+    };
+    let r1 = pick(rng, &[i]);
+    let r2 = pick(rng, &[i, r1]);
+    let r3 = pick(rng, &[i, r1, r2]);
+    let f = 0.5 + 0.5 * rng.uniform();
+    let target = &population[i].u;
+    let dim = target.len();
+    let forced = rng.below(dim);
+    let (a, b, c) = (&population[r1].u, &population[r2].u, &population[r3].u);
+    (0..dim)
+        .map(|j| {
+            if j == forced || rng.uniform() < crossover {
+                let v = a[j] + f * (b[j] - c[j]);
+                // Midpoint repair towards the violated bound.
+                if v < 0.0 {
+                    0.5 * target[j]
+                } else if v > 1.0 {
+                    0.5 * (target[j] + 1.0)
+                } else {
+                    v
+                }
+            } else {
+                target[j]
+            }
+        })
+        .collect()
 }

@@ -1,6 +1,7 @@
 //! NSGA-II (Deb et al. 2002) and NSGA-III (Deb & Jain 2014) with constraint domination:
 //! binary tournaments, SBX crossover, polynomial mutation, elitist survival by
-//! non-dominated fronts. They differ only in how the last front that fits is cut: NSGA-II
+//! non-dominated fronts; while no member is feasible, differential-evolution trials
+//! instead of SBX (a feasibility phase). They differ only in how the last front that fits is cut: NSGA-II
 //! keeps the least crowded members, NSGA-III the members that fill the emptiest niches
 //! around a fixed set of reference directions, which keeps the front spread out when more
 //! than three goals compete.
@@ -34,6 +35,8 @@ pub struct Nsga {
 }
 
 const ETA_CROSSOVER: f64 = 15.0;
+/// Crossover rate of the feasibility phase's trials (the DE solver's).
+const FEASIBILITY_CROSSOVER: f64 = 0.9;
 const ETA_MUTATION: f64 = 20.0;
 
 impl Nsga {
@@ -112,6 +115,21 @@ impl Nsga {
         }
     }
 
+    /// The Pareto phase's children: binary tournaments, SBX and polynomial mutation.
+    fn pareto_children(&mut self) -> Vec<Vec<f64>> {
+        let mut children = Vec::with_capacity(self.size);
+        while children.len() < self.size {
+            let (a, b) = (self.tournament(), self.tournament());
+            let (p1, p2) = (self.population[a].u.clone(), self.population[b].u.clone());
+            let (mut c1, mut c2) = self.sbx(&p1, &p2);
+            self.mutate(&mut c1);
+            self.mutate(&mut c2);
+            children.push(c1);
+            children.push(c2);
+        }
+        children
+    }
+
     fn rank_and_crowd(&mut self) {
         let n = self.population.len();
         self.rank = vec![0; n];
@@ -179,16 +197,19 @@ impl SolverState for Nsga {
             self.rank_and_crowd();
             return self.population.clone();
         }
-        let mut children = Vec::with_capacity(self.size);
-        while children.len() < self.size {
-            let (a, b) = (self.tournament(), self.tournament());
-            let (p1, p2) = (self.population[a].u.clone(), self.population[b].u.clone());
-            let (mut c1, mut c2) = self.sbx(&p1, &p2);
-            self.mutate(&mut c1);
-            self.mutate(&mut c2);
-            children.push(c1);
-            children.push(c2);
-        }
+        let children = if self.population.iter().any(|c| c.fitness.feasible()) {
+            self.pareto_children()
+        } else {
+            // Feasibility phase: until a member meets every constraint, the children are
+            // differential-evolution trials (one per member), whose long moves find the
+            // feasible region where SBX and polynomial mutation, local around parents that
+            // are all infeasible, seldom do (1 of 10 runs on the default scene).
+            (0..self.population.len())
+                .map(|i| {
+                    super::de::trial(&self.population, i, FEASIBILITY_CROSSOVER, &mut self.rng)
+                })
+                .collect()
+        };
         let offspring = evaluate_all(eval, children);
         let mut merged = std::mem::take(&mut self.population);
         merged.extend(offspring.iter().cloned());
