@@ -29,15 +29,27 @@ pub struct GearReport {
 }
 
 impl GearReport {
-    /// Solves the scene's gear pair and gathers the report.
+    /// Solves the scene's gear pair and gathers the report: a moving-box scene's pair is
+    /// the box's elliptical gears (sized by its module and tooth count), any other scene's
+    /// is its pitch curve's.
     pub fn from_scene(scene: &Scene) -> Result<(Self, GearPair)> {
-        let curve = scene.gear.curve.build()?;
+        let spec = match scene.kind {
+            SceneKind::MovingBox => {
+                let b = noncirc_core::evaluate_box(&scene.moving_box, None, &scene.resolution)?;
+                noncirc_core::CurveSpec::Ellipse {
+                    semi_major_mm: b.semi_major_mm,
+                    eccentricity: b.eccentricity,
+                }
+            }
+            _ => scene.gear.curve.clone(),
+        };
+        let curve = spec.build()?;
         let pair = GearPair::solve(curve, scene.resolution)?;
         let module = pair.module(&scene.gear.module);
         let a = pair.centre_distance();
         // The curve's own extremes (exact for the spline), not the sample extremes.
         let (rmin, rmax) = pair.radius_range();
-        let kind = serde_json::to_value(&scene.gear.curve)
+        let kind = serde_json::to_value(&spec)
             .ok()
             .and_then(|v| v.get("kind").and_then(|k| k.as_str().map(String::from)))
             .unwrap_or_default();
@@ -297,6 +309,14 @@ impl EvaluationReport {
             out += &format!(", centre distance {a:.4} mm");
         }
         out += "\n\n";
+        if self.events.is_none() && self.objectives.is_empty() {
+            out +=
+                &format!(
+                "this {:?} scene has no three-arm mechanism: no objectives or events to report{}\n",
+                self.kind,
+                if self.moving_box.is_some() { "; its moving box:" } else { "" }
+            );
+        }
         out += &objective_table(&self.objectives);
         if let Some(e) = &self.events {
             out += &format!(
@@ -537,22 +557,69 @@ pub fn summary_table(s: &crate::search::Summary) -> String {
             if s.feasible {
                 "FEASIBLE: meets every objective".into()
             } else {
-                "not feasible".to_string()
+                let missed = s.missed();
+                format!(
+                    "NOT FEASIBLE: no design found meets every objective; the best misses {} \
+                     (a larger --budget, another --seed or --algorithm de|cmaes may find one)",
+                    if missed.is_empty() {
+                        "them all (the model refused it)".to_string()
+                    } else {
+                        missed.join(", ")
+                    }
+                )
             },
         ),
     ]);
     out += "\nbest design:\n";
-    for (k, v) in &s.best {
-        out += &format!("  {k:<28} {v:>10.4}\n");
+    let mut names: Vec<&String> = s.best.keys().collect();
+    names.sort_by(|a, b| natural_cmp(a, b));
+    for k in names {
+        out += &format!("  {k:<28} {:>10.4}\n", s.best[k]);
     }
     out += "\nobjectives at the default resolution (value, violation):\n";
-    for (k, v) in &s.objectives {
-        out += &format!(
-            "  {k:<28} {v:>10.4}  {:>8.4}\n",
-            s.violations.get(k).copied().unwrap_or(0.0)
-        );
+    for kind in noncirc_core::ObjectiveKind::ALL {
+        let k = kind.name();
+        if let Some(v) = s.objectives.get(k) {
+            out += &format!(
+                "  {k:<28} {v:>10.4}  {:>8.4}\n",
+                s.violations.get(k).copied().unwrap_or(0.0)
+            );
+        }
     }
     out
+}
+
+/// Orders names as a person does: runs of digits by their value (`radii_mm[2]` before
+/// `radii_mm[10]`), the rest by character.
+pub fn natural_cmp(a: &str, b: &str) -> std::cmp::Ordering {
+    use std::cmp::Ordering;
+    fn digit(c: char) -> bool {
+        c.is_ascii_digit()
+    }
+    /// The leading run of `s` (all digits or none) and the rest.
+    fn run(s: &str) -> (&str, &str) {
+        let digits = s.starts_with(digit);
+        s.split_at(s.find(|c: char| digit(c) != digits).unwrap_or(s.len()))
+    }
+    let (mut x, mut y) = (a, b);
+    loop {
+        match (x.is_empty(), y.is_empty()) {
+            (true, true) => return Ordering::Equal,
+            (true, false) => return Ordering::Less,
+            (false, true) => return Ordering::Greater,
+            _ => {}
+        }
+        let ((px, rx), (py, ry)) = (run(x), run(y));
+        let order = if px.starts_with(digit) && py.starts_with(digit) {
+            px.len().cmp(&py.len()).then(px.cmp(py))
+        } else {
+            px.cmp(py)
+        };
+        if order.is_ne() {
+            return order;
+        }
+        (x, y) = (rx, ry);
+    }
 }
 
 /// A sweep as a table: one row per value, one column per objective.
@@ -636,7 +703,38 @@ pub fn check_finite(report: &impl Serialize) -> crate::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::check_finite;
+    use super::{check_finite, natural_cmp};
+
+    /// Parameters are listed as a person counts: radius 2 before radius 10.
+    #[test]
+    fn names_sort_in_natural_order() {
+        let mut names = vec![
+            "train.phi0_deg",
+            "gear.curve.radii_mm[10]",
+            "gear.curve.radii_mm[2]",
+            "gear.curve.radii_mm[1]",
+            "gear.curve.radii_mm[0]",
+            "gear.curve.radii_mm[11]",
+            "a2b",
+            "a10",
+            "a",
+        ];
+        names.sort_by(|a, b| natural_cmp(a, b));
+        assert_eq!(
+            names,
+            [
+                "a",
+                "a2b",
+                "a10",
+                "gear.curve.radii_mm[0]",
+                "gear.curve.radii_mm[1]",
+                "gear.curve.radii_mm[2]",
+                "gear.curve.radii_mm[10]",
+                "gear.curve.radii_mm[11]",
+                "train.phi0_deg"
+            ]
+        );
+    }
 
     #[derive(serde::Serialize)]
     struct Inner {

@@ -463,6 +463,14 @@ pub struct Summary {
 }
 
 impl Summary {
+    /// The objectives the reported design misses, in the paper's order.
+    pub fn missed(&self) -> Vec<&'static str> {
+        (noncirc_core::ObjectiveKind::ALL.iter())
+            .map(|k| k.name())
+            .filter(|name| self.violations.get(*name).is_some_and(|&v| v > 0.0))
+            .collect()
+    }
+
     /// The summary of a search's `state` on `problem`, with its `confirmed` designs; the
     /// front end that ran it gives the threads, times and whether it stopped early.
     pub fn new(
@@ -548,8 +556,10 @@ impl Outcome {
         let names = self.problem.names();
         let pareto = &self.confirmed.pareto;
         let mut csv = names.join(",");
-        for g in 0..self.problem.goals() {
-            csv += &format!(",goal{g}");
+        // Goals by name (`goal_module`, `goal_max_loop_height_mm`), as minimised: a
+        // maximised goal's column is its negative (docs/search.md).
+        for g in self.problem.goal_list() {
+            csv += &format!(",goal_{}", g.name().replace(':', "_"));
         }
         csv += ",cv\n";
         for (x, f) in pareto {

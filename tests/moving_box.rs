@@ -199,3 +199,26 @@ fn groove_development_is_the_rotated_sine() {
         assert!((x - t * s).abs() < 1e-12 && (y - t * c).abs() < 1e-12);
     }
 }
+
+/// `noncirc gear moving-box` reports the box's elliptical gears: an ellipse turning about
+/// a focus meshes with its twin at twice its semi-major axis.
+#[test]
+fn the_gear_report_of_a_moving_box_scene_is_its_ellipse() {
+    let scene = noncirc::scene_file::load_scene(Some("moving-box")).unwrap();
+    let (report, _) = noncirc::report::GearReport::from_scene(&scene).unwrap();
+    let b = noncirc::core::evaluate_box(&scene.moving_box, None, &scene.resolution).unwrap();
+    assert_eq!(report.curve_kind, "ellipse");
+    assert!(
+        (report.centre_distance_mm - 2.0 * b.semi_major_mm).abs() < 1e-9,
+        "{} against 2 × {}",
+        report.centre_distance_mm,
+        b.semi_major_mm
+    );
+    // Speed ratio (1 + k)² / (1 − k)² between the extreme ratios.
+    let k = b.eccentricity;
+    let ratio = report.ratio_max / report.ratio_min;
+    assert!(
+        (ratio - ((1.0 + k) / (1.0 - k)).powi(2)).abs() < 1e-6,
+        "{ratio}"
+    );
+}

@@ -4,8 +4,10 @@ import numpy as np
 from pymoo.algorithms.moo.nsga2 import NSGA2
 from pymoo.optimize import minimize
 
+import pytest
+
 from noncirc import Scene, evaluate_batch
-from noncirc.pymoo import SceneProblem
+from noncirc.pymoo import SceneProblem, feasible_start, summary
 
 
 def test_adapter_shapes_and_constraints_match_the_core():
@@ -30,3 +32,26 @@ def test_pymoo_nsga2_runs_on_the_default_scene():
     cv = np.maximum(pop, 0).sum(axis=1)
     first = np.maximum(problem.evaluate(problem.xl + 0.5 * (problem.xu - problem.xl)[None, :], return_as_dictionary=True)["G"], 0).sum()
     assert cv.min() < max(first, 1.0)
+
+
+def test_the_documented_example_returns_a_feasible_front_of_at_least_20_designs():
+    # docs/python.md, "pymoo", as written there.
+    scene = Scene.builtin("paper-search").with_set("search.goals", '["module", "picking_tip_speed"]')
+    start = feasible_start(scene, seed=1)
+    res = minimize(SceneProblem(scene), NSGA2(pop_size=40, sampling=start), ("n_gen", 50), seed=1)
+    assert summary(res).endswith("feasible non-dominated designs")
+    g = res.opt.get("G")
+    feasible = (np.maximum(g, 0).sum(axis=1) <= 0).sum()
+    assert feasible >= 20, f"{feasible} feasible designs in the final front"
+    # Non-dominated among themselves (pymoo's opt is its first front).
+    f = res.opt.get("F")
+    dominated = [any(np.all(f[j] <= f[i]) and np.any(f[j] < f[i]) for j in range(len(f))) for i in range(len(f))]
+    assert not any(dominated)
+
+
+def test_a_run_that_ends_infeasible_says_so():
+    scene = Scene.builtin("paper-search").with_set("search.goals", '["module", "picking_tip_speed"]')
+    res = minimize(SceneProblem(scene), NSGA2(pop_size=8), ("n_gen", 2), seed=1, verbose=False)
+    with pytest.warns(RuntimeWarning, match="no feasible design"):
+        message = summary(res)
+    assert message.startswith("no feasible design")

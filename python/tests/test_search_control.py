@@ -85,3 +85,9 @@ def test_ctrl_c_stops_after_the_current_generation_and_keeps_the_checkpoint(tmp_
 def test_unknown_algorithm_is_an_unknown_name():
     with pytest.raises(UnknownNameError, match="cmaes"):
         optimise(Scene.builtin("paper-search"), algorithm="cmaez")
+
+
+def test_a_search_that_ends_infeasible_warns():
+    with pytest.warns(RuntimeWarning, match="no design found meets every objective"):
+        r = optimise(Scene.builtin("paper-search"), algorithm="de", seed=1, budget=96, population=48, threads=1)
+    assert r["feasible"] is False

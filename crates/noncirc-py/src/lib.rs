@@ -595,6 +595,26 @@ fn optimise<'py>(
         return Err(e);
     }
     let summary = outcome.summary();
+    if !summary.feasible {
+        // Said, not only flagged: a run that found nothing must not pass for a result.
+        let missed = summary.missed();
+        let message = format!(
+            "noncirc.optimise: no design found meets every objective (the best misses {}); \
+             a larger budget, another seed or algorithm='de'|'cmaes' may find one",
+            if missed.is_empty() {
+                "all: the model refused it".to_string()
+            } else {
+                missed.join(", ")
+            }
+        );
+        let message = std::ffi::CString::new(message).map_err(err)?;
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
+            &message,
+            1,
+        )?;
+    }
     let json = serde_json::to_string(&summary).map_err(err)?;
     let out = py
         .import("json")?

@@ -131,6 +131,11 @@ impl SceneProblem {
         self.goals.len()
     }
 
+    /// The goals, in the order of each fitness's values.
+    pub fn goal_list(&self) -> &[Goal] {
+        &self.goals
+    }
+
     /// The goals' names, as a person reads them (all minimised).
     pub fn goal_names(&self) -> Vec<String> {
         self.goals.iter().map(|g| g.label()).collect()
