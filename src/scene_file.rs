@@ -37,6 +37,37 @@ pub enum SceneError {
     },
 }
 
+impl SceneError {
+    /// The message without the `--set key=value:` it starts with, for a front end that
+    /// shows it beside the field or call that set the value (the studio, Python).
+    pub fn detail(&self) -> String {
+        match self {
+            SceneError::Override { message, .. } => message.clone(),
+            SceneError::UnknownKey { key, nearest, .. } => {
+                format!(
+                    "unknown key '{key}': the nearest are {}",
+                    nearest.join(", ")
+                )
+            }
+            SceneError::Invalid {
+                origin,
+                line,
+                source,
+            } if origin.starts_with("--set ") => match line {
+                Some(l) => format!("line {l}: {source}"),
+                None => source.to_string(),
+            },
+            other => other.to_string(),
+        }
+    }
+}
+
+/// Checks a scene edited in memory (Python's `with_values`) as a scene file is checked;
+/// `origin` names the edit in errors.
+pub fn check_scene(scene: Scene, origin: &str) -> Result<Scene, SceneError> {
+    checked(scene, origin, None)
+}
+
 /// The scene if every value in it can be evaluated and searched, else why not; `text`,
 /// the file the scene was read from, locates the bad value's line.
 fn checked(scene: Scene, origin: &str, text: Option<&str>) -> Result<Scene, SceneError> {
@@ -275,16 +306,97 @@ pub fn apply_overrides(scene: Scene, assignments: &[String]) -> Result<Scene, Sc
     )
 }
 
-/// Writes `key.path=value` assignments into the scene's tree and reads it back.
-fn set_values(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError> {
-    let mut tree = serde_json::to_value(&scene).expect("a scene always serialises");
-    // A table a scene leaves out while it is the default (the teeth) can still be set.
+/// Sets scene values given as JSON values (`key.path`, value): Python's `with_set` of a
+/// number, list or table. Checked as [`apply_overrides`] checks; errors name the key as
+/// `--set key=value` would.
+pub fn apply_values(
+    scene: Scene,
+    values: &[(String, serde_json::Value)],
+) -> Result<Scene, SceneError> {
+    let assignments: Vec<String> = (values.iter()).map(|(k, v)| format!("{k}={v}")).collect();
+    let mut tree = scene_tree(&scene);
+    let plain = tree.clone();
+    for ((key, value), assignment) in values.iter().zip(&assignments) {
+        *slot(&mut tree, &plain, key, assignment)? = value.clone();
+    }
+    let scene = read_tree(tree, &assignments)?;
+    checked(scene, &format!("--set {}", assignments.join(" ")), None)
+}
+
+/// The value at `key.path` (`train.phi0_deg`, `gear.curve.radii_mm[3]`, `bounds`) as
+/// JSON: a number, list, string or table.
+pub fn value_at(scene: &Scene, key: &str) -> Result<serde_json::Value, SceneError> {
+    let mut tree = scene_tree(scene);
+    let plain = tree.clone();
+    Ok(slot(&mut tree, &plain, key, key)?.clone())
+}
+
+/// The scene's serialised tree, with the tables a scene leaves out while they are the
+/// default (the teeth) filled in, so that they can be read and set.
+fn scene_tree(scene: &Scene) -> serde_json::Value {
+    let mut tree = serde_json::to_value(scene).expect("a scene always serialises");
     if let Some(gear) = tree.get_mut("gear").and_then(|g| g.as_object_mut()) {
         gear.entry("teeth").or_insert_with(|| {
             serde_json::to_value(noncirc_core::ToothSpec::default()).expect("serialises")
         });
     }
-    let scene_tree = tree.clone();
+    tree
+}
+
+/// The node of `tree` at `key` (`a.b.c`, `a.b[i]`); `plain`, the unedited tree, lists the
+/// nearest keys when there is none; `assignment` names the request in errors.
+fn slot<'t>(
+    tree: &'t mut serde_json::Value,
+    plain: &serde_json::Value,
+    key: &str,
+    assignment: &str,
+) -> Result<&'t mut serde_json::Value, SceneError> {
+    let err = |message: String| SceneError::Override {
+        assignment: assignment.to_string(),
+        message,
+    };
+    let mut node = tree;
+    for part in key.trim().split('.') {
+        let (name, index) = match part.split_once('[') {
+            Some((name, rest)) => {
+                let i = rest.strip_suffix(']').and_then(|i| i.parse::<usize>().ok());
+                (
+                    name,
+                    Some(i.ok_or_else(|| err(format!("bad index in '{part}'")))?),
+                )
+            }
+            None => (part, None),
+        };
+        node = node
+            .as_object_mut()
+            .and_then(|obj| obj.get_mut(name))
+            .ok_or_else(|| SceneError::UnknownKey {
+                assignment: assignment.to_string(),
+                key: key.trim().to_string(),
+                nearest: noncirc_core::nearest(key.trim(), &key_paths(plain)),
+            })?;
+        if let Some(i) = index {
+            node = node
+                .as_array_mut()
+                .and_then(|a| a.get_mut(i))
+                .ok_or_else(|| err(format!("'{key}': no element {i} in '{name}'")))?;
+        }
+    }
+    Ok(node)
+}
+
+/// Reads a scene back from its edited tree.
+fn read_tree(tree: serde_json::Value, assignments: &[String]) -> Result<Scene, SceneError> {
+    serde_path_to_error::deserialize(tree).map_err(|e| SceneError::Override {
+        assignment: assignments.join(" "),
+        message: format!("key '{}': {}", e.path(), e.inner()),
+    })
+}
+
+/// Writes `key.path=value` assignments into the scene's tree and reads it back.
+fn set_values(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError> {
+    let mut tree = scene_tree(&scene);
+    let plain = tree.clone();
     for assignment in assignments {
         let err = |message: String| SceneError::Override {
             assignment: assignment.clone(),
@@ -306,40 +418,9 @@ fn set_values(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError>
             }
             Err(_) => serde_json::Value::String(raw.to_string()),
         };
-        // Walk `a.b.c` and `a.b[i]` segments down to the slot, then replace it.
-        let mut node = &mut tree;
-        for part in key.trim().split('.') {
-            let (name, index) = match part.split_once('[') {
-                Some((name, rest)) => {
-                    let i = rest.strip_suffix(']').and_then(|i| i.parse::<usize>().ok());
-                    (
-                        name,
-                        Some(i.ok_or_else(|| err(format!("bad index in '{part}'")))?),
-                    )
-                }
-                None => (part, None),
-            };
-            node = node
-                .as_object_mut()
-                .and_then(|obj| obj.get_mut(name))
-                .ok_or_else(|| SceneError::UnknownKey {
-                    assignment: assignment.clone(),
-                    key: key.trim().to_string(),
-                    nearest: noncirc_core::nearest(key.trim(), &key_paths(&scene_tree)),
-                })?;
-            if let Some(i) = index {
-                node = node
-                    .as_array_mut()
-                    .and_then(|a| a.get_mut(i))
-                    .ok_or_else(|| err(format!("'{key}': no element {i} in '{name}'")))?;
-            }
-        }
-        *node = value;
+        *slot(&mut tree, &plain, key, assignment)? = value;
     }
-    serde_path_to_error::deserialize(tree).map_err(|e| SceneError::Override {
-        assignment: assignments.join(" "),
-        message: format!("key '{}': {}", e.path(), e.inner()),
-    })
+    read_tree(tree, assignments)
 }
 
 #[cfg(test)]

@@ -28,8 +28,18 @@ class Scene:
     def builtin(name: str) -> Scene: ...
     @staticmethod
     def builtins() -> list[str]: ...
-    def with_set(self, key: str, value: str) -> Scene:
-        """A copy with `key.path = value` (value as TOML text)."""
+    def with_set(self, key: str, value: float | int | bool | str | list[Any] | dict[str, Any]) -> Scene:
+        """A copy with `key` set to `value` as the scene file holds it (a str is read as
+        TOML text if it is TOML, else as the string). Raises `UnknownNameError` for an unknown
+        key, `TypeError` for a value of another type, `NoncircError` for a bad value."""
+    def get(self, key: str) -> Any:
+        """The value at `key` ("train.phi0_deg", "gear.curve.radii_mm[3]", "bounds")."""
+    def with_values(self, names: list[str], row: Any) -> Scene:
+        """A copy with the numeric parameters `names` set to `row` (fast: no text)."""
+    def free_values(self) -> dict[str, float]:
+        """The free parameters' current values, in `free_parameters()` order."""
+    def __eq__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
     def to_toml(self) -> str: ...
     def to_json(self) -> str: ...
     @property
@@ -51,13 +61,15 @@ def measures() -> dict[str, tuple[str, str]]:
 
 def evaluate_batch(
     scene: Scene,
-    x: npt.NDArray[np.float64],
+    x: npt.ArrayLike,
     *,
     samples_per_turn: Optional[int] = None,
     closure_rel_tol: Optional[float] = None,
     threads: Optional[int] = None,
 ) -> dict[str, Any]:
-    """An (n, d) batch in parallel, GIL released: values, violations, cv, goals, valid."""
+    """An (n, d) batch in parallel, GIL released: values, violations, cv, goals, valid.
+    `x` is anything `np.asarray(x, dtype=float64)` accepts; another shape is an error
+    naming it."""
 
 def optimise(
     scene: Optional[Scene] = None,

@@ -27,7 +27,7 @@ def test_bad_scenes_raise_value_errors_naming_the_place():
         Scene.from_string("[resolution]\nsamples_per_turn = 'many'\n", "bad.toml")
     with pytest.raises(NoncircError, match="unknown"):
         Scene.builtin("nope")
-    with pytest.raises(NoncircError, match="no such scene file"):
+    with pytest.raises(FileNotFoundError, match="no such scene file"):
         Scene.from_file("/nonexistent/scene.toml")
     with pytest.raises(NoncircError, match="unknown key"):
         Scene.builtin("paper").with_set("train.nope", "1")
@@ -94,10 +94,8 @@ def test_batch_rows_equal_single_evaluations():
     "bad, message",
     [
         (np.zeros((3, 5)), "columns"),
-        (np.zeros(17), "2-D float64"),
-        (np.zeros((3, 17), dtype=np.float32), "float32"),
-        (np.zeros((3, 17), dtype=np.int64), "int64"),
-        ([[1.0] * 17], "2-D float64"),
+        (np.zeros(17), r"2-D, of shape \(n, 17\).*got shape \(17,\)"),
+        (np.zeros((3, 17, 1)), r"got shape \(3, 17, 1\)"),
         (np.full((2, 17), np.nan), "not finite"),
     ],
 )
@@ -180,3 +178,68 @@ def test_unknown_names_are_typed_errors_with_suggestions():
     with pytest.raises(UnknownNameError, match="bounds.module_min_mm"):
         scene.with_set("search.free", '[{name = "bounds.modul_min_mm", lower = 1, upper = 3}]')
     assert issubclass(UnknownNameError, NoncircError)
+
+
+def test_x_is_anything_numpy_reads_as_float64():
+    scene, x = paper_batch(3)
+    expected = evaluate_batch(scene, x)
+    for same in [x.tolist(), np.asfortranarray(x), x.T.copy().T]:
+        assert np.array_equal(evaluate_batch(scene, same)["cv"], expected["cv"])
+    single = x.astype(np.float32)
+    assert np.array_equal(evaluate_batch(scene, single)["cv"], evaluate_batch(scene, single.astype(np.float64))["cv"])
+    ints = np.rint(x).astype(np.int64)
+    assert np.array_equal(evaluate_batch(scene, ints)["cv"], evaluate_batch(scene, ints.astype(float))["cv"])
+    with pytest.raises(TypeError, match=r"np.asarray\(x, dtype=float64\)"):
+        evaluate_batch(scene, [["a"] * 17])
+
+
+def test_scenes_in_code_get_set_values_and_compare_by_content():
+    scene = Scene.builtin("paper-search")
+    assert scene.get("train.phi0_deg") == 86.0
+    assert scene.get("gear.curve.radii_mm")[:3] == [21.0, 28.0, 50.0]
+    assert scene.get("bounds")["picking_angle_deg"] == [-5.0, 15.0]
+    # Numbers, lists and strings, as the scene file holds them.
+    assert scene.with_set("train.gamma0_deg", -50.0).get("train.gamma0_deg") == -50.0
+    assert scene.with_set("train.gamma0_deg", -50).get("train.gamma0_deg") == -50.0
+    two = scene.with_set("search.goals", ["module", "picking_tip_speed"])
+    assert len(two.goal_names()) == 2
+    assert scene.with_set("train.rotation", "counterclockwise").get("train.rotation") == "counterclockwise"
+    # Equality by content, and hashing to match.
+    assert scene == Scene.builtin("paper-search") and hash(scene) == hash(Scene.builtin("paper-search"))
+    assert scene != scene.with_set("train.gamma0_deg", -50.0) and scene != "paper-search"
+    # A batch row back into a scene: the values of free_parameters() order.
+    names = [n for n, _, _ in scene.free_parameters()]
+    values = scene.free_values()
+    assert list(values) == names and values["train.arm_length_mm"] == 145.0
+    row = np.array(list(values.values()))
+    assert scene.with_values(names, row) == scene
+    row[3] = 40.0
+    changed = scene.with_values(names, row)
+    assert changed.get("gear.curve.radii_mm[3]") == 40.0
+    assert evaluate(changed)["objectives"] == evaluate(scene.with_set("gear.curve.radii_mm[3]", 40.0))["objectives"]
+
+
+def test_hostile_scene_edits_raise_the_right_exception_types():
+    from noncirc import UnknownNameError
+
+    scene = Scene.builtin("paper-search")
+    # Messages name the Python call, not the CLI's --set.
+    with pytest.raises(UnknownNameError, match=r'^Scene.with_set\("train.gamma_deg", -50.0\): unknown key'):
+        scene.with_set("train.gamma_deg", -50.0)
+    with pytest.raises(TypeError, match="type object"):
+        scene.with_set("train.gamma0_deg", object())
+    with pytest.raises(NoncircError, match="not a finite number"):
+        scene.with_set("train.gamma0_deg", float("nan"))
+    with pytest.raises(NoncircError, match="unknown search goal"):
+        scene.with_set("search.goals", ["nope"])
+    with pytest.raises(UnknownNameError, match="train.phi0_deg"):
+        scene.get("train.phi_deg")
+    names = [n for n, _, _ in scene.free_parameters()]
+    with pytest.raises(NoncircError, match="17 names but 2 values"):
+        scene.with_values(names, [1.0, 2.0])
+    with pytest.raises(NoncircError, match="not a finite number"):
+        scene.with_values(["train.phi0_deg"], [float("inf")])
+    with pytest.raises(UnknownNameError):
+        scene.with_values(["train.nope"], [1.0])
+    with pytest.raises(TypeError, match="sequence of numbers"):
+        scene.with_values(["train.phi0_deg"], "abc")

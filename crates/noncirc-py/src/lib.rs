@@ -8,14 +8,16 @@ use noncirc::core::Algorithm;
 use noncirc::core::Measure;
 use noncirc::core::SceneProblem;
 use noncirc::core::{Control, Evaluator, Observer, Resolution, SearchState};
-use noncirc::scene_file::{apply_overrides, load_scene, parse_scene, BUILTIN};
+use noncirc::scene_file::{
+    apply_overrides, apply_values, check_scene, load_scene, parse_scene, value_at, BUILTIN,
+};
 use noncirc::search::{RunOptions, SearchSettings};
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyString};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -81,6 +83,55 @@ fn scene_err(e: noncirc::scene_file::SceneError) -> PyErr {
     }
 }
 
+/// A scene error raised by a call (`Scene.with_set('key', value)`): its message without the
+/// CLI's `--set key=value:`, after the call's own name.
+fn call_err(e: noncirc::scene_file::SceneError, call: &str) -> PyErr {
+    let message = format!("{call}: {}", e.detail());
+    let unknown = matches!(
+        e,
+        noncirc::scene_file::SceneError::UnknownKey { .. }
+            | noncirc::scene_file::SceneError::Invalid {
+                source: noncirc::core::Error::UnknownName { .. },
+                ..
+            }
+    );
+    if unknown {
+        UnknownNameError::new_err(message)
+    } else {
+        err(message)
+    }
+}
+
+/// A Python value as JSON (`json.dumps`, no NaN): a wrong type is a `TypeError`, a
+/// non-finite number a `NoncircError`, each naming the call.
+fn py_to_json(value: &Bound<'_, PyAny>, call: &str) -> PyResult<serde_json::Value> {
+    let json = value.py().import("json")?;
+    let kwargs = PyDict::new(value.py());
+    kwargs.set_item("allow_nan", false)?;
+    let text: String = match json.call_method("dumps", (value,), Some(&kwargs)) {
+        Ok(t) => t.extract()?,
+        Err(e) if e.is_instance_of::<pyo3::exceptions::PyTypeError>(value.py()) => {
+            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                "{call}: a value of type {} is not a number, bool, string, list or dict",
+                value.get_type().name()?
+            )))
+        }
+        Err(_) => {
+            return Err(err(format!(
+                "{call}: {} is not a finite number: every number in a scene must be finite",
+                value.repr()?
+            )))
+        }
+    };
+    serde_json::from_str(&text).map_err(err)
+}
+
+/// A JSON value as a Python value (`json.loads`).
+fn json_to_py(py: Python<'_>, value: &serde_json::Value) -> PyResult<PyObject> {
+    let text = serde_json::to_string(value).map_err(err)?;
+    Ok(py.import("json")?.call_method1("loads", (text,))?.unbind())
+}
+
 /// A scene: what is designed and asked. Immutable: `with_set` returns a new scene.
 #[pyclass(module = "noncirc._noncirc", frozen)]
 #[derive(Clone)]
@@ -94,7 +145,11 @@ impl Scene {
     #[staticmethod]
     fn from_file(path: &str) -> PyResult<Self> {
         if !std::path::Path::new(path).exists() {
-            return Err(err(format!("no such scene file: {path}")));
+            return Err(pyo3::exceptions::PyFileNotFoundError::new_err((
+                2,
+                "no such scene file",
+                path.to_string(),
+            )));
         }
         Ok(Self {
             inner: load_scene(Some(path)).map_err(scene_err)?,
@@ -127,11 +182,94 @@ impl Scene {
         BUILTIN.iter().map(|(n, _)| n.to_string()).collect()
     }
 
-    /// A copy with `key.path = value` set (value as TOML text, e.g. "720" or '"ccw"').
-    fn with_set(&self, key: &str, value: &str) -> PyResult<Self> {
-        let inner =
-            apply_overrides(self.inner.clone(), &[format!("{key}={value}")]).map_err(scene_err)?;
+    /// A copy with `key` set to `value`: a number, bool, list or dict as the scene file
+    /// holds it (`with_set("train.gamma0_deg", -50.0)`, `with_set("search.goals",
+    /// ["module", "picking_tip_speed"])`), or a str, read as TOML text if it is TOML
+    /// ("720", '"ccw"', '["module"]') and else as the string itself. The scene is checked
+    /// whole; an error names the call, the key and the bad value.
+    fn with_set(&self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let call = format!("Scene.with_set({key:?}, {})", value.repr()?);
+        let inner = match value.downcast::<PyString>() {
+            Ok(text) => apply_overrides(self.inner.clone(), &[format!("{key}={}", text.to_cow()?)]),
+            Err(_) => apply_values(
+                self.inner.clone(),
+                &[(key.to_string(), py_to_json(value, &call)?)],
+            ),
+        }
+        .map_err(|e| call_err(e, &call))?;
         Ok(Self { inner })
+    }
+
+    /// The value at `key` (`"train.phi0_deg"`, `"gear.curve.radii_mm[3]"`, `"bounds"`): a
+    /// float, int, str, list or dict, as the scene file holds it.
+    fn get(&self, py: Python<'_>, key: &str) -> PyResult<PyObject> {
+        let value =
+            value_at(&self.inner, key).map_err(|e| call_err(e, &format!("Scene.get({key:?})")))?;
+        json_to_py(py, &value)
+    }
+
+    /// A copy with the numeric parameters `names` set to the values of `row` (a row of an
+    /// `evaluate_batch` input, in `free_parameters()` order): no text is parsed, so it is
+    /// fast. The scene is checked whole.
+    fn with_values(&self, names: Vec<String>, row: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let row: Vec<f64> = row
+            .extract()
+            .or_else(|_| row.call_method0("tolist").and_then(|l| l.extract()))
+            .map_err(|_| {
+                pyo3::exceptions::PyTypeError::new_err(format!(
+                    "Scene.with_values: row must be a sequence of numbers, got {}",
+                    row.get_type()
+                        .name()
+                        .map(|n| n.to_string())
+                        .unwrap_or_default()
+                ))
+            })?;
+        if names.len() != row.len() {
+            return Err(err(format!(
+                "Scene.with_values: {} names but {} values",
+                names.len(),
+                row.len()
+            )));
+        }
+        let mut inner = self.inner.clone();
+        for (name, &v) in names.iter().zip(&row) {
+            let param = noncirc::core::Param::parse(name, &inner).map_err(core_err)?;
+            if !v.is_finite() {
+                return Err(err(format!(
+                    "Scene.with_values: {name} = {v} is not a finite number"
+                )));
+            }
+            param.set(&mut inner, v);
+        }
+        let inner = check_scene(inner, "Scene.with_values").map_err(scene_err)?;
+        Ok(Self { inner })
+    }
+
+    /// The free parameters' current values, `{name: value}` in `free_parameters()` order.
+    fn free_values<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let problem = SceneProblem::new(&self.inner).map_err(core_err)?;
+        let out = PyDict::new(py);
+        for name in problem.names() {
+            let param = noncirc::core::Param::parse(name, &self.inner).map_err(core_err)?;
+            out.set_item(name, param.get(&self.inner))?;
+        }
+        Ok(out)
+    }
+
+    /// Scenes are equal when everything in them is (name and description included).
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.downcast::<Scene>().is_ok_and(|o| {
+            serde_json::to_value(&self.inner).ok() == serde_json::to_value(&o.get().inner).ok()
+        })
+    }
+
+    fn __hash__(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        serde_json::to_string(&self.inner)
+            .unwrap_or_default()
+            .hash(&mut h);
+        h.finish()
     }
 
     /// The scene as TOML text.
@@ -367,13 +505,22 @@ fn evaluate_batch<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let problem = SceneProblem::new(&scene.inner).map_err(core_err)?;
     let d = problem.dim();
-    let array = x.downcast::<PyArray2<f64>>().map_err(|_| {
-        let dtype = x
-            .getattr("dtype")
+    // Anything `np.asarray(x, dtype=float64)` accepts: ints, float32, lists, any order.
+    let converted = py
+        .import("numpy")?
+        .call_method1("asarray", (x, "float64"))
+        .map_err(|e| {
+            pyo3::exceptions::PyTypeError::new_err(format!(
+                "x must be numbers, an (n, {d}) array: np.asarray(x, dtype=float64) failed: {e}"
+            ))
+        })?;
+    let array = converted.downcast::<PyArray2<f64>>().map_err(|_| {
+        let shape = converted
+            .getattr("shape")
             .map(|t| t.to_string())
-            .unwrap_or_else(|_| x.get_type().to_string());
+            .unwrap_or_default();
         err(format!(
-            "x must be a 2-D float64 array of shape (n, {d}); got {dtype}"
+            "x must be 2-D, of shape (n, {d}) (columns: Scene.free_parameters()); got shape {shape}"
         ))
     })?;
     let shape = array.shape().to_vec();

@@ -122,17 +122,9 @@ impl Design {
     /// unchanged and the message names the bad value.
     pub fn set(&mut self, assignments: &str) -> Result<String, JsError> {
         let list: Vec<String> = assignments.lines().map(str::to_string).collect();
-        let scene = apply_overrides(self.scene.clone(), &list).map_err(|e| {
-            // The CLI names the flag (`--set key=value: …`); the page shows the message
-            // beside the field, which names the key itself.
-            let message = e.to_string();
-            let flag = format!("--set {}: ", list.join(" "));
-            let single = list.iter().map(|a| format!("--set {a}: "));
-            let prefix = std::iter::once(flag)
-                .chain(single)
-                .find(|p| message.starts_with(p));
-            js_error(prefix.map_or(message.as_str(), |p| &message[p.len()..]))
-        })?;
+        // The page shows the message beside the field, which names the key: without the
+        // CLI's `--set key=value:`.
+        let scene = apply_overrides(self.scene.clone(), &list).map_err(|e| js_error(e.detail()))?;
         let previous = std::mem::replace(&mut self.scene, scene);
         match self.evaluate() {
             Ok(json) => {
