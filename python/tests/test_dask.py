@@ -24,14 +24,19 @@ def batch(n):
     return scene, lo + np.random.default_rng(2).random((n, len(params))) * (hi - lo)
 
 
-def test_chunks_hold_at_least_ten_milliseconds_of_work():
-    scene, x = batch(64)
-    assert chunk_size(scene, x, 0.01) >= 100  # tens of microseconds per design
+def test_chunks_are_a_few_per_thread_and_hold_a_tenth_of_a_second():
+    scene, x = batch(200_000)
+    # 200 000 designs are seconds of work: four chunks per thread.
+    assert chunk_size(scene, x, 0.1, threads=2) == 25_000
+    # 2 000 designs are about 40 ms: one chunk, not dozens of tiny ones.
+    assert chunk_size(scene, x[:2000], 0.1, threads=2) == 2000
+    # The same input gives the same chunks (timing noise no longer multiplies them).
+    assert len({chunk_size(scene, x, 0.1, threads=2) for _ in range(5)}) == 1
 
 
 def test_distributed_batch_equals_the_local_one(client):
     scene, x = batch(2000)
-    remote = evaluate_batch_distributed(client, scene, x)
+    remote = evaluate_batch_distributed(client, scene, x, min_chunk_seconds=0.005)
     local = evaluate_batch(scene, x)
     assert remote["chunks"] >= 2
     for key in ["values", "violations", "cv", "goals", "valid"]:
