@@ -32,15 +32,22 @@ enum Format {
     Json,
 }
 
-/// Options shared by every command that reads a scene.
+/// The scene a command reads.
 #[derive(clap::Args)]
-struct SceneArgs {
+struct SceneSource {
     /// Scene file (TOML or JSON) or built-in scene name (`noncirc scenes`); default: the
     /// command's own (see its description; the three-arm paper's design for most).
     scene: Option<String>,
     /// Override any scene parameter, e.g. `--set resolution.samples_per_turn=720`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
+}
+
+/// Options shared by every command that reads a scene and reports on it.
+#[derive(clap::Args)]
+struct SceneArgs {
+    #[command(flatten)]
+    input: SceneSource,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Table)]
     format: Format,
@@ -113,7 +120,7 @@ struct TeethArgs {
 #[derive(clap::Args)]
 struct AnimateArgs {
     #[command(flatten)]
-    scene: SceneArgs,
+    scene: SceneSource,
     /// The GIF to write.
     #[arg(long, value_name = "FILE.gif")]
     out: std::path::PathBuf,
@@ -202,9 +209,16 @@ impl Observer for ProgressBar {
             let bar = indicatif::ProgressBar::new(budget);
             bar.set_style(
                 indicatif::ProgressStyle::with_template(
-                    "{bar:30} {pos}/{len} evals  {per_sec}  eta {eta}  {msg}",
+                    "{bar:30} {pos}/{len} evals  {rate}  eta {eta}  {msg}",
                 )
-                .expect("valid template"),
+                .expect("valid template")
+                // Whole designs per second (indicatif's own `per_sec` prints 4 decimals).
+                .with_key(
+                    "rate",
+                    |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                        let _ = write!(w, "{:.0}/s", state.per_sec());
+                    },
+                ),
             );
             bar
         });
@@ -289,8 +303,8 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
         // The checkpoint carries the scene and the search settings: a flag that would
         // change them is refused rather than silently ignored.
         let mut ignored: Vec<String> = [
-            ("a scene argument", args.scene.scene.is_some()),
-            ("--set", !args.scene.set.is_empty()),
+            ("a scene argument", args.scene.input.scene.is_some()),
+            ("--set", !args.scene.input.set.is_empty()),
         ]
         .into_iter()
         .filter(|&(_, given)| given)
@@ -311,8 +325,8 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
             .into());
         }
     }
-    let name = args.scene.scene.as_deref().unwrap_or("paper-search");
-    let mut scene = load_scene_with(Some(name), &args.scene.set)?;
+    let name = args.scene.input.scene.as_deref().unwrap_or("paper-search");
+    let mut scene = load_scene_with(Some(name), &args.scene.input.set)?;
     settings.apply(&mut scene)?;
     let checkpoint_every = noncirc::search::checkpoint_interval(args.checkpoint_every)?;
     // SIGINT, SIGTERM and SIGHUP all stop the search after the current generation.
@@ -373,7 +387,7 @@ fn plot_evaluation(
 fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
     match cli.command {
         Command::Gear(args) => {
-            let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
+            let scene = load_scene_with(args.scene.input.scene.as_deref(), &args.scene.input.set)?;
             let (report, pair) = GearReport::from_scene(&scene)?;
             noncirc::report::check_finite(&report)?;
             for dir in [&args.export, &args.scene.plot].into_iter().flatten() {
@@ -387,7 +401,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             }
         }
         Command::Teeth(args) => {
-            let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
+            let scene = load_scene_with(args.scene.input.scene.as_deref(), &args.scene.input.set)?;
             if !(args.tolerance_mm > 0.0 && args.tolerance_mm.is_finite()) {
                 return Err(Box::new(noncirc::core::Error::OutOfRange {
                     name: "--tolerance-mm".into(),
@@ -428,7 +442,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             eprintln!("wrote {}", args.out.display());
         }
         Command::Evaluate(args) => {
-            let scene = load_scene_with(args.scene.as_deref(), &args.set)?;
+            let scene = load_scene_with(args.input.scene.as_deref(), &args.input.set)?;
             let (report, eval) = EvaluationReport::from_scene(&scene)?;
             noncirc::report::check_finite(&report)?;
             if let Some(dir) = &args.plot {
@@ -441,8 +455,8 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
         }
         Command::Box(args) => {
             let scene = load_scene_with(
-                Some(args.scene.as_deref().unwrap_or("moving-box")),
-                &args.set,
+                Some(args.input.scene.as_deref().unwrap_or("moving-box")),
+                &args.input.set,
             )?;
             let mut box_scene = scene.clone();
             if box_scene.kind != SceneKind::Transplanter {
@@ -467,7 +481,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             }
         }
         Command::Accuracy(args) => {
-            let scene = load_scene_with(args.scene.as_deref(), &args.set)?;
+            let scene = load_scene_with(args.input.scene.as_deref(), &args.input.set)?;
             let report = noncirc::accuracy::measure(&scene, 720)?;
             match args.format {
                 Format::Json => out(&json(&report)?)?,
@@ -476,7 +490,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
         }
         Command::Optimise(args) => return optimise(args),
         Command::Sweep(args) => {
-            let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
+            let scene = load_scene_with(args.scene.input.scene.as_deref(), &args.scene.input.set)?;
             let measures = (args.measures.iter())
                 .map(|m| Measure::parse(m))
                 .collect::<Result<Vec<_>, _>>()?;
