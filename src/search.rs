@@ -520,13 +520,13 @@ impl Summary {
     }
 }
 
-/// The reported design's scene as `best.toml` holds it: named `<scene>-best`, with no
-/// free parameters (it is one design).
+/// The reported design's scene as `best.toml` holds it: named `<scene>-best`, with the
+/// search's space and settings kept, so that it evaluates as the design and searches again
+/// (`noncirc optimise best.toml`) over the same space.
 pub fn best_scene(problem: &SceneProblem, confirmed: &Confirmed) -> Option<Scene> {
     let (scene, _) = confirmed.best.as_ref()?;
     let mut scene = scene.clone();
     scene.name = format!("{}-best", problem.base().name);
-    scene.search.free.clear();
     Some(scene)
 }
 

@@ -367,6 +367,20 @@ fn reported_designs_meet_the_objectives_at_the_default_resolution() {
             noncirc::scene_file::load_scene(Some(dir.join("best.toml").to_str().unwrap())).unwrap();
         let eval = noncirc::core::Evaluator::new().evaluate(&best).unwrap();
         assert_eq!(eval.total_violation(), 0.0);
+        // It keeps the search's space: `optimise best.toml` searches the same one.
+        assert_eq!(
+            serde_json::to_string(&best.search.free).unwrap(),
+            serde_json::to_string(&scene.search.free).unwrap()
+        );
+        let header = std::fs::read_to_string(dir.join("pareto.csv")).unwrap();
+        assert!(
+            header
+                .lines()
+                .next()
+                .unwrap()
+                .ends_with(",goal_least_margin,cv"),
+            "{header}"
+        );
         for file in ["pareto.csv", "pareto.json", "history.csv", "summary.json"] {
             assert!(dir.join(file).exists(), "{file}");
         }

@@ -54,7 +54,9 @@ def evaluate(
 ) -> dict[str, Any]:
     """One design: objectives (dict), events with the picking check, the trajectory's
     sections, every measure (``{name: {"value", "unit"}}``), trajectory and pitch curves
-    (arrays, mm)."""
+    (arrays, mm), the pair's speed ratio and arm I's attitude per carrier sample
+    (``ratio``, ``attitude_deg``), and ``report``: everything ``noncirc evaluate --format
+    json`` prints, as the same nested dict."""
 
 def measures() -> dict[str, tuple[str, str]]:
     """Every measure by name: ``(unit, description)``; goals take ``min:NAME``/``max:NAME``."""

@@ -243,3 +243,26 @@ def test_hostile_scene_edits_raise_the_right_exception_types():
         scene.with_values(["train.nope"], [1.0])
     with pytest.raises(TypeError, match="sequence of numbers"):
         scene.with_values(["train.phi0_deg"], "abc")
+
+
+def test_evaluate_holds_everything_the_cli_json_holds():
+    import json
+    import subprocess
+    from pathlib import Path
+
+    cli = Path(__file__).resolve().parents[2] / "target" / "release" / "noncirc"
+    scene = Scene.builtin("paper")
+    r = evaluate(scene)
+    printed = json.loads(subprocess.run([str(cli), "evaluate", "paper", "--format", "json"], check=True, capture_output=True, text=True).stdout)
+    assert r["report"] == printed
+    n = len(r["carrier_deg"])
+    assert r["ratio"].shape == (n,) and r["attitude_deg"].shape == (n,)
+    # The pair closes 1:1, so the driven gear's turn per driver turn, the mean of
+    # 1/ratio over driver angles sampled evenly, is one.
+    gear = printed["gear"]
+    assert np.all(r["ratio"] > 0) and gear["centre_distance_mm"] == r["centre_distance_mm"]
+    assert abs(np.mean(1.0 / r["ratio"]) - 1.0) < 1e-9
+    # Arm I's attitude at picking, from the per-sample array, near the event's own.
+    picking = printed["events"]["picking_carrier_deg"]
+    j = int(np.argmin(np.abs(r["carrier_deg"] - picking)))
+    assert abs(r["attitude_deg"][j] - printed["events"]["picking_attitude_deg"]) < 5.0

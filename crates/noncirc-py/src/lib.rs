@@ -446,7 +446,24 @@ fn evaluate<'py>(
             "planet_centres",
             points(kin.planet_centres()).into_pyarray(py),
         )?;
+        // Per sample of the carrier turn, as the gears figure draws them: the speed ratio
+        // of the sun–intermediate pair and arm I's attitude (pusher axis, degrees).
+        let a = kin.centre_distance();
+        let ratio = Array1::from_iter((kin.pair().samples().iter()).map(|p| (a - p.rho) / p.rho));
+        out.set_item("ratio", ratio.into_pyarray(py))?;
+        let attitude = Array1::from_iter(
+            (kin.planet_angles().iter()).map(|&t| noncirc::core::attitude_deg(kin.pusher_angle(t))),
+        );
+        out.set_item("attitude_deg", attitude.into_pyarray(py))?;
     }
+    // Everything `noncirc evaluate --format json` prints (events of every arm, the gear's
+    // summary and module, sections, measures), as the same nested dict.
+    let report = noncirc::report::EvaluationReport::new(&s, &eval);
+    let report_json = serde_json::to_string(&report).map_err(err)?;
+    out.set_item(
+        "report",
+        py.import("json")?.call_method1("loads", (report_json,))?,
+    )?;
     if let Some(pair) = eval.pair() {
         let outlines = noncirc::export::outlines(pair).map_err(lib_err)?;
         out.set_item("driver_curve", points(&outlines[0].points).into_pyarray(py))?;
