@@ -29,7 +29,7 @@ def main(n=50_000, runs=5):
                 t = time.perf_counter()
                 r = evaluate_batch_distributed(client, scene, x)
                 remote.append(time.perf_counter() - t)
-                chunks.add(r["chunks"])
+                chunks.add(r.chunks)
     ratios = [r / l for r, l in zip(remote, local)]
     fmt = lambda v: f"{statistics.median(v):.3f} [{min(v):.3f}, {max(v):.3f}]"
     print(f"local (2 threads) s:      {fmt(local)}")

@@ -5,10 +5,47 @@ Load a scene, evaluate one design or a whole NumPy batch in parallel, run a sear
 >>> import noncirc
 >>> scene = noncirc.Scene.builtin("paper")
 >>> result = noncirc.evaluate(scene)
->>> round(result["centre_distance_mm"], 3)
+>>> round(result.centre_distance_mm, 3)
 85.018
+>>> result.objectives["picking_angle"].met
+True
+
+Errors are `NoncircError` (a ValueError), by kind `SceneError`, `ParameterError`,
+`ModelError` and `UnknownNameError`; files that cannot be read raise OSError
+(`FileNotFoundError`), values of the wrong type `TypeError`.
 """
 
-from ._noncirc import NoncircError, Scene, UnknownNameError, __version__, evaluate, evaluate_batch, measures, optimise
+from ._noncirc import (
+    ModelError,
+    NoncircError,
+    ParameterError,
+    Scene,
+    SceneError,
+    UnknownNameError,
+    __version__,
+    measures,
+)
+from .api import evaluate, evaluate_batch, optimise
+from .progress import ProgressBar
+from .results import Batch, Design, Evaluation, Objective, Quantity, SearchResult
 
-__all__ = ["NoncircError", "Scene", "UnknownNameError", "evaluate", "evaluate_batch", "measures", "optimise", "__version__"]
+__all__ = [
+    "Batch",
+    "Design",
+    "Evaluation",
+    "ModelError",
+    "NoncircError",
+    "Objective",
+    "ParameterError",
+    "ProgressBar",
+    "Quantity",
+    "Scene",
+    "SceneError",
+    "SearchResult",
+    "UnknownNameError",
+    "evaluate",
+    "evaluate_batch",
+    "measures",
+    "optimise",
+    "__version__",
+]

@@ -1,4 +1,6 @@
-"""Type stubs of the compiled extension."""
+"""Type stubs of the compiled extension. Its functions return plain dicts; the package's
+own `noncirc.evaluate`, `evaluate_batch` and `optimise` (noncirc/api.py) wrap them into
+the typed results of noncirc/results.py."""
 
 import os
 from typing import Any, Callable, Optional
@@ -9,7 +11,20 @@ import numpy.typing as npt
 __version__: str
 
 class NoncircError(ValueError):
-    """A noncirc input or model error; the message names the bad value."""
+    """A noncirc input or model error; the message names the bad value. Its subclasses
+    say which kind."""
+
+class SceneError(NoncircError):
+    """A scene's text, or an edit of it, that cannot be read: its syntax, a value of the
+    wrong kind, an unknown built-in; the message names the file and line or the call."""
+
+class ParameterError(NoncircError):
+    """A value the model refuses for a setting or a parameter: out of its range, not
+    finite, a list entry that cannot stand there."""
+
+class ModelError(NoncircError):
+    """A design the model cannot build: a pitch curve that is not positive or not
+    star-shaped, a closure the resolution does not resolve, teeth that cannot be cut."""
 
 class UnknownNameError(NoncircError):
     """A scene key, parameter, measure or goal noncirc does not know; the message lists
@@ -68,10 +83,12 @@ def evaluate_batch(
     samples_per_turn: Optional[int] = None,
     closure_rel_tol: Optional[float] = None,
     threads: Optional[int] = None,
+    measures: Optional[list[str]] = None,
 ) -> dict[str, Any]:
-    """An (n, d) batch in parallel, GIL released: values, violations, cv, goals, valid.
-    `x` is anything `np.asarray(x, dtype=float64)` accepts; another shape is an error
-    naming it."""
+    """An (n, d) batch in parallel, GIL released: values, violations, cv, goals, valid,
+    errors and the measures (all but the objectives by default, `[]` for none). `x` is
+    anything `np.asarray(x, dtype=float64)` accepts; another shape is an error naming
+    it."""
 
 def optimise(
     scene: Optional[Scene] = None,
@@ -88,7 +105,7 @@ def optimise(
     resume: Optional[str | os.PathLike[str]] = None,
 ) -> dict[str, Any]:
     """A search: summary (feasible, best, violations, evaluations, stopped_early, ...),
-    pareto, best_scene. `progress(info)` after every generation (info: generation,
+    parameter, goal and objective names, pareto, best_scene. `progress(info)` after every generation (info: generation,
     evaluations, budget, best_violation, feasible; return False to stop). Ctrl-C stops
     after the current generation and raises KeyboardInterrupt. `checkpoint` writes the
     state every `checkpoint_every` s and at the end; `resume` continues one (its scene and

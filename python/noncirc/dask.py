@@ -2,22 +2,34 @@
 
 Per-design tasks drown in scheduler overhead (a design takes tens of microseconds), so
 `evaluate_batch_distributed` splits a batch into a few chunks per worker thread, each of at
-least `min_chunk_seconds` (0.1 s) of work, timed on this machine first. `islands` runs independent searches, one per
-task. Scenes pickle, so the same code runs on a `LocalCluster` or a real cluster.
+least `min_chunk_seconds` (0.1 s) of work, timed on this machine first. `islands` runs
+independent searches, one per task. Scenes pickle, so the same code runs on a
+`LocalCluster` or a real cluster.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
+from dataclasses import dataclass
 from typing import Any, Sequence
 
 import numpy as np
 
-from ._noncirc import Scene, evaluate_batch, optimise
+from ._noncirc import Scene
+from .api import evaluate_batch, optimise
+from .results import Batch, SearchResult
 
 
-def _chunk(scene: Scene, x: np.ndarray, kwargs: dict) -> dict:
+@dataclass(frozen=True)
+class DistributedBatch(Batch):
+    """A `Batch` evaluated on a cluster, and into how many tasks it was split."""
+
+    chunks: int = 1
+
+
+def _chunk(scene: Scene, x: np.ndarray, kwargs: dict) -> Batch:
     return evaluate_batch(scene, x, threads=1, **kwargs)
 
 
@@ -48,33 +60,31 @@ def chunk_size(
 
 def evaluate_batch_distributed(
     client, scene: Scene, x: np.ndarray, *, min_chunk_seconds: float = 0.1, **kwargs: Any
-) -> dict:
+) -> DistributedBatch:
     """`evaluate_batch` over the cluster's workers, in chunks; same result, same order."""
     x = np.ascontiguousarray(x, dtype=np.float64)
     threads = sum(w.get("nthreads", 1) for w in client.scheduler_info()["workers"].values())
     size = chunk_size(scene, x, min_chunk_seconds, threads, **kwargs)
     pieces = [x[i : i + size] for i in range(0, len(x), size)]
     futures = client.map(_chunk, [scene] * len(pieces), pieces, [kwargs] * len(pieces), pure=False)
-    parts = client.gather(futures)
-    merged = {}
-    for key, first in parts[0].items():
+    parts: list[Batch] = client.gather(futures)
+    merged: dict[str, Any] = {}
+    for field in dataclasses.fields(Batch):
+        first = getattr(parts[0], field.name)
         if isinstance(first, np.ndarray):
-            merged[key] = np.concatenate([p[key] for p in parts])
-        elif key == "errors":
-            merged[key] = [e for p in parts for e in p[key]]
+            merged[field.name] = np.concatenate([getattr(p, field.name) for p in parts])
+        elif field.name == "errors":
+            merged[field.name] = [e for p in parts for e in p.errors]
         else:
-            merged[key] = first
-    merged["chunks"] = len(pieces)
-    return merged
+            merged[field.name] = first
+    return DistributedBatch(**merged, chunks=len(pieces))
 
 
-def _island(scene: Scene, seed: int, kwargs: dict) -> dict:
-    result = optimise(scene, seed=seed, threads=1, **kwargs)
-    result.pop("best_scene", None)
-    return result
+def _island(scene: Scene, seed: int, kwargs: dict) -> SearchResult:
+    return optimise(scene, seed=seed, threads=1, progress=False, **kwargs)
 
 
-def islands(client, scene: Scene, seeds: Sequence[int], **kwargs: Any) -> list[dict]:
+def islands(client, scene: Scene, seeds: Sequence[int], **kwargs: Any) -> list[SearchResult]:
     """Independent searches, one per seed and task; results in seed order."""
     futures = client.map(_island, [scene] * len(seeds), list(seeds), [kwargs] * len(seeds), pure=False)
     return client.gather(futures)

@@ -37,30 +37,30 @@ def test_bad_scenes_raise_value_errors_naming_the_place():
 
 def test_evaluate_matches_the_pinned_paper_design():
     r = evaluate(Scene.builtin("paper"), samples_per_turn=360)
-    assert r["samples_per_turn"] == 360
-    assert abs(r["centre_distance_mm"] - 85.01753) < 1e-4
-    o = r["objectives"]
-    assert abs(o["picking_angle"]["value"] - 0.2970) < 1e-3
-    assert abs(o["pushing_angle"]["value"] - 53.9909) < 1e-3
+    assert r.samples_per_turn == 360
+    assert abs(r.centre_distance_mm - 85.01753) < 1e-4
+    o = r.objectives
+    assert abs(o["picking_angle"].value - 0.2970) < 1e-3 and o["picking_angle"].unit == "deg"
+    assert abs(o["pushing_angle"].value - 53.9909) < 1e-3
     # The picking instant is one a machine can have (the same pins as tests/picking.rs).
-    assert abs(o["picking_admissible"]["value"] - 51.9908) < 1e-3
-    assert o["picking_admissible"]["violation"] == 0.0
-    ev = r["events"]
+    assert abs(o["picking_admissible"].value - 51.9908) < 1e-3
+    assert o["picking_admissible"].violation == 0.0 and o["picking_admissible"].met
+    ev = r.events
     assert ev["picking_refused"] is None and ev["picking_branch_gap_mm"] > 100.0
-    m = r["measures"]
-    assert m["picking_carrier_deg"]["unit"] == "deg"
-    assert abs(m["picking_carrier_deg"]["value"] - 71.879) < 1e-2
-    assert abs(m["planting_carrier_deg"]["value"] - 157.179) < 1e-2
-    assert o["module"]["violation"] > 2.0 and o["trajectory_height"]["violation"] == 0.0
-    assert r["trajectory"].shape == (360, 2) and r["trajectory"].dtype == np.float64
+    m = r.measures
+    assert m["picking_carrier_deg"].unit == "deg"
+    assert abs(m["picking_carrier_deg"].value - 71.879) < 1e-2
+    assert abs(m["planting_carrier_deg"].value - 157.179) < 1e-2
+    assert o["module"].violation > 2.0 and not o["module"].met and o["trajectory_height"].violation == 0.0
+    assert r.trajectory.shape == (360, 2) and r.trajectory.dtype == np.float64
     # The pitch curves to a 1 µm chord tolerance (more points than the evaluation's).
-    n = r["driver_curve"].shape[0]
-    assert n > 360 and r["driven_curve"].shape == (n, 2)
+    n = r.driver_curve.shape[0]
+    assert n > 360 and r.driven_curve.shape == (n, 2)
     # The driven curve closes the pair: radii add up to one centre distance point by point
     # (re-closed by the export's quadrature, within the evaluation's closure error).
-    radii = np.hypot(*r["driver_curve"].T) + np.hypot(*r["driven_curve"].T)
+    radii = np.hypot(*r.driver_curve.T) + np.hypot(*r.driven_curve.T)
     assert np.allclose(radii, radii[0], atol=1e-9)
-    assert abs(radii[0] - r["centre_distance_mm"]) < 1e-4
+    assert abs(radii[0] - r.centre_distance_mm) < 1e-4
 
 
 def paper_batch(n, seed=0):
@@ -74,20 +74,28 @@ def paper_batch(n, seed=0):
 
 def test_batch_rows_equal_single_evaluations():
     scene, x = paper_batch(40)
-    r = evaluate_batch(scene, x)
+    r = evaluate_batch(scene, x, measures="all")
     k = len(scene.objective_names())
-    assert r["values"].shape == (40, k) and r["cv"].shape == (40,) and r["goals"].shape == (40, 1)
+    assert r.values.shape == (40, k) and r.cv.shape == (40,) and r.goals.shape == (40, 1)
+    assert r.measures.shape == (40, len(r.measure_names)) and r.x.shape == (40, 17)
     names = [p[0] for p in scene.free_parameters()]
+    assert r.parameter_names == names
     for i in range(0, 40, 7):
-        if not r["valid"][i]:
-            assert r["errors"][i]
+        if not r.valid[i]:
+            assert r.errors[i]
             continue
         s = scene
         for name, v in zip(names, x[i]):
             s = s.with_set(name, repr(float(v)))
         single = evaluate(s)
-        for j, name in enumerate(r["objective_names"]):
-            assert r["values"][i, j] == pytest.approx(single["objectives"][name]["value"], rel=1e-12, abs=1e-12)
+        for j, name in enumerate(r.objective_names):
+            assert r.values[i, j] == pytest.approx(single.objectives[name].value, rel=1e-12, abs=1e-12)
+        # The events and trajectory measures, as one design's evaluation gives them.
+        for name in r.measure_names:
+            if name in single.measures:
+                assert r.value(name)[i] == pytest.approx(single.measures[name].value, rel=1e-12, abs=1e-12)
+            else:
+                assert np.isnan(r.value(name)[i])
 
 
 @pytest.mark.parametrize(
@@ -109,8 +117,8 @@ def test_invalid_designs_are_flagged_not_nan_silently():
     scene, x = paper_batch(4)
     x[1, 0] = -5.0  # a negative control radius
     r = evaluate_batch(scene, x)
-    assert not r["valid"][1] and "radius" in r["errors"][1]
-    assert r["cv"][1] == 1e5 and np.isfinite(r["cv"]).all()
+    assert not r.valid[1] and "radius" in r.errors[1] and not r.feasible[1]
+    assert r.cv[1] == 1e5 and np.isfinite(r.cv).all() and np.isnan(r.measures[1]).all()
 
 
 def test_two_python_threads_run_batches_concurrently():
@@ -138,11 +146,13 @@ def test_optimise_finds_a_feasible_design_reproducibly():
     scene = Scene.builtin("paper-search")
     a = optimise(scene, algorithm="de", seed=3, budget=30000)
     b = optimise(scene, algorithm="de", seed=3, budget=30000, threads=1)
-    assert a["best"] == b["best"] and a["evaluations"] == b["evaluations"]
-    if a["feasible"]:
-        again = evaluate(a["best_scene"])
-        assert again["feasible"]
-    assert set(a) >= {"feasible", "best", "violations", "evaluations", "pareto"}
+    assert a.best == b.best and a.evaluations == b.evaluations
+    # In the scene's order, not alphabetical.
+    assert list(a.best) == [p[0] for p in scene.free_parameters()]
+    assert list(a.objectives) == scene.objective_names()
+    if a.feasible:
+        again = evaluate(a.best_scene)
+        assert again.feasible and not a.missed
 
 
 def test_keyword_knobs_are_validated():
@@ -184,11 +194,11 @@ def test_x_is_anything_numpy_reads_as_float64():
     scene, x = paper_batch(3)
     expected = evaluate_batch(scene, x)
     for same in [x.tolist(), np.asfortranarray(x), x.T.copy().T]:
-        assert np.array_equal(evaluate_batch(scene, same)["cv"], expected["cv"])
+        assert np.array_equal(evaluate_batch(scene, same).cv, expected.cv)
     single = x.astype(np.float32)
-    assert np.array_equal(evaluate_batch(scene, single)["cv"], evaluate_batch(scene, single.astype(np.float64))["cv"])
+    assert np.array_equal(evaluate_batch(scene, single).cv, evaluate_batch(scene, single.astype(np.float64)).cv)
     ints = np.rint(x).astype(np.int64)
-    assert np.array_equal(evaluate_batch(scene, ints)["cv"], evaluate_batch(scene, ints.astype(float))["cv"])
+    assert np.array_equal(evaluate_batch(scene, ints).cv, evaluate_batch(scene, ints.astype(float)).cv)
     with pytest.raises(TypeError, match=r"np.asarray\(x, dtype=float64\)"):
         evaluate_batch(scene, [["a"] * 17])
 
@@ -216,7 +226,7 @@ def test_scenes_in_code_get_set_values_and_compare_by_content():
     row[3] = 40.0
     changed = scene.with_values(names, row)
     assert changed.get("gear.curve.radii_mm[3]") == 40.0
-    assert evaluate(changed)["objectives"] == evaluate(scene.with_set("gear.curve.radii_mm[3]", 40.0))["objectives"]
+    assert evaluate(changed).objectives == evaluate(scene.with_set("gear.curve.radii_mm[3]", 40.0)).objectives
 
 
 def test_hostile_scene_edits_raise_the_right_exception_types():
@@ -254,15 +264,94 @@ def test_evaluate_holds_everything_the_cli_json_holds():
     scene = Scene.builtin("paper")
     r = evaluate(scene)
     printed = json.loads(subprocess.run([str(cli), "evaluate", "paper", "--format", "json"], check=True, capture_output=True, text=True).stdout)
-    assert r["report"] == printed
-    n = len(r["carrier_deg"])
-    assert r["ratio"].shape == (n,) and r["attitude_deg"].shape == (n,)
+    assert r.report == printed
+    n = len(r.carrier_deg)
+    assert r.ratio.shape == (n,) and r.attitude_deg.shape == (n,)
     # The pair closes 1:1, so the driven gear's turn per driver turn, the mean of
     # 1/ratio over driver angles sampled evenly, is one.
     gear = printed["gear"]
-    assert np.all(r["ratio"] > 0) and gear["centre_distance_mm"] == r["centre_distance_mm"]
-    assert abs(np.mean(1.0 / r["ratio"]) - 1.0) < 1e-9
+    assert np.all(r.ratio > 0) and gear["centre_distance_mm"] == r.centre_distance_mm
+    assert abs(np.mean(1.0 / r.ratio) - 1.0) < 1e-9
     # Arm I's attitude at picking, from the per-sample array, near the event's own.
     picking = printed["events"]["picking_carrier_deg"]
-    j = int(np.argmin(np.abs(r["carrier_deg"] - picking)))
-    assert abs(r["attitude_deg"][j] - printed["events"]["picking_attitude_deg"]) < 5.0
+    j = int(np.argmin(np.abs(r.carrier_deg - picking)))
+    assert abs(r.attitude_deg[j] - printed["events"]["picking_attitude_deg"]) < 5.0
+
+
+@pytest.mark.parametrize(
+    "call, kind, message",
+    [
+        (lambda s: Scene.from_string("[train\nphi0_deg = 1"), "SceneError", "line 1"),
+        (lambda s: Scene.from_string('[train]\nphi0_deg = "a"'), "SceneError", r"line 2.*expected f64"),
+        (lambda s: s.with_set("train.arm_length_mm", -1.0), "ParameterError", r"train.arm_length_mm = -1 is out of range"),
+        (lambda s: s.with_set("resolution.samples_per_turn", 3), "ParameterError", "multiple of 6"),
+        (lambda s: s.with_set("bounds.picking_angle_deg", [5.0, -5.0]), "ParameterError", "lower bound 5"),
+        (lambda s: evaluate(s, closure_rel_tol=-1.0), "ParameterError", "closure_rel_tol = -1"),
+        (lambda s: s.with_values(["train.phi0_deg"], [float("inf")]), "ParameterError", "not a finite number"),
+        (lambda s: s.with_set("gear.curve.radii_mm[0]", -5.0), "ModelError", "pitch radius must be positive"),
+        (lambda s: evaluate(s, samples_per_turn=24), "ModelError", "closure not resolved at 24 samples"),
+        (lambda s: s.with_set("train.phi0_dg", 1.0), "UnknownNameError", "nearest are train.phi0_deg"),
+        (lambda s: Scene.builtin("papr"), "UnknownNameError", "the built-ins are paper, "),
+        (lambda s: evaluate_batch(Scene.builtin("paper-search"), np.zeros((1, 17)), measures=["loop_heigth_mm"]), "UnknownNameError", "loop_height_mm"),
+    ],
+)
+def test_each_kind_of_bad_input_raises_its_own_noncirc_error(call, kind, message):
+    import noncirc
+
+    cls = getattr(noncirc, kind)
+    assert issubclass(cls, noncirc.NoncircError) and issubclass(cls, ValueError)
+    with pytest.raises(cls, match=message) as caught:
+        call(Scene.builtin("paper"))
+    # Exactly this kind, not a sibling.
+    others = {"SceneError", "ParameterError", "ModelError", "UnknownNameError"} - {kind}
+    assert not any(isinstance(caught.value, getattr(noncirc, o)) for o in others)
+
+
+def test_results_are_typed_and_tabulate_with_units():
+    import json
+
+    pd = pytest.importorskip("pandas")
+    scene, x = paper_batch(6)
+    b = evaluate_batch(scene, x, measures="all")
+    frame = b.to_pandas()
+    assert len(frame) == 6
+    # Parameters, objectives and measures are named with their units.
+    for column in ["train.phi0_deg", "picking_angle_deg", "interference_mm", "picking_tip_speed_m_s", "removal_length_mm", "cv", "valid", "error"]:
+        assert column in frame.columns, column
+    assert np.array_equal(frame["picking_angle_deg"].to_numpy(), b.value("picking_angle"), equal_nan=True)
+    assert np.array_equal(frame["goal_" + b.goal_names[0]].to_numpy(), b.goals[:, 0])
+    with pytest.raises(KeyError, match="neither an objective nor a measure"):
+        b.value("picking_angel")
+    # By default the events' measures, which cost nothing; none, or one by name.
+    default = evaluate_batch(scene, x)
+    assert "picking_tip_speed_m_s" in default.measure_names and "removal_length_mm" not in default.measure_names
+    assert np.array_equal(default.value("picking_tip_speed_m_s"), b.value("picking_tip_speed_m_s"), equal_nan=True)
+    assert evaluate_batch(scene, x, measures=[]).measures.shape == (6, 0)
+    with pytest.raises(TypeError, match="measures must be"):
+        evaluate_batch(scene, x, measures="loop_height_mm")
+    only = evaluate_batch(scene, x, measures=["loop_height_mm"])
+    assert only.measure_names == ["loop_height_mm"] and np.array_equal(only.measures[:, 0], b.value("loop_height_mm"), equal_nan=True)
+    json.dumps(b.to_dict())
+
+    r = evaluate(Scene.builtin("paper"))
+    table = r.to_pandas()
+    assert list(table.index) == Scene.builtin("paper").objective_names()
+    assert table.loc["module", "unit"] == "mm" and not table.loc["module", "met"]
+    samples = r.samples_to_pandas()
+    assert list(samples.columns) == ["carrier_deg", "tip_x_mm", "tip_y_mm", "planet_x_mm", "planet_y_mm", "ratio", "attitude_deg"]
+    assert json.loads(json.dumps(r.to_dict()))["report"] == r.report
+
+    s = optimise(scene, algorithm="nsga2", seed=2, budget=3000, threads=1)
+    front = s.to_pandas()
+    assert len(front) == len(s.pareto) >= 1
+    assert list(front.columns) == [p[0] for p in scene.free_parameters()] + ["goal_" + n for n in s.goal_names] + ["cv"]
+    assert json.loads(json.dumps(s.to_dict()))["best_scene"].startswith("name")
+
+
+def test_the_package_docstring_example_runs():
+    import doctest
+
+    import noncirc
+
+    result = doctest.testmod(noncirc)
+    assert result.attempted >= 4 and result.failed == 0

@@ -38,13 +38,13 @@ def test_distributed_batch_equals_the_local_one(client):
     scene, x = batch(2000)
     remote = evaluate_batch_distributed(client, scene, x, min_chunk_seconds=0.005)
     local = evaluate_batch(scene, x)
-    assert remote["chunks"] >= 2
-    for key in ["values", "violations", "cv", "goals", "valid"]:
-        assert np.array_equal(remote[key], local[key], equal_nan=key in ("values", "violations"))
+    assert remote.chunks >= 2 and remote.errors == local.errors
+    for key in ["x", "values", "violations", "cv", "goals", "valid", "measures"]:
+        assert np.array_equal(getattr(remote, key), getattr(local, key), equal_nan=key in ("values", "violations", "measures")), key
 
 
 def test_islands_run_independent_searches(client):
     scene = Scene.builtin("paper-search")
     results = islands(client, scene, [1, 2], algorithm="de", budget=3000)
-    assert [r["seed"] for r in results] == [1, 2]
-    assert all(r["evaluations"] >= 3000 for r in results)
+    assert [r.seed for r in results] == [1, 2]
+    assert all(r.evaluations >= 3000 for r in results)

@@ -19,10 +19,10 @@ def test_numpy_model_agrees_with_noncirc_on_the_paper_design_and_random_ones():
     x = np.vstack([paper, lo + np.random.default_rng(3).random((30, len(params))) * (hi - lo)])
     ref = evaluate(x, names, PAPER, samples=720)
     core = noncirc.evaluate_batch(scene, x, samples_per_turn=720, closure_rel_tol=1e-3)
-    names_core = core["objective_names"]
+    names_core = core.objective_names
     checked = 0
-    for i in np.flatnonzero(core["valid"]):
-        v = dict(zip(names_core, core["values"][i]))
+    for i in np.flatnonzero(core.valid):
+        v = dict(zip(names_core, core.values[i]))
         # Same closure and trajectory samples; the NumPy model takes events and extremes at
         # the nearest of 720 samples where noncirc refines them, hence these tolerances.
         tol = {"trajectory_height": 0.5, "ground_clearance": 0.5, "interference": 0.5, "picking_angle": 2.0,
@@ -33,5 +33,5 @@ def test_numpy_model_agrees_with_noncirc_on_the_paper_design_and_random_ones():
         checked += 1
     assert checked >= 15
     one = noncirc.evaluate(scene, samples_per_turn=720)
-    assert abs(ref["centre_distance_mm"][0] - one["centre_distance_mm"]) < 1e-9
-    assert np.abs(ref["trajectory"][0] - one["trajectory"]).max() < 1e-3
+    assert abs(ref["centre_distance_mm"][0] - one.centre_distance_mm) < 1e-9
+    assert np.abs(ref["trajectory"][0] - one.trajectory).max() < 1e-3

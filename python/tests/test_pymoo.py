@@ -17,8 +17,8 @@ def test_adapter_shapes_and_constraints_match_the_core():
     x = problem.xl + np.random.default_rng(0).random((5, 17)) * (problem.xu - problem.xl)
     out = problem.evaluate(x, return_as_dictionary=True)
     core = evaluate_batch(scene, x)
-    assert np.array_equal(out["G"], core["normalised_violations"])
-    assert np.array_equal(out["F"], core["goals"])
+    assert np.array_equal(out["G"], core.normalised_violations)
+    assert np.array_equal(out["F"], core.goals)
 
 
 def test_pymoo_nsga2_runs_on_the_default_scene():

@@ -16,13 +16,13 @@ SETTINGS = dict(algorithm="de", seed=5, budget=2400, population=24, threads=2)
 def test_progress_is_reported_after_every_generation():
     calls = []
     r = optimise(Scene.builtin("paper-search"), progress=calls.append, **SETTINGS)
-    assert not r["stopped_early"]
+    assert not r.stopped_early
     # Once before the first generation, then after each of the 100 generations of 24.
     assert len(calls) == 1 + 2400 // 24
     assert [c["evaluations"] for c in calls] == [24 * g for g in range(len(calls))]
     assert all(c["budget"] == 2400 for c in calls)
     assert calls[0]["best_violation"] is None and calls[-1]["best_violation"] is not None
-    assert calls[-1]["feasible"] == (r["first_feasible_evaluations"] is not None)
+    assert calls[-1]["feasible"] == (r.first_feasible_evaluations is not None)
 
 
 def test_returning_false_stops_and_a_checkpoint_resumes_to_the_uninterrupted_result(tmp_path):
@@ -30,10 +30,10 @@ def test_returning_false_stops_and_a_checkpoint_resumes_to_the_uninterrupted_res
     whole = optimise(scene, **SETTINGS)
     ckpt = tmp_path / "run.ckpt"
     part = optimise(scene, progress=lambda info: info["generation"] < 30, checkpoint=ckpt, **SETTINGS)
-    assert part["stopped_early"] and part["evaluations"] == 30 * 24
+    assert part.stopped_early and part.evaluations == 30 * 24
     resumed = optimise(resume=ckpt, threads=1)
     for key in ["best", "objectives", "evaluations", "confirmations", "first_feasible_evaluations"]:
-        assert resumed[key] == whole[key], key
+        assert getattr(resumed, key) == getattr(whole, key), key
     # A resumed search runs the checkpoint's own settings: others are refused, not ignored.
     with pytest.raises(NoncircError, match="seed would be ignored"):
         optimise(resume=ckpt, seed=6)
@@ -80,7 +80,7 @@ def test_ctrl_c_stops_after_the_current_generation_and_keeps_the_checkpoint(tmp_
     # The checkpoint holds the state the search stopped in: ten more generations from it.
     stopped_at = seen[-1]["evaluations"]
     resumed = optimise(resume=ckpt, budget=stopped_at + 240, threads=1)
-    assert resumed["evaluations"] == stopped_at + 240
+    assert resumed.evaluations == stopped_at + 240
 
 
 def test_unknown_algorithm_is_an_unknown_name():
@@ -91,7 +91,7 @@ def test_unknown_algorithm_is_an_unknown_name():
 def test_a_search_that_ends_infeasible_warns():
     with pytest.warns(RuntimeWarning, match="no design found meets every objective"):
         r = optimise(Scene.builtin("paper-search"), algorithm="de", seed=1, budget=96, population=48, threads=1)
-    assert r["feasible"] is False
+    assert r.feasible is False and r.missed
 
 
 def test_ctrl_c_stops_a_large_batch_within_half_a_second():
@@ -118,3 +118,21 @@ def test_ctrl_c_stops_a_large_batch_within_half_a_second():
     # A piece of 4 096 designs takes about 0.04 s on two threads; the bound is loose for a
     # loaded machine, and far below the whole batch's 15 s.
     assert latency < 1.0, latency
+
+
+def test_a_progress_bar_draws_on_request_and_stays_off_when_nobody_watches(capsys):
+    import io
+
+    from noncirc import ProgressBar
+
+    optimise(Scene.builtin("paper-search"), progress=True, **SETTINGS)
+    drawn = capsys.readouterr().err
+    # One line redrawn after every generation, ending at the budget, then closed.
+    assert drawn.count("\r") == 1 + 2400 // 24 and drawn.endswith("\n")
+    assert "2,400/2,400 designs" in drawn.splitlines()[-1]
+    # Under pytest stderr is not a terminal: by default nothing is drawn.
+    optimise(Scene.builtin("paper-search"), **SETTINGS)
+    assert capsys.readouterr().err == ""
+    bar = ProgressBar(io.StringIO())
+    bar({"budget": 100, "evaluations": 50, "best_violation": 0.25, "feasible": False})
+    assert "[############............] 50/100 designs" in bar.stream.getvalue() and "best CV 0.25" in bar.stream.getvalue()

@@ -182,7 +182,6 @@ impl Evaluator {
                 out.gear_pair = Some(pair);
             }
             SceneKind::ThreeArm | SceneKind::Transplanter => {
-                scene.agronomy.validate()?;
                 self.counts.pitch_curve += 1;
                 let curve = scene.gear.curve.build()?;
                 self.counts.closure += 1;

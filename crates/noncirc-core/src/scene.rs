@@ -175,7 +175,9 @@ impl Default for Scene {
 }
 
 impl Scene {
-    /// The objectives this scene evaluates, checked against its kind.
+    /// Checks every value an evaluation uses, naming the bad one: the resolution, the
+    /// module and teeth settings, the bounds, a mechanism's train and agronomy, the moving
+    /// box, and the objectives against the scene's kind.
     pub fn validate(&self) -> Result<()> {
         self.resolution.validate()?;
         self.gear.module.validate()?;
@@ -185,6 +187,12 @@ impl Scene {
             self.moving_box.validate()?;
         }
         let mechanism = matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
+        if mechanism {
+            // Checked with the scene, so that a file or an edit is refused where the
+            // value is set, not at the first evaluation.
+            self.train.validate()?;
+            self.agronomy.validate()?;
+        }
         if mechanism && self.objectives.is_empty() {
             return Err(Error::BadList {
                 list: "objectives",

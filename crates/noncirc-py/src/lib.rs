@@ -1,6 +1,6 @@
 //! The `noncirc._noncirc` extension: a thin layer over the `noncirc` library. Input and model
-//! errors become `noncirc.NoncircError` (a `ValueError`; unknown names its subclass
-//! `UnknownNameError`), files that cannot be read or written `OSError` (with its errno
+//! errors become `noncirc.NoncircError` (a `ValueError`), by kind its subclasses
+//! `SceneError`, `ParameterError`, `ModelError` and `UnknownNameError`; files that cannot be read or written `OSError` (with its errno
 //! subclass, e.g. `FileNotFoundError`); heavy work runs with the GIL released, and a
 //! search stopped by Ctrl-C raises `KeyboardInterrupt`.
 
@@ -25,7 +25,32 @@ create_exception!(
     _noncirc,
     NoncircError,
     PyValueError,
-    "A noncirc input or model error (a ValueError)."
+    "A noncirc input or model error (a ValueError). Its subclasses say which kind: \
+     SceneError, ParameterError, ModelError, UnknownNameError."
+);
+
+create_exception!(
+    _noncirc,
+    SceneError,
+    NoncircError,
+    "A scene's text, or an edit of it, that cannot be read: its syntax, a value of the \
+     wrong kind, an unknown built-in; the message names the file and line or the call."
+);
+
+create_exception!(
+    _noncirc,
+    ParameterError,
+    NoncircError,
+    "A value the model refuses for a setting or a parameter: out of its range, not \
+     finite, a list entry that cannot stand there; the message names the value."
+);
+
+create_exception!(
+    _noncirc,
+    ModelError,
+    NoncircError,
+    "A design the model cannot build: a pitch curve that is not positive or not \
+     star-shaped, a closure the resolution does not resolve, teeth that cannot be cut."
 );
 
 create_exception!(
@@ -40,19 +65,43 @@ fn err(e: impl std::fmt::Display) -> PyErr {
     NoncircError::new_err(e.to_string())
 }
 
-/// A core error: unknown names become `UnknownNameError`.
-fn core_err(e: noncirc::core::Error) -> PyErr {
+/// A core error as the exception of its kind, with `message` (the error's own, or with
+/// the place it came from in front).
+fn core_kind(e: &noncirc::core::Error, message: String) -> PyErr {
+    use noncirc::core::Error as E;
+    // No catch-all: a new variant must be given its kind here.
     match e {
-        noncirc::core::Error::UnknownName { .. } => UnknownNameError::new_err(e.to_string()),
-        other => err(other),
+        E::UnknownName { .. } => UnknownNameError::new_err(message),
+        E::NonFinite { .. }
+        | E::OutOfRange { .. }
+        | E::ControlAngles { .. }
+        | E::TooFewPoints { .. }
+        | E::Missing { .. }
+        | E::BadList { .. } => ParameterError::new_err(message),
+        E::NonPositiveRadius { .. }
+        | E::NotStarShaped { .. }
+        | E::UnderResolved { .. }
+        | E::SpikeBetweenSamples { .. }
+        | E::Teeth { .. }
+        | E::OutlineCrossing { .. }
+        | E::Infeasible(_) => ModelError::new_err(message),
+        E::Checkpoint(_) => NoncircError::new_err(message),
     }
 }
 
-/// A library error: the core's and the scene's as above, files as `OSError`.
+/// A core error as the exception of its kind.
+fn core_err(e: noncirc::core::Error) -> PyErr {
+    let message = e.to_string();
+    core_kind(&e, message)
+}
+
+/// A library error: the core's and the scene's as above, requests the caller can fix as
+/// `ParameterError`, files as `OSError`.
 fn lib_err(e: noncirc::Error) -> PyErr {
     match e {
         noncirc::Error::Core(e) => core_err(e),
         noncirc::Error::Scene(e) => scene_err(e),
+        noncirc::Error::Input(message) => ParameterError::new_err(message),
         noncirc::Error::File {
             action,
             path,
@@ -71,35 +120,33 @@ fn lib_err(e: noncirc::Error) -> PyErr {
     }
 }
 
-/// A scene-file or `--set` error: unknown keys become `UnknownNameError`.
-fn scene_err(e: noncirc::scene_file::SceneError) -> PyErr {
+/// A scene error as the exception of its kind, with `message`: unknown keys as
+/// `UnknownNameError`, a value the core refuses by the core's kind, unreadable text as
+/// `SceneError`, a file that cannot be read as `OSError`.
+fn scene_kind(e: &noncirc::scene_file::SceneError, message: String) -> PyErr {
+    use noncirc::scene_file::SceneError as S;
     match e {
-        noncirc::scene_file::SceneError::UnknownKey { .. }
-        | noncirc::scene_file::SceneError::Invalid {
-            source: noncirc::core::Error::UnknownName { .. },
-            ..
-        } => UnknownNameError::new_err(e.to_string()),
-        other => err(other),
+        S::UnknownKey { .. } => UnknownNameError::new_err(message),
+        S::Invalid { source, .. } => core_kind(source, message),
+        S::Io { path, source } => match source.raw_os_error() {
+            Some(errno) => pyo3::exceptions::PyOSError::new_err((errno, message, path.clone())),
+            None => pyo3::exceptions::PyOSError::new_err(message),
+        },
+        S::Parse { .. } | S::UnknownBuiltin(_) | S::Override { .. } => SceneError::new_err(message),
     }
+}
+
+/// A scene-file or `--set` error as the exception of its kind.
+fn scene_err(e: noncirc::scene_file::SceneError) -> PyErr {
+    let message = e.to_string();
+    scene_kind(&e, message)
 }
 
 /// A scene error raised by a call (`Scene.with_set('key', value)`): its message without the
 /// CLI's `--set key=value:`, after the call's own name.
 fn call_err(e: noncirc::scene_file::SceneError, call: &str) -> PyErr {
     let message = format!("{call}: {}", e.detail());
-    let unknown = matches!(
-        e,
-        noncirc::scene_file::SceneError::UnknownKey { .. }
-            | noncirc::scene_file::SceneError::Invalid {
-                source: noncirc::core::Error::UnknownName { .. },
-                ..
-            }
-    );
-    if unknown {
-        UnknownNameError::new_err(message)
-    } else {
-        err(message)
-    }
+    scene_kind(&e, message)
 }
 
 /// A Python value as JSON (`json.dumps`, no NaN): a wrong type is a `TypeError`, a
@@ -117,7 +164,7 @@ fn py_to_json(value: &Bound<'_, PyAny>, call: &str) -> PyResult<serde_json::Valu
             )))
         }
         Err(_) => {
-            return Err(err(format!(
+            return Err(ParameterError::new_err(format!(
                 "{call}: {} is not a finite number: every number in a scene must be finite",
                 value.repr()?
             )))
@@ -169,7 +216,12 @@ impl Scene {
     #[staticmethod]
     fn builtin(name: &str) -> PyResult<Self> {
         if !BUILTIN.iter().any(|(n, _)| *n == name) {
-            return Err(err(format!("unknown built-in scene '{name}'")));
+            return Err(UnknownNameError::new_err(format!(
+                "unknown built-in scene '{name}': the built-ins are {}",
+                (BUILTIN.iter().map(|(n, _)| *n))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
         }
         Ok(Self {
             inner: load_scene(Some(name)).map_err(scene_err)?,
@@ -235,7 +287,7 @@ impl Scene {
         for (name, &v) in names.iter().zip(&row) {
             let param = noncirc::core::Param::parse(name, &inner).map_err(core_err)?;
             if !v.is_finite() {
-                return Err(err(format!(
+                return Err(ParameterError::new_err(format!(
                     "Scene.with_values: {name} = {v} is not a finite number"
                 )));
             }
@@ -515,7 +567,7 @@ fn pool(threads: Option<usize>) -> PyResult<Option<Arc<rayon::ThreadPool>>> {
 const ROWS_PER_SIGNAL_CHECK: usize = 4096;
 
 #[pyfunction]
-#[pyo3(signature = (scene, x, *, samples_per_turn = None, closure_rel_tol = None, threads = None))]
+#[pyo3(signature = (scene, x, *, samples_per_turn = None, closure_rel_tol = None, threads = None, measures = None))]
 fn evaluate_batch<'py>(
     py: Python<'py>,
     scene: &Scene,
@@ -523,8 +575,40 @@ fn evaluate_batch<'py>(
     samples_per_turn: Option<usize>,
     closure_rel_tol: Option<f64>,
     threads: Option<usize>,
+    measures: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let problem = SceneProblem::new(&scene.inner).map_err(core_err)?;
+    // The measures to return besides the objectives. By default the events' (carrier
+    // angles, picking window, tip speed, branch gaps, heights); "all" adds the
+    // trajectory's sections and loop, which double a design's time; a list names them;
+    // an empty list returns none.
+    let besides_objectives =
+        || (Measure::all().into_iter()).filter(|m| !matches!(m, Measure::Objective(_)));
+    let measures: Vec<Measure> = match measures {
+        None => besides_objectives()
+            .filter(|m| !m.needs_anatomy())
+            .collect(),
+        Some(m) if m.extract::<String>().is_ok_and(|s| s == "all") => {
+            besides_objectives().collect()
+        }
+        Some(m) => {
+            let names: Vec<String> = (m.downcast::<PyString>().is_err())
+                .then(|| m.extract().ok())
+                .flatten()
+                .ok_or_else(|| {
+                    pyo3::exceptions::PyTypeError::new_err(format!(
+                        "evaluate_batch: measures must be None, \"all\" or a list of measure \
+                         names (noncirc.measures()), got {}",
+                        m.repr().map(|r| r.to_string()).unwrap_or_default()
+                    ))
+                })?;
+            (names.iter())
+                .map(|n| Measure::parse(n))
+                .collect::<Result<_, _>>()
+                .map_err(core_err)?
+        }
+    };
+    let needs_anatomy = measures.iter().any(|m| m.needs_anatomy());
     let d = problem.dim();
     // Anything `np.asarray(x, dtype=float64)` accepts: ints, float32, lists, any order.
     let converted = py
@@ -563,7 +647,7 @@ fn evaluate_batch<'py>(
         .enumerate()
         .find_map(|(i, r)| r.iter().position(|v| !v.is_finite()).map(|j| (i, j)))
     {
-        return Err(err(format!(
+        return Err(ParameterError::new_err(format!(
             "x[{i}, {j}] ({}) = {} is not finite",
             problem.names()[j],
             rows[i][j]
@@ -577,7 +661,17 @@ fn evaluate_batch<'py>(
     let evaluate_row = |(ev, scratch): &mut (Evaluator, noncirc::core::Scene), x: &Vec<f64>| {
         let (fitness, outcome) = problem.fitness_at_values(x, ev, scratch, &res);
         let outcome = outcome
-            .map(|eval| eval.objectives)
+            .map(|eval| {
+                let anatomy = if needs_anatomy {
+                    eval.anatomy(&scratch.agronomy)
+                } else {
+                    None
+                };
+                let values: Vec<Option<f64>> = (measures.iter())
+                    .map(|m| m.value(&eval, anatomy.as_ref()))
+                    .collect();
+                (eval.objectives, values)
+            })
             .map_err(|e| e.to_string());
         (fitness, outcome)
     };
@@ -611,6 +705,7 @@ fn evaluate_batch<'py>(
     let mut goals = Array2::zeros((n, g));
     let mut cv = Array1::zeros(n);
     let mut valid = Array1::from_elem(n, false);
+    let mut measured = Array2::from_elem((n, measures.len()), f64::NAN);
     let errors = PyList::empty(py);
     for (i, (fitness, outcome)) in results.into_iter().enumerate() {
         cv[i] = fitness.cv;
@@ -618,8 +713,11 @@ fn evaluate_batch<'py>(
             goals[[i, j]] = *v;
         }
         match outcome {
-            Ok(objectives) => {
+            Ok((objectives, measure_values)) => {
                 valid[i] = true;
+                for (j, v) in measure_values.iter().enumerate() {
+                    measured[[i, j]] = v.unwrap_or(f64::NAN);
+                }
                 for (j, o) in objectives.iter().enumerate() {
                     values[[i, j]] = o.value;
                     violations[[i, j]] = o.violation;
@@ -641,13 +739,29 @@ fn evaluate_batch<'py>(
             .map(|o| o.name())
             .collect::<Vec<_>>(),
     )?;
+    out.set_item(
+        "objective_units",
+        (scene.inner.objectives.iter())
+            .map(|o| o.unit())
+            .collect::<Vec<_>>(),
+    )?;
     out.set_item("values", values.into_pyarray(py))?;
     out.set_item("violations", violations.into_pyarray(py))?;
     out.set_item("normalised_violations", normalised.into_pyarray(py))?;
     out.set_item("cv", cv.into_pyarray(py))?;
+    out.set_item("goal_names", problem.goal_names())?;
     out.set_item("goals", goals.into_pyarray(py))?;
     out.set_item("valid", valid.into_pyarray(py))?;
     out.set_item("errors", errors)?;
+    out.set_item(
+        "measure_names",
+        measures.iter().map(|m| m.name()).collect::<Vec<_>>(),
+    )?;
+    out.set_item(
+        "measure_units",
+        measures.iter().map(|m| m.unit()).collect::<Vec<_>>(),
+    )?;
+    out.set_item("measures", measured.into_pyarray(py))?;
     out.set_item("samples_per_turn", res.samples_per_turn)?;
     Ok(out)
 }
@@ -787,7 +901,8 @@ fn optimise<'py>(
             py,
             &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
             &message,
-            1,
+            // The user's call of `noncirc.optimise`, past the package's wrapper.
+            2,
         )?;
     }
     let json = serde_json::to_string(&summary).map_err(err)?;
@@ -796,6 +911,14 @@ fn optimise<'py>(
         .call_method1("loads", (json,))?
         .downcast_into::<PyDict>()?;
     let names = outcome.problem.names();
+    out.set_item("parameter_names", &names)?;
+    out.set_item("goal_names", outcome.problem.goal_names())?;
+    out.set_item(
+        "objective_names",
+        (outcome.problem.base().objectives.iter())
+            .map(|o| o.name())
+            .collect::<Vec<_>>(),
+    )?;
     let front = PyList::empty(py);
     for (x, f) in &outcome.confirmed.pareto {
         let d = PyDict::new(py);
@@ -829,6 +952,9 @@ fn _noncirc(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(optimise, m)?)?;
     m.add("NoncircError", m.py().get_type::<NoncircError>())?;
     m.add("UnknownNameError", m.py().get_type::<UnknownNameError>())?;
+    m.add("SceneError", m.py().get_type::<SceneError>())?;
+    m.add("ParameterError", m.py().get_type::<ParameterError>())?;
+    m.add("ModelError", m.py().get_type::<ModelError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

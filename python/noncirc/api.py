@@ -1,0 +1,96 @@
+"""The package's calls: the compiled extension's, returning typed results
+(`noncirc.results`) instead of its plain dicts."""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Callable, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _noncirc
+from ._noncirc import Scene
+from .progress import ProgressBar, interactive
+from .results import Batch, Evaluation, SearchResult
+
+Progress = Union[bool, Callable[[dict[str, Any]], Optional[bool]], None]
+
+
+def evaluate(scene: Scene, *, samples_per_turn: Optional[int] = None, closure_rel_tol: Optional[float] = None) -> Evaluation:
+    """One design: its objectives, events, sections and measures, the arrays to draw it,
+    and `report`, exactly what `noncirc evaluate --format json` prints. Raises
+    `ParameterError` for a bad setting and `ModelError` for a design the model cannot
+    build."""
+    return Evaluation._from_raw(_noncirc.evaluate(scene, samples_per_turn=samples_per_turn, closure_rel_tol=closure_rel_tol))
+
+
+def evaluate_batch(
+    scene: Scene,
+    x: npt.ArrayLike,
+    *,
+    samples_per_turn: Optional[int] = None,
+    closure_rel_tol: Optional[float] = None,
+    threads: Optional[int] = None,
+    measures: Union[None, str, Sequence[str]] = None,
+) -> Batch:
+    """An (n, d) batch of designs (columns: `scene.free_parameters()`), in parallel with
+    the GIL released; Ctrl-C stops it within about 0.1 s. `x` is anything
+    `np.asarray(x, dtype=float64)` accepts. `measures` are returned besides the
+    objectives (`noncirc.measures()` lists them): by default the events' (carrier angles,
+    picking window, tip speed, branch gaps, heights), about 2 % more time; `"all"` adds
+    the trajectory's sections and loop, which doubles a design's time; a list names them;
+    `[]` returns none."""
+    names = measures if measures is None or isinstance(measures, str) else list(measures)
+    raw = _noncirc.evaluate_batch(
+        scene, x, samples_per_turn=samples_per_turn, closure_rel_tol=closure_rel_tol, threads=threads, measures=names
+    )
+    parameter_names = [p[0] for p in scene.free_parameters()]
+    return Batch._from_raw(raw, parameter_names, np.asarray(x, dtype=np.float64))
+
+
+def optimise(
+    scene: Optional[Scene] = None,
+    *,
+    algorithm: Optional[str] = None,
+    seed: Optional[int] = None,
+    budget: Optional[int] = None,
+    population: Optional[int] = None,
+    threads: Optional[int] = None,
+    screening_samples_per_turn: Optional[int] = None,
+    progress: Progress = None,
+    checkpoint: Optional[Union[str, os.PathLike[str]]] = None,
+    checkpoint_every: float = 10.0,
+    resume: Optional[Union[str, os.PathLike[str]]] = None,
+) -> SearchResult:
+    """A search of the scene's free parameters; the keywords override its `[search]`
+    settings. Returns the reported design, confirmed at the scene's resolution, and the
+    confirmed Pareto set; warns (RuntimeWarning) when no design meets every objective.
+
+    `progress`: a callable `progress(info)` after every generation (info: generation,
+    evaluations, budget, best_violation, feasible; return False to stop), True for a
+    progress bar on stderr, False for nothing; by default a bar when a person is watching
+    (a terminal or a notebook) and nothing otherwise. Ctrl-C stops the search after the
+    current generation and raises KeyboardInterrupt. `checkpoint` writes the state every
+    `checkpoint_every` seconds and at the end; `resume` continues one (its scene and
+    settings; `budget` may be raised)."""
+    bar = ProgressBar() if progress is True or (progress is None and interactive()) else None
+    callback = bar if bar is not None else (progress if callable(progress) else None)
+    try:
+        raw = _noncirc.optimise(
+            scene,
+            algorithm=algorithm,
+            seed=seed,
+            budget=budget,
+            population=population,
+            threads=threads,
+            screening_samples_per_turn=screening_samples_per_turn,
+            progress=callback,
+            checkpoint=checkpoint,
+            checkpoint_every=checkpoint_every,
+            resume=resume,
+        )
+    finally:
+        if bar is not None:
+            bar.close()
+    return SearchResult._from_raw(raw, raw["parameter_names"], raw["objective_names"], raw["goal_names"])

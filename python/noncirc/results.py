@@ -1,0 +1,323 @@
+"""Typed results of `evaluate`, `evaluate_batch` and `optimise`: attributes with units in
+their names or beside them, `to_dict()` for plain data and `to_pandas()` for a table
+(pandas is optional: it is imported only there).
+
+Column and attribute names end in their unit (`centre_distance_mm`, `picking_angle_deg`,
+`picking_tip_speed_m_s`); `_m_s` is metres per second.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Optional
+
+import numpy as np
+
+if TYPE_CHECKING:
+    import pandas
+
+    from ._noncirc import Scene
+
+
+def with_unit(name: str, unit: str) -> str:
+    """`name` ending in `unit` once: ("module", "mm") -> "module_mm",
+    ("picking_tip_speed_m_s", "m/s") -> itself."""
+    token = unit.replace("/", "_")
+    if not token or name.endswith("_" + token):
+        return name
+    return f"{name}_{token}"
+
+
+def _pandas() -> Any:
+    try:
+        import pandas
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError("to_pandas() needs pandas: pip install pandas") from e
+    return pandas
+
+
+def _plain(value: Any) -> Any:
+    """`value` with arrays as lists, for `to_dict()` (JSON-ready)."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return {f.name: _plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
+    return value
+
+
+@dataclass(frozen=True)
+class Objective:
+    """One agronomic objective of a design: its value, bounds and how far it is from them,
+    all in `unit` (mm or deg)."""
+
+    name: str
+    value: float
+    unit: str
+    lower: Optional[float]
+    """Lower bound, or None."""
+    upper: Optional[float]
+    """Upper bound, or None."""
+    violation: float
+    """How far outside the bounds (0 when met), in `unit`."""
+    margin: float
+    """How far inside the nearer bound (negative when missed), in `unit`."""
+
+    @property
+    def met(self) -> bool:
+        return self.violation == 0.0
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A number with its unit."""
+
+    value: float
+    unit: str
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """One design evaluated: what `noncirc evaluate --format json` prints, and the arrays
+    to draw it. Arrays are per carrier sample (`samples_per_turn` of them) or per point
+    of a pitch curve, in mm and degrees; those of a three-arm mechanism are None for a
+    moving-box scene."""
+
+    samples_per_turn: int
+    feasible: bool
+    """Whether every objective is met."""
+    total_violation: float
+    """Sum of the objectives' violations, each in its own unit."""
+    centre_distance_mm: float
+    objectives: dict[str, Objective]
+    """By name, in the paper's order."""
+    events: Optional[dict[str, Any]]
+    """Picking and planting: carrier angles, attitudes (deg), the picking window, the tip
+    speed (m/s), branch gaps (mm) and the picking check; None without a three-arm train."""
+    sections: Optional[dict[str, dict[str, Any]]]
+    """The trajectory's sections by name: carrier span, length and heights."""
+    measures: dict[str, Quantity]
+    """Every measure this design has (`noncirc.measures()` lists them)."""
+    carrier_deg: Optional[np.ndarray]
+    """(n,) carrier angle of each sample."""
+    trajectory: Optional[np.ndarray]
+    """(n, 2) arm I's tip (x, y), mm."""
+    planet_centres: Optional[np.ndarray]
+    """(n, 2) arm I's planet centre (x, y), mm."""
+    ratio: Optional[np.ndarray]
+    """(n,) speed ratio of the sun–intermediate pair."""
+    attitude_deg: Optional[np.ndarray]
+    """(n,) arm I's pusher attitude."""
+    driver_curve: Optional[np.ndarray]
+    """(p, 2) driver pitch curve, mm (to a 1 µm chord)."""
+    driven_curve: Optional[np.ndarray]
+    """(p, 2) driven pitch curve, mm."""
+    report: dict[str, Any]
+    """Exactly `noncirc evaluate --format json`, as nested dicts."""
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any]) -> Evaluation:
+        objectives = {name: Objective(name=name, **o) for name, o in raw["objectives"].items()}
+        measures = {name: Quantity(**m) for name, m in raw["measures"].items()}
+        arrays = ["carrier_deg", "trajectory", "planet_centres", "ratio", "attitude_deg", "driver_curve", "driven_curve"]
+        return Evaluation(
+            samples_per_turn=raw["samples_per_turn"],
+            feasible=raw["feasible"],
+            total_violation=raw["total_violation"],
+            centre_distance_mm=raw["centre_distance_mm"],
+            objectives=objectives,
+            events=raw.get("events"),
+            sections=raw.get("sections"),
+            measures=measures,
+            report=raw["report"],
+            **{k: raw.get(k) for k in arrays},
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data (lists, not arrays): JSON-ready."""
+        return _plain(self)
+
+    def to_pandas(self) -> pandas.DataFrame:
+        """The objectives as a table: one row each, indexed by name, with columns value,
+        unit, lower, upper, violation, margin and met."""
+        pd = _pandas()
+        rows = [dataclasses.asdict(o) | {"met": o.met} for o in self.objectives.values()]
+        return pd.DataFrame(rows).set_index("name")
+
+    def samples_to_pandas(self) -> pandas.DataFrame:
+        """Per carrier sample: carrier_deg, tip_x_mm, tip_y_mm, planet_x_mm, planet_y_mm,
+        ratio and attitude_deg. A ValueError for a scene without a three-arm train."""
+        if self.carrier_deg is None:
+            raise ValueError("this scene has no three-arm mechanism: it has no samples to tabulate")
+        pd = _pandas()
+        return pd.DataFrame(
+            {
+                "carrier_deg": self.carrier_deg,
+                "tip_x_mm": self.trajectory[:, 0],
+                "tip_y_mm": self.trajectory[:, 1],
+                "planet_x_mm": self.planet_centres[:, 0],
+                "planet_y_mm": self.planet_centres[:, 1],
+                "ratio": self.ratio,
+                "attitude_deg": self.attitude_deg,
+            }
+        )
+
+
+@dataclass(frozen=True)
+class Batch:
+    """A batch of designs evaluated: one row per design of `x`, in its order. A design
+    the model refuses has `valid` False, its reason in `errors` and NaN values."""
+
+    parameter_names: list[str]
+    """The columns of `x`: the scene's free parameters (their names end in their unit)."""
+    x: np.ndarray
+    """(n, d) the designs, as float64."""
+    objective_names: list[str]
+    objective_units: list[str]
+    values: np.ndarray
+    """(n, k) each objective's value, in its unit."""
+    violations: np.ndarray
+    """(n, k) how far outside its bounds, in its unit (0 when met)."""
+    normalised_violations: np.ndarray
+    """(n, k) violations divided by each objective's scale (docs/search.md)."""
+    cv: np.ndarray
+    """(n,) their sum: 0 for a feasible design."""
+    goal_names: list[str]
+    goals: np.ndarray
+    """(n, g) the search goals, all minimised."""
+    measure_names: list[str]
+    measure_units: list[str]
+    measures: np.ndarray
+    """(n, m) the events, shape and sections measures asked for; NaN where a design has
+    none (a refused design, a branch gap that does not exist)."""
+    valid: np.ndarray
+    """(n,) False where the model refused the design."""
+    errors: list[Optional[str]]
+    """None, or why the model refused the design."""
+    samples_per_turn: int
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any], parameter_names: list[str], x: np.ndarray) -> Batch:
+        fields = {f.name for f in dataclasses.fields(Batch)} - {"parameter_names", "x"}
+        return Batch(parameter_names=parameter_names, x=x, **{k: raw[k] for k in fields})
+
+    @property
+    def feasible(self) -> np.ndarray:
+        """(n,) True where the design is valid and meets every objective."""
+        return self.valid & (self.cv == 0)
+
+    def value(self, name: str) -> np.ndarray:
+        """(n,) one objective's or measure's column by name."""
+        if name in self.objective_names:
+            return self.values[:, self.objective_names.index(name)]
+        if name in self.measure_names:
+            return self.measures[:, self.measure_names.index(name)]
+        known = ", ".join(self.objective_names + self.measure_names)
+        raise KeyError(f"{name!r} is neither an objective nor a measure of this batch: {known}")
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data (lists, not arrays): JSON-ready."""
+        return _plain(self)
+
+    def to_pandas(self) -> pandas.DataFrame:
+        """One row per design. Columns: the parameters, the objectives' values (named with
+        their unit: `picking_angle_deg`), the measures, `cv`, the goals (`goal_<name>`),
+        `valid` and `error`."""
+        pd = _pandas()
+        columns: dict[str, Any] = {n: self.x[:, j] for j, n in enumerate(self.parameter_names)}
+        for j, (n, u) in enumerate(zip(self.objective_names, self.objective_units)):
+            columns[with_unit(n, u)] = self.values[:, j]
+        for j, (n, u) in enumerate(zip(self.measure_names, self.measure_units)):
+            columns[with_unit(n, u)] = self.measures[:, j]
+        columns["cv"] = self.cv
+        for j, n in enumerate(self.goal_names):
+            columns[f"goal_{n}"] = self.goals[:, j]
+        columns["valid"] = self.valid
+        columns["error"] = self.errors
+        return pd.DataFrame(columns)
+
+
+@dataclass(frozen=True)
+class Design:
+    """One design of a confirmed Pareto set."""
+
+    parameters: dict[str, float]
+    """The free parameters' values, in the scene's order."""
+    goals: list[float]
+    """The goals, all minimised, in `SearchResult.goal_names` order."""
+    cv: float
+    """Its violation sum at the confirming resolution: 0 when feasible."""
+
+
+@dataclass(frozen=True)
+class SearchResult:
+    """A search's outcome: the design it reports, confirmed at the scene's resolution, and
+    its confirmed Pareto set (one design for a single goal)."""
+
+    scene: str
+    algorithm: str
+    seed: int
+    threads: int
+    feasible: bool
+    """Whether the reported design meets every objective at the scene's resolution."""
+    best: dict[str, float]
+    """The reported design's free parameters, in the scene's order."""
+    objectives: dict[str, float]
+    """Its objectives' values, each in its unit (`Scene.objective_names()` order)."""
+    violations: dict[str, float]
+    """Its objectives' violations, each in its unit."""
+    evaluations: int
+    confirmations: int
+    first_feasible_evaluations: Optional[int]
+    seconds: float
+    seconds_to_first_feasible: Optional[float]
+    screening_samples_per_turn: int
+    confirming_samples_per_turn: int
+    stopped_early: bool
+    """Whether the progress callback stopped it before its budget."""
+    goal_names: list[str]
+    pareto: list[Design]
+    best_scene: Optional[Scene]
+    """The scene with the reported design set: evaluate it, save it, search from it."""
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any], parameter_names: list[str], objective_names: list[str], goal_names: list[str]) -> SearchResult:
+        def ordered(values: dict[str, float], names: list[str]) -> dict[str, float]:
+            return {n: values[n] for n in names if n in values}
+
+        fields = {f.name for f in dataclasses.fields(SearchResult)}
+        plain = {k: v for k, v in raw.items() if k in fields}
+        plain["best"] = ordered(raw["best"], parameter_names)
+        plain["objectives"] = ordered(raw["objectives"], objective_names)
+        plain["violations"] = ordered(raw["violations"], objective_names)
+        plain["pareto"] = [Design(parameters=ordered(d["parameters"], parameter_names), goals=d["goals"], cv=d["cv"]) for d in raw["pareto"]]
+        plain["best_scene"] = raw.get("best_scene")
+        plain["goal_names"] = goal_names
+        return SearchResult(**plain)
+
+    @property
+    def missed(self) -> list[str]:
+        """The objectives the reported design misses, in the paper's order."""
+        return [n for n, v in self.violations.items() if v > 0]
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data (the best scene as its TOML text): JSON-ready."""
+        d = _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.name != "best_scene"})
+        d["best_scene"] = None if self.best_scene is None else self.best_scene.to_toml()
+        return d
+
+    def to_pandas(self) -> pandas.DataFrame:
+        """The confirmed Pareto set, one row per design: its parameters, its goals
+        (`goal_<name>`) and `cv`."""
+        pd = _pandas()
+        rows = []
+        for d in self.pareto:
+            row: dict[str, float] = dict(d.parameters)
+            row.update({f"goal_{n}": v for n, v in zip(self.goal_names, d.goals)})
+            row["cv"] = d.cv
+            rows.append(row)
+        return pd.DataFrame(rows)
