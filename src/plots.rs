@@ -49,9 +49,11 @@ pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>> {
     )?;
     // Only feasible designs form the front: with none, the report holds the best
     // infeasible design, whose goals may be the invalid design's sentinel, not values.
+    // In physical units: a maximised goal is drawn as itself, not negated.
     let pts: Vec<(f64, f64)> = (outcome.confirmed.pareto.iter())
         .filter(|(_, f)| f.feasible())
-        .map(|(_, f)| (f.f[0], f.f[1]))
+        .map(|(_, f)| outcome.problem.goal_values(&f.f))
+        .map(|v| (v[0], v[1]))
         .collect();
     if outcome.problem.goals() >= 2 && !pts.is_empty() {
         files.extend(save(
@@ -60,8 +62,8 @@ pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>> {
                     "Pareto set: {} designs, confirmed at the default resolution",
                     pts.len()
                 ),
-                x_desc: outcome.problem.goal_names()[0].clone(),
-                y_desc: outcome.problem.goal_names()[1].clone(),
+                x_desc: outcome.problem.goal_quantities()[0].label(),
+                y_desc: outcome.problem.goal_quantities()[1].label(),
                 series: vec![("first front".into(), pts)],
                 points_only: true,
             },

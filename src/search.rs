@@ -440,6 +440,18 @@ fn save_checkpoint(
         .map_err(|e| Error::file("write the checkpoint", path, e))
 }
 
+/// A search goal in physical terms, and the reported design's value of it.
+#[derive(Debug, Clone, Serialize)]
+pub struct GoalReading {
+    /// The quantity, named with its unit (`module_mm`).
+    pub name: String,
+    pub unit: &'static str,
+    /// Whether the search made it larger.
+    pub maximised: bool,
+    /// The reported design's value, in `unit` (none if it could not be confirmed).
+    pub value: Option<f64>,
+}
+
 /// The summary `--format json` prints.
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
@@ -460,6 +472,8 @@ pub struct Summary {
     pub screening_samples_per_turn: usize,
     pub confirming_samples_per_turn: usize,
     pub stopped_early: bool,
+    /// The goals, in physical terms.
+    pub goals: Vec<GoalReading>,
 }
 
 impl Summary {
@@ -492,7 +506,11 @@ impl Summary {
                 best.insert(name.to_string(), x);
             }
         }
-        if let Some((_, Some(eval))) = &confirmed.best {
+        let mut goal_values = vec![None; problem.goals()];
+        if let Some((scene, Some(eval))) = &confirmed.best {
+            goal_values = (problem.goal_values_of(eval, scene).into_iter())
+                .map(|v| v.is_finite().then_some(v))
+                .collect();
             feasible = eval.total_violation() == 0.0;
             for o in &eval.objectives {
                 violations.insert(o.kind.name().to_string(), o.violation);
@@ -516,6 +534,15 @@ impl Summary {
             screening_samples_per_turn: problem.screening().samples_per_turn,
             confirming_samples_per_turn: base.resolution.samples_per_turn,
             stopped_early,
+            goals: (problem.goal_quantities().into_iter())
+                .zip(goal_values)
+                .map(|(q, value)| GoalReading {
+                    name: q.name,
+                    unit: q.unit,
+                    maximised: q.maximised,
+                    value,
+                })
+                .collect(),
         }
     }
 }
@@ -556,16 +583,18 @@ impl Outcome {
         let names = self.problem.names();
         let pareto = &self.confirmed.pareto;
         let mut csv = names.join(",");
-        // Goals by name (`goal_module`, `goal_max_loop_height_mm`), as minimised: a
-        // maximised goal's column is its negative (docs/search.md).
-        for g in self.problem.goal_list() {
-            csv += &format!(",goal_{}", g.name().replace(':', "_"));
+        // Goals as the quantities they are, in their units (`module_mm`,
+        // `picking_tip_speed_m_s`); which way each was optimised is in docs/search.md and
+        // summary.json's `goals`.
+        let quantities = self.problem.goal_quantities();
+        for q in &quantities {
+            csv += &format!(",{}", q.name);
         }
         csv += ",cv\n";
         for (x, f) in pareto {
             let row: Vec<String> = x
                 .iter()
-                .chain(&f.f)
+                .chain(&self.problem.goal_values(&f.f))
                 .chain(std::iter::once(&f.cv))
                 .map(|v| v.to_string())
                 .collect();
@@ -577,7 +606,9 @@ impl Outcome {
             .map(|(x, f)| {
                 serde_json::json!({
                     "parameters": names.iter().zip(x).map(|(n, v)| (n.to_string(), *v)).collect::<BTreeMap<_, _>>(),
-                    "goals": f.f, "cv": f.cv,
+                    "goals": quantities.iter().map(|q| q.name.clone())
+                        .zip(self.problem.goal_values(&f.f)).collect::<BTreeMap<_, _>>(),
+                    "cv": f.cv,
                 })
             })
             .collect();

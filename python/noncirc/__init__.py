@@ -27,12 +27,13 @@ from ._noncirc import (
 )
 from .api import evaluate, evaluate_batch, optimise
 from .progress import ProgressBar
-from .results import Batch, Design, Evaluation, Objective, Quantity, SearchResult
+from .results import Batch, Design, Evaluation, Goal, Objective, Quantity, SearchResult
 
 __all__ = [
     "Batch",
     "Design",
     "Evaluation",
+    "Goal",
     "ModelError",
     "NoncircError",
     "Objective",

@@ -93,4 +93,4 @@ def optimise(
     finally:
         if bar is not None:
             bar.close()
-    return SearchResult._from_raw(raw, raw["parameter_names"], raw["objective_names"], raw["goal_names"])
+    return SearchResult._from_raw(raw, raw["parameter_names"], raw["objective_names"])

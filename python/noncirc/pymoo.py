@@ -1,8 +1,10 @@
 """A vectorised pymoo `Problem` made from a scene, so any pymoo algorithm can search it.
 
 The objectives' normalised violations are pymoo inequality constraints (`G <= 0` is met;
-pymoo sums them the same way noncirc does), and the scene's search goals are `F` (all
-minimised: a maximised goal is negated, as `scene.goal_names()` says).
+pymoo sums them the same way noncirc does), and the scene's search goals are `F` as
+noncirc's own searches rank them: all minimised, a maximised goal negated, an objective's
+margin divided by its scale. `scene.goal_names()` names the quantities, and
+`noncirc.evaluate_batch(...).goal_values` gives them in their units.
 
 pymoo's NSGA-II seldom reaches the feasible region of a transplanting mechanism from random
 starts (best CV 0.10 after 100 000 evaluations on the default space). `feasible_start`

@@ -187,8 +187,14 @@ class Batch:
     cv: np.ndarray
     """(n,) their sum: 0 for a feasible design."""
     goal_names: list[str]
+    """The search goals as the quantities they are, named with their units (`module_mm`)."""
+    goal_maximised: list[bool]
+    """Whether the search makes each goal larger."""
+    goal_values: np.ndarray
+    """(n, g) the goals' quantities in their units; NaN for a refused design."""
     goals: np.ndarray
-    """(n, g) the search goals, all minimised."""
+    """(n, g) the goals as a search ranks them, all minimised (a maximised goal negated,
+    an objective's margin normalised): what pymoo's `F` is."""
     measure_names: list[str]
     measure_units: list[str]
     measures: np.ndarray
@@ -225,8 +231,8 @@ class Batch:
 
     def to_pandas(self) -> pandas.DataFrame:
         """One row per design. Columns: the parameters, the objectives' values (named with
-        their unit: `picking_angle_deg`), the measures, `cv`, the goals (`goal_<name>`),
-        `valid` and `error`."""
+        their unit: `picking_angle_deg`), the measures, `cv`, the goals' quantities (named
+        with their units: `module_mm`), `valid` and `error`."""
         pd = _pandas()
         columns: dict[str, Any] = {n: self.x[:, j] for j, n in enumerate(self.parameter_names)}
         for j, (n, u) in enumerate(zip(self.objective_names, self.objective_units)):
@@ -235,10 +241,23 @@ class Batch:
             columns[with_unit(n, u)] = self.measures[:, j]
         columns["cv"] = self.cv
         for j, n in enumerate(self.goal_names):
-            columns[f"goal_{n}"] = self.goals[:, j]
+            columns[n] = self.goal_values[:, j]
         columns["valid"] = self.valid
         columns["error"] = self.errors
         return pd.DataFrame(columns)
+
+
+@dataclass(frozen=True)
+class Goal:
+    """A search goal as the quantity it is, and the reported design's value of it."""
+
+    name: str
+    """Named with its unit: `module_mm`, `picking_tip_speed_m_s`."""
+    unit: str
+    maximised: bool
+    """Whether the search made it larger."""
+    value: Optional[float]
+    """The reported design's value, in `unit`."""
 
 
 @dataclass(frozen=True)
@@ -247,8 +266,8 @@ class Design:
 
     parameters: dict[str, float]
     """The free parameters' values, in the scene's order."""
-    goals: list[float]
-    """The goals, all minimised, in `SearchResult.goal_names` order."""
+    goals: dict[str, float]
+    """The goals' quantities in their units, by name (`SearchResult.goals`)."""
     cv: float
     """Its violation sum at the confirming resolution: 0 when feasible."""
 
@@ -279,13 +298,14 @@ class SearchResult:
     confirming_samples_per_turn: int
     stopped_early: bool
     """Whether the progress callback stopped it before its budget."""
-    goal_names: list[str]
+    goals: list[Goal]
+    """The goals: quantities, units, directions and the reported design's values."""
     pareto: list[Design]
     best_scene: Optional[Scene]
     """The scene with the reported design set: evaluate it, save it, search from it."""
 
     @staticmethod
-    def _from_raw(raw: dict[str, Any], parameter_names: list[str], objective_names: list[str], goal_names: list[str]) -> SearchResult:
+    def _from_raw(raw: dict[str, Any], parameter_names: list[str], objective_names: list[str]) -> SearchResult:
         def ordered(values: dict[str, float], names: list[str]) -> dict[str, float]:
             return {n: values[n] for n in names if n in values}
 
@@ -294,9 +314,13 @@ class SearchResult:
         plain["best"] = ordered(raw["best"], parameter_names)
         plain["objectives"] = ordered(raw["objectives"], objective_names)
         plain["violations"] = ordered(raw["violations"], objective_names)
-        plain["pareto"] = [Design(parameters=ordered(d["parameters"], parameter_names), goals=d["goals"], cv=d["cv"]) for d in raw["pareto"]]
+        goals = [Goal(**g) for g in raw["goals"]]
+        plain["goals"] = goals
+        plain["pareto"] = [
+            Design(parameters=ordered(d["parameters"], parameter_names), goals={g.name: v for g, v in zip(goals, d["goal_values"])}, cv=d["cv"])
+            for d in raw["pareto"]
+        ]
         plain["best_scene"] = raw.get("best_scene")
-        plain["goal_names"] = goal_names
         return SearchResult(**plain)
 
     @property
@@ -311,13 +335,13 @@ class SearchResult:
         return d
 
     def to_pandas(self) -> pandas.DataFrame:
-        """The confirmed Pareto set, one row per design: its parameters, its goals
-        (`goal_<name>`) and `cv`."""
+        """The confirmed Pareto set, one row per design: its parameters, its goals'
+        quantities (named with their units: `module_mm`) and `cv`."""
         pd = _pandas()
         rows = []
         for d in self.pareto:
             row: dict[str, float] = dict(d.parameters)
-            row.update({f"goal_{n}": v for n, v in zip(self.goal_names, d.goals)})
+            row.update(d.goals)
             row["cv"] = d.cv
             rows.append(row)
         return pd.DataFrame(rows)

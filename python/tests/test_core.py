@@ -319,7 +319,10 @@ def test_results_are_typed_and_tabulate_with_units():
     for column in ["train.phi0_deg", "picking_angle_deg", "interference_mm", "picking_tip_speed_m_s", "removal_length_mm", "cv", "valid", "error"]:
         assert column in frame.columns, column
     assert np.array_equal(frame["picking_angle_deg"].to_numpy(), b.value("picking_angle"), equal_nan=True)
-    assert np.array_equal(frame["goal_" + b.goal_names[0]].to_numpy(), b.goals[:, 0])
+    # The default goal, the least normalised margin, is maximised: its quantity is the
+    # negative of what the search minimises.
+    assert b.goal_names == ["least_normalised_margin"] and b.goal_maximised == [True]
+    assert np.array_equal(frame["least_normalised_margin"].to_numpy(), np.where(b.valid, -b.goals[:, 0], np.nan), equal_nan=True)
     with pytest.raises(KeyError, match="neither an objective nor a measure"):
         b.value("picking_angel")
     # By default the events' measures, which cost nothing; none, or one by name.
@@ -344,7 +347,8 @@ def test_results_are_typed_and_tabulate_with_units():
     s = optimise(scene, algorithm="nsga2", seed=2, budget=3000, threads=1)
     front = s.to_pandas()
     assert len(front) == len(s.pareto) >= 1
-    assert list(front.columns) == [p[0] for p in scene.free_parameters()] + ["goal_" + n for n in s.goal_names] + ["cv"]
+    assert list(front.columns) == [p[0] for p in scene.free_parameters()] + ["least_normalised_margin", "cv"]
+    assert s.goals[0].maximised and s.goals[0].unit == "" and isinstance(s.goals[0].value, float)
     assert json.loads(json.dumps(s.to_dict()))["best_scene"].startswith("name")
 
 

@@ -357,11 +357,13 @@ impl Scene {
             .collect())
     }
 
-    /// Names of the search goals (all minimised).
+    /// The search goals as the quantities they are, named with their units
+    /// (`module_mm`, `picking_tip_speed_m_s`).
     fn goal_names(&self) -> PyResult<Vec<String>> {
-        Ok(SceneProblem::new(&self.inner)
-            .map_err(core_err)?
-            .goal_names())
+        let problem = SceneProblem::new(&self.inner).map_err(core_err)?;
+        Ok((problem.goal_quantities().into_iter())
+            .map(|q| q.name)
+            .collect())
     }
 
     /// Names of the objectives this scene evaluates, in order.
@@ -749,8 +751,24 @@ fn evaluate_batch<'py>(
     out.set_item("violations", violations.into_pyarray(py))?;
     out.set_item("normalised_violations", normalised.into_pyarray(py))?;
     out.set_item("cv", cv.into_pyarray(py))?;
-    out.set_item("goal_names", problem.goal_names())?;
+    let quantities = problem.goal_quantities();
+    out.set_item(
+        "goal_names",
+        quantities
+            .iter()
+            .map(|q| q.name.clone())
+            .collect::<Vec<_>>(),
+    )?;
+    out.set_item(
+        "goal_maximised",
+        quantities.iter().map(|q| q.maximised).collect::<Vec<_>>(),
+    )?;
+    // The goals as the search ranks them (all minimised) and as the quantities they are.
+    let goal_values = Array2::from_shape_fn((n, g), |(i, j)| {
+        problem.goal_list()[j].physical(goals[[i, j]], &scene.inner.bounds)
+    });
     out.set_item("goals", goals.into_pyarray(py))?;
+    out.set_item("goal_values", goal_values.into_pyarray(py))?;
     out.set_item("valid", valid.into_pyarray(py))?;
     out.set_item("errors", errors)?;
     out.set_item(
@@ -912,7 +930,12 @@ fn optimise<'py>(
         .downcast_into::<PyDict>()?;
     let names = outcome.problem.names();
     out.set_item("parameter_names", &names)?;
-    out.set_item("goal_names", outcome.problem.goal_names())?;
+    out.set_item(
+        "goal_names",
+        (outcome.problem.goal_quantities().into_iter())
+            .map(|q| q.name)
+            .collect::<Vec<_>>(),
+    )?;
     out.set_item(
         "objective_names",
         (outcome.problem.base().objectives.iter())
@@ -928,6 +951,7 @@ fn optimise<'py>(
         }
         d.set_item("parameters", params)?;
         d.set_item("goals", f.f.clone())?;
+        d.set_item("goal_values", outcome.problem.goal_values(&f.f))?;
         d.set_item("cv", f.cv)?;
         front.append(d)?;
     }

@@ -4,9 +4,50 @@ use super::problem::{scale, INVALID_CV};
 use crate::error::{Error, Result};
 use crate::evaluation::Evaluation;
 use crate::measures::{nearest, Measure};
-use crate::objectives::{ObjectiveKind, ObjectiveValue};
+use crate::objectives::{Bounds, ObjectiveKind, ObjectiveValue};
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
+
+/// A goal read in physical terms: the quantity it optimises, its unit and which way.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct GoalQuantity {
+    /// Named as a column, ending in its unit: `module_mm`, `picking_tip_speed_m_s`,
+    /// `picking_angle_margin_deg`, `least_normalised_margin` (no unit).
+    pub name: String,
+    /// `mm`, `deg`, `m/s`, or empty for a normalised (dimensionless) quantity.
+    pub unit: &'static str,
+    /// Whether the search makes it larger (its minimised value is its negative).
+    pub maximised: bool,
+}
+
+impl GoalQuantity {
+    /// As a person reads it on an axis: `module (mm), maximised`.
+    pub fn label(&self) -> String {
+        let token = format!("_{}", self.unit.replace('/', "_"));
+        let bare = self.name.strip_suffix(&token).unwrap_or(&self.name);
+        let unit = if self.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", self.unit)
+        };
+        let way = if self.maximised {
+            "maximised"
+        } else {
+            "minimised"
+        };
+        format!("{}{unit}, {way}", bare.replace('_', " "))
+    }
+}
+
+/// `name` ending in `unit` once: (`module`, `mm`) gives `module_mm`.
+fn with_unit(name: &str, unit: &str) -> String {
+    let token = unit.replace('/', "_");
+    if token.is_empty() || name.ends_with(&format!("_{token}")) {
+        name.to_string()
+    } else {
+        format!("{name}_{token}")
+    }
+}
 
 /// A goal to minimise once the constraints are met.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -54,23 +95,60 @@ impl Goal {
         }
     }
 
-    /// The goal as a person reads it, with its unit once (it is minimised: a maximised
-    /// measure is negated).
-    pub fn label(self) -> String {
+    /// The quantity the goal optimises, in physical terms. An objective's margin goal is
+    /// the objective itself where it has one bound (`module` → `module_mm`, maximised), and
+    /// its margin in its unit where it has two (`picking_angle_margin_deg`).
+    pub fn quantity(self, bounds: &Bounds) -> GoalQuantity {
+        let (name, unit, maximised) = match self {
+            Goal::LeastMargin => ("least_normalised_margin".to_string(), "", true),
+            Goal::Margin(k) => match k.bounds(bounds) {
+                (Some(_), None) => (with_unit(k.name(), k.unit()), k.unit(), true),
+                (None, Some(_)) => (with_unit(k.name(), k.unit()), k.unit(), false),
+                _ => (
+                    with_unit(&format!("{}_margin", k.name()), k.unit()),
+                    k.unit(),
+                    true,
+                ),
+            },
+            Goal::PickingTipSpeed => ("picking_tip_speed_m_s".to_string(), "m/s", false),
+            Goal::BoxTravel => ("box_travel_mm".to_string(), "mm", false),
+            Goal::Measure { measure, maximise } => (
+                with_unit(&measure.name(), measure.unit()),
+                measure.unit(),
+                maximise,
+            ),
+        };
+        GoalQuantity {
+            name,
+            unit,
+            maximised,
+        }
+    }
+
+    /// The quantity's value in its unit ([`Goal::quantity`]) from `f`, the minimised
+    /// value the search ranks by; NaN for a design the model refused (`f` is the
+    /// invalid design's sentinel).
+    pub fn physical(self, f: f64, bounds: &Bounds) -> f64 {
+        if !f.is_finite() || f.abs() >= INVALID_CV {
+            return f64::NAN;
+        }
         match self {
-            Goal::LeastMargin => "−(least normalised margin)".to_string(),
-            Goal::Margin(k) => format!("−({} normalised margin)", k.name()),
-            Goal::PickingTipSpeed => "picking tip speed (m/s)".to_string(),
-            Goal::BoxTravel => "box travel while picking (mm)".to_string(),
-            Goal::Measure { measure, maximise } => {
-                // A measure's name may end in its unit (`…_mm`, `…_m_s`).
-                let (name, unit) = (measure.name(), measure.unit());
-                let suffix = format!("_{}", unit.replace('/', "_"));
-                format!(
-                    "{}{} ({unit})",
-                    if maximise { "−" } else { "" },
-                    name.strip_suffix(&suffix).unwrap_or(&name),
-                )
+            Goal::LeastMargin => -f,
+            Goal::Margin(k) => {
+                let margin = -f * scale(k, bounds);
+                match k.bounds(bounds) {
+                    (Some(lower), None) => lower + margin,
+                    (None, Some(upper)) => upper - margin,
+                    _ => margin,
+                }
+            }
+            Goal::PickingTipSpeed | Goal::BoxTravel => f,
+            Goal::Measure { maximise, .. } => {
+                if maximise {
+                    -f
+                } else {
+                    f
+                }
             }
         }
     }
@@ -178,26 +256,66 @@ mod tests {
     }
 
     #[test]
-    fn a_measure_goal_label_carries_its_unit_once() {
+    fn a_goal_quantity_is_named_with_its_unit_once_and_its_direction() {
+        let bounds = Bounds::default();
         for measure in Measure::all() {
-            let label = Goal::Measure {
-                measure,
-                maximise: false,
+            for maximise in [false, true] {
+                let q = Goal::Measure { measure, maximise }.quantity(&bounds);
+                let token = measure.unit().replace('/', "_");
+                assert!(q.name.ends_with(&format!("_{token}")), "{}", q.name);
+                assert!(
+                    !q.name.ends_with(&format!("_{token}_{token}")),
+                    "{}",
+                    q.name
+                );
+                assert_eq!(q.maximised, maximise);
             }
-            .label();
-            let unit = measure.unit();
-            assert!(label.ends_with(&format!(" ({unit})")), "{label}");
-            let bare = &label[..label.len() - unit.len() - 3];
+        }
+        let module = Goal::Margin(ObjectiveKind::Module).quantity(&bounds);
+        assert_eq!(
+            (module.name.as_str(), module.maximised),
+            ("module_mm", true)
+        );
+        assert_eq!(module.label(), "module (mm), maximised");
+        let speed = Goal::PickingTipSpeed.quantity(&bounds);
+        assert_eq!(speed.label(), "picking tip speed (m/s), minimised");
+        let angle = Goal::Margin(ObjectiveKind::PickingAngle).quantity(&bounds);
+        assert_eq!(angle.name, "picking_angle_margin_deg");
+        let push = Goal::Margin(ObjectiveKind::SeedlingPush).quantity(&bounds);
+        assert_eq!(
+            (push.name.as_str(), push.maximised),
+            ("seedling_push_mm", false)
+        );
+        assert_eq!(
+            Goal::LeastMargin.quantity(&bounds).label(),
+            "least normalised margin, maximised"
+        );
+    }
+
+    #[test]
+    fn a_goal_physical_value_is_the_objective_or_its_margin_in_its_unit() {
+        use crate::evaluation::Evaluator;
+        let scene = Scene::default();
+        let eval = Evaluator::new()
+            .evaluate_at(&scene, &scene.resolution)
+            .unwrap();
+        let b = &scene.bounds;
+        for &k in &ObjectiveKind::ALL {
+            let o = eval.objective(k).unwrap();
+            let goal = Goal::Margin(k);
+            let physical = goal.physical(goal.value(&eval, &scene), b);
+            let expected = match k.bounds(b) {
+                (Some(_), None) | (None, Some(_)) => o.value,
+                _ => o.margin,
+            };
             assert!(
-                !bare.ends_with(&format!("_{}", unit.replace('/', "_"))),
-                "{label}"
+                (physical - expected).abs() < 1e-9 * expected.abs().max(1.0),
+                "{k:?}"
             );
         }
-        let speed = Goal::Measure {
-            measure: Measure::parse("picking_tip_speed_m_s").unwrap(),
-            maximise: true,
-        };
-        assert_eq!(speed.label(), "−picking_tip_speed (m/s)");
+        let least = Goal::LeastMargin.value(&eval, &scene);
+        assert_eq!(Goal::LeastMargin.physical(least, b), -least);
+        assert!(Goal::PickingTipSpeed.physical(INVALID_CV, b).is_nan());
     }
 
     #[test]

@@ -22,7 +22,7 @@ pub use checkpoint::{Checkpoint, FORMAT as CHECKPOINT_FORMAT};
 pub use cmaes::Cmaes;
 pub use de::DifferentialEvolution;
 pub use executor::{execute, stop_after_generations, Control, Ending, Observer};
-pub use goal::Goal;
+pub use goal::{Goal, GoalQuantity};
 pub use guided::ParameterGuided;
 pub use nsga::{das_dennis, non_dominated_fronts, Nsga, Survival};
 pub use problem::{scale, SceneProblem, INVALID_CV};

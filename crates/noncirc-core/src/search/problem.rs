@@ -1,7 +1,7 @@
 //! A search problem made from a scene: free parameters with bounds, the objectives'
 //! violations as constraints, and goals to minimise.
 
-use super::{Fitness, Goal};
+use super::{Fitness, Goal, GoalQuantity};
 use crate::error::{Error, Result};
 use crate::evaluation::{Evaluation, Evaluator};
 use crate::objectives::{Bounds, ObjectiveKind};
@@ -136,9 +136,25 @@ impl SceneProblem {
         &self.goals
     }
 
-    /// The goals' names, as a person reads them (all minimised).
-    pub fn goal_names(&self) -> Vec<String> {
-        self.goals.iter().map(|g| g.label()).collect()
+    /// The goals in physical terms: their quantities' names with units, and directions.
+    pub fn goal_quantities(&self) -> Vec<GoalQuantity> {
+        (self.goals.iter())
+            .map(|g| g.quantity(&self.base.bounds))
+            .collect()
+    }
+
+    /// The goals' quantities in their units for an evaluation of `scene`.
+    pub fn goal_values_of(&self, eval: &Evaluation, scene: &Scene) -> Vec<f64> {
+        (self.goals.iter())
+            .map(|g| g.physical(g.value(eval, scene), &scene.bounds))
+            .collect()
+    }
+
+    /// The goals' quantities in their units, from a fitness's minimised values `f`.
+    pub fn goal_values(&self, f: &[f64]) -> Vec<f64> {
+        (self.goals.iter().zip(f))
+            .map(|(g, &v)| g.physical(v, &self.base.bounds))
+            .collect()
     }
 
     /// The free parameters' names.
