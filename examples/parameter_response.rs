@@ -5,9 +5,10 @@
 //!
 //! `cargo run --release --example parameter_response -- docs/figures/response`
 
+use noncirc::core::Kinematics;
 use noncirc::core::Measure;
 use noncirc::core::{Evaluator, Param, Scene};
-use noncirc::figures::{save, LinesFigure};
+use noncirc::figures::{save, FigureOptions, LinesFigure, FIGURE_SAMPLES};
 use noncirc::scene_file::load_scene;
 use std::path::PathBuf;
 
@@ -94,7 +95,9 @@ fn main() -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
                     .collect(),
             );
             if i % 4 == 0 {
-                let kin = eval.kinematics.as_ref().ok_or("no kinematics")?;
+                // Drawn from a dense solution, not the evaluation's samples.
+                let dense = s.resolution.with_samples(FIGURE_SAMPLES);
+                let kin = Kinematics::solve(&s.gear.curve.build()?, &s.train, &dense)?;
                 let pts = kin
                     .tips()
                     .iter()
@@ -130,12 +133,15 @@ fn main() -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
         save(
             &LinesFigure {
                 title: format!("section measures against {} ({name})", symbol(&name)),
-                x_desc: name.clone(),
+                x_desc: axis(&name),
                 y_desc: "change from the paper's design (mm)".into(),
                 series: measure_series,
                 points_only: false,
+                markers: true,
+                band: None,
             },
             &dir.join(format!("{file}_measures")),
+            &FigureOptions::default(),
         )?;
         save(
             &LinesFigure {
@@ -144,8 +150,11 @@ fn main() -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
                 y_desc: "y (mm)".into(),
                 series,
                 points_only: false,
+                markers: false,
+                band: None,
             },
             &dir.join(file),
+            &FigureOptions::default(),
         )?;
     }
     Ok(())
@@ -153,22 +162,13 @@ fn main() -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
 
 /// The paper's symbol for a parameter path: r1..r12, Φ0, β0, S, H1, γ0.
 fn symbol(name: &str) -> String {
-    if let Some(i) = name
-        .strip_prefix("gear.curve.radii_mm[")
-        .and_then(|r| r.strip_suffix(']'))
-        .and_then(|i| i.parse::<usize>().ok())
-    {
-        return format!("r{}", i + 1);
-    }
-    match name {
-        "train.phi0_deg" => "Φ0",
-        "train.beta0_deg" => "β0",
-        "train.arm_length_mm" => "S",
-        "train.pusher_offset_mm" => "H1",
-        "train.gamma0_deg" => "γ0",
-        other => other,
-    }
-    .to_string()
+    noncirc::core::symbol(name).unwrap_or_else(|| name.to_string())
+}
+
+/// A parameter's axis title: its path, symbol and unit (`train.arm_length_mm, S (mm)`).
+fn axis(name: &str) -> String {
+    let unit = noncirc::core::field(name).map_or("", |f| f.unit);
+    format!("{name}, {} ({unit})", symbol(name))
 }
 
 /// `a → b (↑)`: first and last values and the direction, `↑`/`↓` when monotone over the

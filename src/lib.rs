@@ -14,6 +14,7 @@ pub mod files;
 pub mod plots;
 pub mod report;
 pub mod scene_file;
+pub mod scene_reference;
 pub mod search;
 pub mod teeth;
 

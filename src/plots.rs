@@ -1,7 +1,9 @@
 //! What `--plot DIR` writes for each command: figures plus the CSV/SVG/DXF exports.
 
 use crate::export::{export_gears, export_trajectory};
-use crate::figures::{evaluation_figures, save, LinesFigure};
+use crate::figures::{
+    evaluation_figures, save, ConvergenceFigure, FigureOptions, LinesFigure, FIGURE_SAMPLES,
+};
 use crate::search::{Outcome, SweepRow};
 use noncirc_core::{Evaluation, Param, Scene};
 use std::path::{Path, PathBuf};
@@ -10,8 +12,13 @@ use crate::files::create_dir;
 use crate::Result;
 
 /// Figures of an evaluation, the trajectory CSV and the pitch-curve exports.
-pub fn evaluation_outputs(scene: &Scene, eval: &Evaluation, dir: &Path) -> Result<Vec<PathBuf>> {
-    let mut files = evaluation_figures(scene, eval, dir)?;
+pub fn evaluation_outputs(
+    scene: &Scene,
+    eval: &Evaluation,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
+    let mut files = evaluation_figures(scene, eval, dir, options)?;
     if let Some(kin) = &eval.kinematics {
         files.push(export_trajectory(kin, dir)?);
     }
@@ -22,40 +29,33 @@ pub fn evaluation_outputs(scene: &Scene, eval: &Evaluation, dir: &Path) -> Resul
 }
 
 /// Search convergence, the Pareto set (two goals or more), and the best design's figures.
-pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>> {
+pub fn search_figures(
+    outcome: &Outcome,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
     create_dir(dir)?;
-    let h = &outcome.state.history;
-    let cv: Vec<(f64, f64)> = h
-        .iter()
-        .map(|r| (r.evaluations as f64, r.best_cv.max(1e-6).log10()))
-        .collect();
-    let goal: Vec<(f64, f64)> = h
-        .iter()
-        .filter(|r| r.best_cv == 0.0)
-        .map(|r| (r.evaluations as f64, r.best_goal))
-        .collect();
+    let problem = &outcome.problem;
+    let goal_value = |f: f64| problem.goal_values(&[f])[0];
     let mut files = save(
-        &LinesFigure {
-            title: format!("Search convergence ({})", outcome.state.algorithm.name()),
-            x_desc: "evaluations".into(),
-            y_desc: "log10 best violation  /  best goal once feasible".into(),
-            series: vec![
-                ("log10(best CV)".into(), cv),
-                ("best goal (feasible)".into(), goal),
-            ],
-            points_only: false,
+        &ConvergenceFigure {
+            algorithm: outcome.state.algorithm.name(),
+            history: &outcome.state.history,
+            goal: problem.goal_quantities().swap_remove(0),
+            goal_value: &goal_value,
         },
         &dir.join("convergence"),
+        options,
     )?;
     // Only feasible designs form the front: with none, the report holds the best
     // infeasible design, whose goals may be the invalid design's sentinel, not values.
     // In physical units: a maximised goal is drawn as itself, not negated.
     let pts: Vec<(f64, f64)> = (outcome.confirmed.pareto.iter())
-        .filter(|(_, f)| f.feasible())
+        .filter(|(_, f)| f.feasible() && f.f.len() >= 2)
         .map(|(_, f)| outcome.problem.goal_values(&f.f))
         .map(|v| (v[0], v[1]))
         .collect();
-    if outcome.problem.goals() >= 2 && !pts.is_empty() {
+    if !pts.is_empty() {
         files.extend(save(
             &LinesFigure {
                 title: format!(
@@ -66,12 +66,15 @@ pub fn search_figures(outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>> {
                 y_desc: outcome.problem.goal_quantities()[1].label(),
                 series: vec![("first front".into(), pts)],
                 points_only: true,
+                markers: false,
+                band: None,
             },
             &dir.join("pareto"),
+            options,
         )?);
     }
     if let Some((scene, Some(eval))) = &outcome.confirmed.best {
-        files.extend(evaluation_outputs(scene, eval, &dir.join("best"))?);
+        files.extend(evaluation_outputs(scene, eval, &dir.join("best"), options)?);
     }
     Ok(files)
 }
@@ -82,6 +85,7 @@ pub fn sweep_figures(
     param: &str,
     rows: &[SweepRow],
     dir: &Path,
+    options: &FigureOptions,
 ) -> Result<Vec<PathBuf>> {
     create_dir(dir)?;
     let mut names: Vec<String> = rows
@@ -95,7 +99,20 @@ pub fn sweep_figures(
             .collect::<std::collections::BTreeSet<_>>(),
     );
     let mut files = Vec::new();
+    let x_desc = match (noncirc_core::field(param), noncirc_core::symbol(param)) {
+        (Some(f), Some(symbol)) if !f.unit.is_empty() => format!("{param}, {symbol} ({})", f.unit),
+        (Some(f), None) if !f.unit.is_empty() => format!("{param} ({})", f.unit),
+        (_, Some(symbol)) => format!("{param}, {symbol}"),
+        _ => param.to_string(),
+    };
     for name in &names {
+        // An objective's unit and admissible range, or a measure's unit.
+        let kind = (noncirc_core::ObjectiveKind::ALL.iter()).find(|k| k.name() == name);
+        let unit = match kind {
+            Some(k) => k.unit(),
+            None => noncirc_core::Measure::parse(name).map_or("", |m| m.unit()),
+        };
+        let band = kind.map(|k| k.bounds(&scene.bounds));
         let series = vec![(
             name.clone(),
             rows.iter()
@@ -108,12 +125,19 @@ pub fn sweep_figures(
         files.extend(save(
             &LinesFigure {
                 title: format!("{name} against {param}"),
-                x_desc: param.into(),
-                y_desc: name.clone(),
+                x_desc: x_desc.clone(),
+                y_desc: if unit.is_empty() {
+                    name.clone()
+                } else {
+                    format!("{name} ({unit})")
+                },
                 series,
                 points_only: false,
+                markers: true,
+                band,
             },
             &dir.join(format!("response_{name}")),
+            options,
         )?);
     }
     let p = Param::parse(param, scene)?;
@@ -121,9 +145,9 @@ pub fn sweep_figures(
     for r in rows.iter().filter(|r| r.error.is_none()) {
         let mut s = scene.clone();
         p.set(&mut s, r.value);
-        if let Ok(kin) =
-            noncirc_core::Kinematics::solve(&s.gear.curve.build()?, &s.train, &s.resolution)
-        {
+        // Drawn from a dense solution, whatever the scene's resolution.
+        let dense = (s.resolution).with_samples(s.resolution.samples_per_turn.max(FIGURE_SAMPLES));
+        if let Ok(kin) = noncirc_core::Kinematics::solve(&s.gear.curve.build()?, &s.train, &dense) {
             let pts = kin
                 .tips()
                 .iter()
@@ -141,8 +165,11 @@ pub fn sweep_figures(
                 y_desc: "y (mm)".into(),
                 series,
                 points_only: false,
+                markers: false,
+                band: None,
             },
             &dir.join("response_trajectories"),
+            options,
         )?);
     }
     Ok(files)

@@ -570,23 +570,38 @@ pub fn summary_table(s: &crate::search::Summary) -> String {
             },
         ),
     ]);
-    out += "\nbest design:\n";
+    out += "\nbest design (docs/scenes.md: the fields and the papers' symbols):\n";
     let mut names: Vec<&String> = s.best.keys().collect();
-    names.sort_by(|a, b| natural_cmp(a, b));
+    names.sort_by(|a, b| scene_order(a, b));
     for k in names {
-        out += &format!("  {k:<28} {:>10.4}\n", s.best[k]);
+        let symbol = noncirc_core::symbol(k).unwrap_or_default();
+        let unit = noncirc_core::field(k).map_or("", |f| f.unit);
+        out += &format!("  {k:<28} {symbol:<8} {:>10.4} {unit}\n", s.best[k]);
     }
-    out += "\nobjectives at the default resolution (value, violation):\n";
+    out += "\nobjectives at the default resolution (value, violation, unit):\n";
     for kind in noncirc_core::ObjectiveKind::ALL {
         let k = kind.name();
         if let Some(v) = s.objectives.get(k) {
             out += &format!(
-                "  {k:<28} {v:>10.4}  {:>8.4}\n",
-                s.violations.get(k).copied().unwrap_or(0.0)
+                "  {k:<28} {v:>10.4}  {:>8.4}  {}\n",
+                s.violations.get(k).copied().unwrap_or(0.0),
+                kind.unit()
             );
         }
     }
     out
+}
+
+/// Orders scene paths as a scene file does (docs/scenes.md): by field, then list elements
+/// by index; names that are no field last, in natural order.
+pub fn scene_order(a: &str, b: &str) -> std::cmp::Ordering {
+    let rank = |p: &str| {
+        let key = p.split('[').next().unwrap_or(p);
+        (noncirc_core::FIELDS.iter())
+            .position(|f| f.key == key)
+            .unwrap_or(usize::MAX)
+    };
+    rank(a).cmp(&rank(b)).then_with(|| natural_cmp(a, b))
 }
 
 /// Orders names as a person does: runs of digits by their value (`radii_mm[2]` before
@@ -703,7 +718,37 @@ pub fn check_finite(report: &impl Serialize) -> crate::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::{check_finite, natural_cmp};
+    use super::{check_finite, natural_cmp, scene_order};
+
+    /// The best design's parameters come in a scene file's order: the radii by index, then
+    /// the train as docs/scenes.md lists it (Φ0, β0, S, H1, γ0), not alphabetically.
+    #[test]
+    fn parameters_sort_in_scene_order() {
+        let mut names = vec![
+            "train.pusher_offset_mm",
+            "train.gamma0_deg",
+            "gear.curve.radii_mm[10]",
+            "train.arm_length_mm",
+            "no.such_field",
+            "train.phi0_deg",
+            "gear.curve.radii_mm[2]",
+            "train.beta0_deg",
+        ];
+        names.sort_by(|a, b| scene_order(a, b));
+        assert_eq!(
+            names,
+            [
+                "gear.curve.radii_mm[2]",
+                "gear.curve.radii_mm[10]",
+                "train.phi0_deg",
+                "train.beta0_deg",
+                "train.arm_length_mm",
+                "train.pusher_offset_mm",
+                "train.gamma0_deg",
+                "no.such_field",
+            ]
+        );
+    }
 
     /// Parameters are listed as a person counts: radius 2 before radius 10.
     #[test]

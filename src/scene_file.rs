@@ -331,14 +331,19 @@ pub fn value_at(scene: &Scene, key: &str) -> Result<serde_json::Value, SceneErro
     Ok(slot(&mut tree, &plain, key, key)?.clone())
 }
 
-/// The scene's serialised tree, with the tables a scene leaves out while they are the
-/// default (the teeth) filled in, so that they can be read and set.
+/// The scene's serialised tree, with what a scene leaves out while it is the default (the
+/// teeth, `search.confirm_with_teeth`) filled in, so that it can be read and set.
 fn scene_tree(scene: &Scene) -> serde_json::Value {
     let mut tree = serde_json::to_value(scene).expect("a scene always serialises");
     if let Some(gear) = tree.get_mut("gear").and_then(|g| g.as_object_mut()) {
         gear.entry("teeth").or_insert_with(|| {
             serde_json::to_value(noncirc_core::ToothSpec::default()).expect("serialises")
         });
+    }
+    if let Some(search) = tree.get_mut("search").and_then(|s| s.as_object_mut()) {
+        search
+            .entry("confirm_with_teeth")
+            .or_insert(serde_json::Value::Bool(false));
     }
     tree
 }

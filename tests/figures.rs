@@ -65,7 +65,8 @@ fn evaluation_figures_and_exports_are_valid() {
     for name in ["paper", "transplanter"] {
         let scene = load_scene(Some(name)).unwrap();
         let eval = Evaluator::new().evaluate(&scene).unwrap();
-        let files = noncirc::plots::evaluation_outputs(&scene, &eval, &dir).unwrap();
+        let files =
+            noncirc::plots::evaluation_outputs(&scene, &eval, &dir, &Default::default()).unwrap();
         assert!(files.len() >= 13, "{name}: {files:?}");
         for f in &files {
             check_file(f);
@@ -142,12 +143,15 @@ fn box_search_and_sweep_figures_and_the_animation() {
     let dir = temp("more");
     let scene = load_scene(Some("moving-box")).unwrap();
     let eval = Evaluator::new().evaluate(&scene).unwrap();
-    for f in noncirc::figures::evaluation_figures(&scene, &eval, &dir).unwrap() {
+    for f in noncirc::figures::evaluation_figures(&scene, &eval, &dir, &Default::default()).unwrap()
+    {
         check_file(&f);
     }
     let paper = load_scene(None).unwrap();
     let rows = noncirc::search::sweep(&paper, "train.beta0_deg", -40.0, -20.0, 3, &[]).unwrap();
-    let files = noncirc::plots::sweep_figures(&paper, "train.beta0_deg", &rows, &dir).unwrap();
+    let files =
+        noncirc::plots::sweep_figures(&paper, "train.beta0_deg", &rows, &dir, &Default::default())
+            .unwrap();
     assert_eq!(files.len(), 2 * 10);
     for f in &files {
         check_file(f);
@@ -164,5 +168,152 @@ fn box_search_and_sweep_figures_and_the_animation() {
     assert_eq!(&bytes[..6], b"GIF89a");
     // Six frames: six image descriptors (0x2C) follow graphic-control extensions (0x21 0xF9).
     assert!(bytes.windows(2).filter(|w| w == &[0x21, 0xF9]).count() >= 6);
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// The PNG's declared resolution (dots per inch), from its `pHYs` chunk.
+fn png_dpi(bytes: &[u8]) -> Option<f64> {
+    let at = bytes.windows(4).position(|w| w == b"pHYs")?;
+    let per_metre = u32::from_be_bytes(bytes[at + 4..at + 8].try_into().ok()?);
+    (bytes[at + 12] == 1).then_some(f64::from(per_metre) * 0.0254)
+}
+
+#[test]
+fn figures_at_a_chosen_size_resolution_and_format() {
+    use noncirc::figures::{FigureFormat, FigureOptions};
+    let dir = temp("options");
+    let scene = load_scene(None).unwrap();
+    let eval = Evaluator::new().evaluate(&scene).unwrap();
+    let options = FigureOptions {
+        formats: vec![FigureFormat::Svg, FigureFormat::Png, FigureFormat::Pdf],
+        size_px: Some((640, 480)),
+        dpi: 300,
+    };
+    let files = noncirc::figures::evaluation_figures(&scene, &eval, &dir, &options).unwrap();
+    assert_eq!(files.len(), 4 * 3, "{files:?}");
+    for f in &files {
+        let bytes = std::fs::read(f).unwrap();
+        match f.extension().and_then(|e| e.to_str()) {
+            Some("png") => {
+                // 640×480 CSS pixels at 300 dpi: 2000×1500 dots, declared as 300 dpi.
+                let decoder = png::Decoder::new(std::io::Cursor::new(&bytes));
+                let info = decoder.read_info().unwrap().info().clone();
+                assert_eq!((info.width, info.height), (2000, 1500), "{}", f.display());
+                let dpi = png_dpi(&bytes).unwrap();
+                assert!((dpi - 300.0).abs() < 0.1, "{dpi}");
+            }
+            Some("pdf") => {
+                assert!(bytes.starts_with(b"%PDF-"), "{}", f.display());
+                // The font travels with it: a PDF for a paper needs none installed.
+                let text = String::from_utf8_lossy(&bytes);
+                assert!(text.contains("/FontFile2") || text.contains("/FontFile3"));
+            }
+            Some("svg") => {
+                let text = String::from_utf8(bytes).unwrap();
+                assert!(
+                    text.contains(r#"width="640" height="480""#),
+                    "{}",
+                    f.display()
+                );
+                // Curves are drawn to sub-pixel precision, and no placeholder is left.
+                assert!(!text.contains("noncirc-fine-line"));
+                if f.file_stem().unwrap() == "trajectory" {
+                    // The fine lines (round joins) hold coordinates between whole pixels.
+                    let fine: Vec<f64> = (text.split("<polyline").skip(1))
+                        .filter(|p| p.contains(r#"stroke-linejoin="round""#))
+                        .flat_map(|p| p.split("points=\"").nth(1).unwrap().split('"').next())
+                        .flat_map(|pts| pts.split([' ', ',']).map(|v| v.parse::<f64>().unwrap()))
+                        .collect();
+                    assert!(fine.len() > 500, "{} fine coordinates", fine.len());
+                    let between = fine.iter().filter(|v| v.fract() != 0.0).count();
+                    assert!(between * 2 > fine.len(), "{between} of {}", fine.len());
+                }
+            }
+            other => panic!("unexpected file {other:?}"),
+        }
+    }
+    // Bad settings are refused by name.
+    for (bad, named) in [
+        (
+            FigureOptions {
+                dpi: 0,
+                ..options.clone()
+            },
+            "0 dpi",
+        ),
+        (
+            FigureOptions {
+                size_px: Some((10, 480)),
+                ..options.clone()
+            },
+            "width 10 px",
+        ),
+        (
+            FigureOptions {
+                formats: vec![],
+                ..options.clone()
+            },
+            "none given",
+        ),
+    ] {
+        let e = noncirc::figures::evaluation_figures(&scene, &eval, &dir, &bad).unwrap_err();
+        assert!(e.to_string().contains(named), "{e}");
+    }
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// A search's figures, for one goal (convergence and the best design; no front) and two
+/// (the Pareto front too). A single-goal run that found feasible designs once panicked
+/// here, reading a second goal it does not have.
+#[test]
+fn search_figures_for_one_goal_and_for_two() {
+    use noncirc::search::RunOptions;
+    use std::sync::{atomic::AtomicBool, Arc};
+    let dir = temp("search");
+    let options = RunOptions {
+        threads: 2,
+        checkpoint: None,
+        checkpoint_every: std::time::Duration::from_secs(3600),
+        resume: None,
+        resume_budget: None,
+        stop: Arc::new(AtomicBool::new(false)),
+        max_generations: None,
+    };
+    let one = noncirc::scene_file::apply_overrides(
+        load_scene(Some("paper-search")).unwrap(),
+        &["search.budget=20000".into()],
+    )
+    .unwrap();
+    let two = noncirc::scene_file::apply_overrides(
+        one.clone(),
+        &[
+            r#"search.goals=["module","picking_tip_speed"]"#.into(),
+            r#"search.algorithm="nsga2""#.into(),
+            "search.seed=2".into(),
+        ],
+    )
+    .unwrap();
+    for (scene, front) in [(one, false), (two, true)] {
+        let outcome = noncirc::search::run(&scene, &options, &mut []).unwrap();
+        assert!(outcome.state.first_feasible_at.is_some(), "not feasible");
+        let out = dir.join(if front { "two" } else { "one" });
+        let files = noncirc::plots::search_figures(&outcome, &out, &Default::default()).unwrap();
+        let names: Vec<String> = (files.iter())
+            .map(|f| f.strip_prefix(&out).unwrap().display().to_string())
+            .collect();
+        assert!(names.contains(&"convergence.png".to_string()), "{names:?}");
+        assert!(
+            names.contains(&"best/trajectory.png".to_string()),
+            "{names:?}"
+        );
+        assert_eq!(
+            names.contains(&"pareto.png".to_string()),
+            front,
+            "{names:?}"
+        );
+        for f in &files {
+            check_file(f);
+        }
+    }
     std::fs::remove_dir_all(dir).ok();
 }

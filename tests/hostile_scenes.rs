@@ -139,7 +139,7 @@ fn a_loose_stopping_tolerance_is_refused_and_the_limit_is_accurate() {
 #[test]
 fn the_moving_box_refuses_overflowing_inputs() {
     let e = refused("moving-box", &["moving_box.input_speed_rpm=1e308"]);
-    assert!(e.contains("moving_box.input_speed_rpm = 1e308"), "{e}");
+    assert!(e.contains("moving_box.input_speed_rpm (n) = 1e308"), "{e}");
     let e = refused("moving-box", &["moving_box.groove_wall_angle_deg=85"]);
     assert!(
         e.contains("groove_wall_angle_deg + groove_friction_angle_deg"),

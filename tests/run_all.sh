@@ -45,6 +45,12 @@ if [ -f python/pyproject.toml ]; then
   (cd python && ../"$VENV"/bin/maturin develop --release --quiet)
   cargo build --release --quiet -p noncirc-cli # the teeth peers' tests run the CLI
   "$VENV/bin/python" -m pytest python/tests -q
+
+  echo "== examples/: the papers' figures (as PNG and PDF) and a multi-objective study"
+  EXAMPLES_OUT=$(mktemp -d)
+  bash examples/paper_figures.sh "$EXAMPLES_OUT" png,pdf
+  "$VENV/bin/python" examples/multi_objective.py --seeds 2 --out "$EXAMPLES_OUT/front.csv"
+  rm -rf "$EXAMPLES_OUT"
 fi
 
 echo "== the design studio in a browser (Playwright driving Debian's chromium; docs/studio.md)"

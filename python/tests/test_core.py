@@ -283,7 +283,7 @@ def test_evaluate_holds_everything_the_cli_json_holds():
     [
         (lambda s: Scene.from_string("[train\nphi0_deg = 1"), "SceneError", "line 1"),
         (lambda s: Scene.from_string('[train]\nphi0_deg = "a"'), "SceneError", r"line 2.*expected f64"),
-        (lambda s: s.with_set("train.arm_length_mm", -1.0), "ParameterError", r"train.arm_length_mm = -1 is out of range"),
+        (lambda s: s.with_set("train.arm_length_mm", -1.0), "ParameterError", r"train.arm_length_mm \(S\) = -1 is out of range"),
         (lambda s: s.with_set("resolution.samples_per_turn", 3), "ParameterError", "multiple of 6"),
         (lambda s: s.with_set("bounds.picking_angle_deg", [5.0, -5.0]), "ParameterError", "lower bound 5"),
         (lambda s: evaluate(s, closure_rel_tol=-1.0), "ParameterError", "closure_rel_tol = -1"),

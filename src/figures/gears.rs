@@ -18,7 +18,7 @@ pub struct GearsFigure<'a> {
 
 impl Figure for GearsFigure<'_> {
     fn size(&self) -> (u32, u32) {
-        (1200, 600)
+        (1380, 620)
     }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
@@ -26,8 +26,9 @@ impl Figure for GearsFigure<'_> {
     {
         let kin = self.kin;
         root.fill(&WHITE).map_err(err)?;
-        let (left, right) = root.split_horizontally(600);
-        let (top, bottom) = right.split_vertically(300);
+        let (w, h) = root.dim_in_pixel();
+        let (left, right) = root.split_horizontally(w * 58 / 100);
+        let (top, bottom) = right.split_vertically(h / 2);
         draw_train(
             &left,
             kin,
@@ -37,6 +38,7 @@ impl Figure for GearsFigure<'_> {
                 "Pitch curves on the carrier at θ = {:.0}°",
                 self.theta.to_degrees()
             ),
+            true,
         )?;
         let n = kin.len();
         let ratio: Vec<(f64, f64)> = (0..n)
@@ -47,22 +49,21 @@ impl Figure for GearsFigure<'_> {
             .collect();
         let rmax = ratio.iter().map(|p| p.1).fold(0.0, f64::max);
         let mut c = ChartBuilder::on(&top)
-            .caption(
-                "Transmission ratio i12 = (a − ρ)/ρ at the sun mesh",
-                (FONT, 16),
-            )
+            .caption("Ratio i12 = (a − ρ)/ρ at the sun mesh", (FONT, 16))
             .margin(8)
             .x_label_area_size(30)
             .y_label_area_size(45)
             .build_cartesian_2d(0.0..360.0, 0.0..rmax * 1.05)
             .map_err(err)?;
         c.configure_mesh()
-            .x_desc("carrier angle (°)")
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
+            .x_desc("carrier angle θ (°)")
+            .y_desc("ratio i12")
             .label_style((FONT, 12))
             .draw()
             .map_err(err)?;
-        c.draw_series(LineSeries::new(ratio, BLUE.stroke_width(2)))
-            .map_err(err)?;
+        fine_line(&mut c, &ratio, BLUE.into(), 2)?;
         let attitude: Vec<(f64, f64)> = (0..n)
             .map(|j| {
                 (
@@ -72,39 +73,54 @@ impl Figure for GearsFigure<'_> {
             })
             .collect();
         let mut c = ChartBuilder::on(&bottom)
-            .caption(
-                "Arm attitude (dip of the pusher axis below horizontal)",
-                (FONT, 16),
-            )
+            .caption("Arm attitude (pusher axis below horizontal)", (FONT, 16))
             .margin(8)
             .x_label_area_size(30)
             .y_label_area_size(45)
             .build_cartesian_2d(0.0..360.0, -90.0..90.0)
             .map_err(err)?;
         c.configure_mesh()
-            .x_desc("carrier angle (°)")
-            .y_desc("°")
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
+            .x_desc("carrier angle θ (°)")
+            .y_desc("attitude (°)")
             .label_style((FONT, 12))
             .draw()
             .map_err(err)?;
-        c.draw_series(LineSeries::new(attitude, RED.stroke_width(2)))
-            .map_err(err)?;
+        fine_line(&mut c, &attitude, RED.into(), 2)?;
         Ok(())
     }
 }
 
-/// Draws the sun, the three intermediates and planets, and the arms at carrier angle `theta`.
+/// Which gear of the train an outline is: drawn solid (sun, planets) or dashed
+/// (intermediates).
+#[derive(Clone, Copy, PartialEq)]
+enum Gear {
+    Sun,
+    Intermediate,
+    Planet,
+}
+
+/// A gear's pitch curve or toothed outline as drawn: its points, colour and kind.
+type Outline = (Vec<(f64, f64)>, RGBColor, Gear);
+
+/// The sun's colour (the arm sets have theirs).
+const SUN_COLOUR: RGBColor = RGBColor(60, 60, 60);
+
+/// Draws the sun, the three intermediates and planets, and the arms at carrier angle
+/// `theta`; with `legend`, a legend that tells them apart, right of the plot.
 fn draw_train<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     kin: &Kinematics,
     teeth: Option<&ToothedPair>,
     theta: f64,
     caption: &str,
+    legend: bool,
 ) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
-    let mut shapes: Vec<(Vec<(f64, f64)>, RGBColor)> = Vec::new();
+    let mut shapes: Vec<Outline> = Vec::new();
     let mut arms = Vec::new();
     for (k, &colour) in ARM_COLOURS.iter().enumerate() {
         let st = kin.state_at(theta - k as f64 * TAU / 3.0);
@@ -122,16 +138,21 @@ where
                             Vec2::ZERO,
                             layout[0].angle_deg.to_radians(),
                         ),
-                        RGBColor(60, 60, 60),
+                        SUN_COLOUR,
+                        Gear::Sun,
                     ));
                 }
                 for g in &layout[1..3] {
-                    let outline = &toothed.gears
-                        [usize::from(g.member == noncirc_core::Member::Driven)]
-                    .outline();
+                    let driven = g.member == noncirc_core::Member::Driven;
+                    let outline = &toothed.gears[usize::from(driven)].outline();
                     shapes.push((
                         place(outline, g.centre_mm, g.angle_deg.to_radians()),
                         colour,
+                        if driven {
+                            Gear::Intermediate
+                        } else {
+                            Gear::Planet
+                        },
                     ));
                 }
             }
@@ -141,30 +162,49 @@ where
             let inter = kin.pair().driven_points();
             shapes.push((
                 place(&sun, Vec2::ZERO, kin.spec().sun_angle()),
-                RGBColor(60, 60, 60),
+                SUN_COLOUR,
+                Gear::Sun,
             ));
             for (k, &colour) in ARM_COLOURS.iter().enumerate() {
                 let st = kin.state_at(theta - k as f64 * TAU / 3.0);
-                shapes.push((place(&inter, st.o2, st.theta2), colour));
-                shapes.push((place(&sun, st.o3, st.theta3), colour));
+                shapes.push((place(&inter, st.o2, st.theta2), colour, Gear::Intermediate));
+                shapes.push((place(&sun, st.o3, st.theta3), colour, Gear::Planet));
             }
         }
     }
+    let labels = [
+        "sun (fixed)",
+        "intermediates: dashed",
+        "planets: solid",
+        "arm set I",
+        "arm set II",
+        "arm set III",
+    ];
+    let place = if legend {
+        legend_place(labels, 12, area.dim_in_pixel())
+    } else {
+        LegendPlace { right: 0, below: 0 }
+    };
     let pts = shapes
         .iter()
-        .flat_map(|(s, _)| s.iter().map(|&(x, y)| Vec2::new(x, y)))
+        .flat_map(|(s, _, _)| s.iter().map(|&(x, y)| Vec2::new(x, y)))
         .chain(arms.iter().flat_map(|(a, _)| a.iter().copied()));
     let (w, h) = (
-        area.dim_in_pixel().0 as f64 - 70.0,
-        area.dim_in_pixel().1 as f64 - 80.0,
+        area.dim_in_pixel().0 as f64 - 70.0 - f64::from(place.right),
+        area.dim_in_pixel().1 as f64 - 80.0 - f64::from(place.below),
     );
     let ((x0, x1), (y0, y1)) = equal_ranges(pts, w, h, 10.0);
-    let mut chart = plane_chart(area, caption, 18, x0..x1, y0..y1)?;
-    for (shape, colour) in shapes {
-        chart
-            .draw_series(LineSeries::new(shape, colour.stroke_width(2)))
-            .map_err(err)?;
+    let mut chart = plane_chart(area, caption, 18, x0..x1, y0..y1, place)?;
+    for (shape, colour, gear) in shapes {
+        if gear == Gear::Intermediate {
+            chart
+                .draw_series(DashedLineSeries::new(shape, 7, 4, colour.stroke_width(2)))
+                .map_err(err)?;
+        } else {
+            fine_line(&mut chart, &shape, colour.into(), 2)?;
+        }
     }
+
     for ([a, b], colour) in arms {
         chart
             .draw_series(LineSeries::new(
@@ -175,6 +215,18 @@ where
         chart
             .draw_series(std::iter::once(Circle::new(b.into(), 4, colour.filled())))
             .map_err(err)?;
+    }
+    if legend {
+        let grey: RGBAColor = SUN_COLOUR.into();
+        let mut entries: Entries = vec![
+            (labels[0].into(), Swatch::Line(grey, 2)),
+            (labels[1].into(), Swatch::Dashed(grey, 2)),
+            (labels[2].into(), Swatch::Line(grey, 2)),
+        ];
+        for (k, colour) in ARM_COLOURS.into_iter().enumerate() {
+            entries.push((labels[3 + k].into(), Swatch::Line(colour.into(), 5)));
+        }
+        draw_legend(area, chart.plotting_area(), &entries, 12, place)?;
     }
     Ok(())
 }
@@ -210,6 +262,7 @@ pub fn animate(
             teeth,
             theta,
             &format!("θ = {:5.1}°", theta.to_degrees()),
+            false,
         )?;
         root.present().map_err(err)?;
     }

@@ -36,24 +36,37 @@ impl Figure for GroundFigure<'_> {
             curves.push(pts);
         }
         let ground = ev.y_min_mm + agro.planting_depth_mm;
-        let all = curves.iter().flatten().copied();
-        let ((x0, x1), (y0, y1)) = equal_ranges(all, 1000.0, 500.0, 30.0);
-        let mut chart = ChartBuilder::on(root)
-            .caption(
-                format!(
+        let labels = ["arm I", "arm II", "arm III", "ground", "planted seedling"];
+        let (margin, x_label, y_label) = (12u32, 40u32, 55u32);
+        let area = root
+            .titled(
+                &format!(
                     "Tip paths over the ground ({} mm spacing, travel {}x)",
                     agro.plant_spacing_mm,
                     if sign > 0.0 { "+" } else { "−" }
                 ),
                 (FONT, 22),
             )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
+            .map_err(err)?;
+        let (w, h) = area.dim_in_pixel();
+        let place = legend_place(labels, 13, (w, h));
+        let (plot_w, plot_h) = place.plot_size((w, h), margin, (x_label, y_label));
+        let all = curves.iter().flatten().copied().chain([
+            Vec2::new(curves[0][0].x, ground),
+            Vec2::new(
+                curves[0][0].x,
+                ev.planting.tip_mm.y + agro.seedling_height_mm,
+            ),
+        ]);
+        let ((x0, x1), (y0, y1)) = equal_ranges(all, plot_w as f64, plot_h as f64, 20.0);
+        let mut chart = chart_on(&area, margin, place, (x_label, y_label))
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(err)?;
         chart
             .configure_mesh()
+            .x_label_formatter(&tick)
+            .x_labels((plot_w / 70).max(3) as usize)
+            .y_label_formatter(&tick)
             .x_desc("x over the ground (mm)")
             .y_desc("y (mm)")
             .label_style((FONT, 14))
@@ -66,16 +79,8 @@ impl Figure for GroundFigure<'_> {
             ))
             .map_err(err)?;
         for (k, pts) in curves.iter().enumerate() {
-            chart
-                .draw_series(LineSeries::new(
-                    pts.iter().map(|&p| p.into()),
-                    ARM_COLOURS[k].stroke_width(2),
-                ))
-                .map_err(err)?
-                .label(format!("arm {}", ["I", "II", "III"][k]))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], ARM_COLOURS[k].stroke_width(2))
-                });
+            let pts: Vec<(f64, f64)> = pts.iter().map(|&p| p.into()).collect();
+            fine_line(&mut chart, &pts, ARM_COLOURS[k].into(), 2)?;
         }
         // Seedlings at each planting: arm k plants at θp + k·120° (+ whole turns).
         for k in 0..3 * turns {
@@ -95,7 +100,20 @@ impl Figure for GroundFigure<'_> {
                 ))
                 .map_err(err)?;
         }
-        draw_legend(&mut chart, 13, None)?;
+        let mut entries: Entries = (0..3)
+            .map(|k| {
+                (
+                    labels[k].to_string(),
+                    Swatch::Line(ARM_COLOURS[k].into(), 2),
+                )
+            })
+            .collect();
+        entries.push((
+            labels[3].into(),
+            Swatch::Line(RGBColor(120, 80, 40).into(), 2),
+        ));
+        entries.push((labels[4].into(), Swatch::Tick(GREEN.into(), 4)));
+        draw_legend(&area, chart.plotting_area(), &entries, 13, place)?;
         Ok(())
     }
 }

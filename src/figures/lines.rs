@@ -8,7 +8,12 @@ pub struct LinesFigure {
     pub x_desc: String,
     pub y_desc: String,
     pub series: Vec<(String, Vec<(f64, f64)>)>,
+    /// Points alone, no lines (a Pareto set).
     pub points_only: bool,
+    /// Lines with a marker at each data point (a sweep's evaluated values).
+    pub markers: bool,
+    /// The admissible range of y, drawn as a band: (lower, upper), `None` on an open side.
+    pub band: Option<(Option<f64>, Option<f64>)>,
 }
 
 impl Figure for LinesFigure {
@@ -37,24 +42,48 @@ impl Figure for LinesFigure {
         if !x0.is_finite() {
             (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
         }
+        // The band's bounds in view, so that the data are seen against them.
+        let bounds = self.band.map_or([None, None], |(lo, hi)| [lo, hi]);
+        for b in bounds.into_iter().flatten().filter(|b| b.is_finite()) {
+            y0 = y0.min(b);
+            y1 = y1.max(b);
+        }
         // Pad the ranges; a degenerate range (one point) gets ±1 % of its value.
         let pad =
             |lo: f64, hi: f64, f: f64| ((hi - lo) * f).max(0.01 * lo.abs().max(hi.abs())).max(1e-9);
         let (dx, dy) = (pad(x0, x1, 0.05), pad(y0, y1, 0.08));
-        let mut chart = ChartBuilder::on(root)
+        let band_label = "admissible range";
+        let place = legend_place(
+            (self.series.iter().map(|(n, _)| n.as_str()))
+                .chain(self.band.is_some().then_some(band_label)),
+            12,
+            root.dim_in_pixel(),
+        );
+        let mut chart = chart_on(root, 12, place, (40, 60))
             .caption(&self.title, (FONT, 20))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
             .build_cartesian_2d(x0 - dx..x1 + dx, y0 - dy..y1 + dy)
             .map_err(err)?;
         chart
             .configure_mesh()
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .x_desc(&self.x_desc)
             .y_desc(&self.y_desc)
             .label_style((FONT, 13))
             .draw()
             .map_err(err)?;
+        let mut entries: Entries = Vec::new();
+        if let Some((lo, hi)) = self.band {
+            let green = RGBColor(200, 235, 200);
+            let (lo, hi) = (lo.unwrap_or(y0 - dy), hi.unwrap_or(y1 + dy));
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x0 - dx, lo), (x1 + dx, hi)],
+                    green.filled(),
+                )))
+                .map_err(err)?;
+            entries.push((band_label.to_string(), Swatch::Band(green.into())));
+        }
         for (i, (name, s)) in self.series.iter().enumerate() {
             let colour = Palette99::pick(i).to_rgba();
             let data: Vec<(f64, f64)> = s
@@ -65,20 +94,19 @@ impl Figure for LinesFigure {
             if self.points_only {
                 chart
                     .draw_series(data.iter().map(|&p| Circle::new(p, 4, colour.filled())))
-                    .map_err(err)?
-                    .label(name.as_str())
-                    .legend(move |(x, y)| Circle::new((x + 10, y), 4, colour.filled()));
+                    .map_err(err)?;
+                entries.push((name.clone(), Swatch::Dot(colour)));
             } else {
-                chart
-                    .draw_series(LineSeries::new(data, colour.stroke_width(2)))
-                    .map_err(err)?
-                    .label(name.as_str())
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                    });
+                if self.markers {
+                    chart
+                        .draw_series(data.iter().map(|&p| Circle::new(p, 4, colour.filled())))
+                        .map_err(err)?;
+                }
+                fine_line(&mut chart, &data, colour, 2)?;
+                entries.push((name.clone(), Swatch::Line(colour, 2)));
             }
         }
-        draw_legend(&mut chart, 12, None)?;
+        draw_legend(root, chart.plotting_area(), &entries, 12, place)?;
         Ok(())
     }
 }

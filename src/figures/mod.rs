@@ -16,6 +16,7 @@ use std::sync::OnceLock;
 use crate::files::create_dir;
 use crate::{Error, Result};
 
+mod convergence;
 mod gears;
 mod ground;
 mod lines;
@@ -24,6 +25,7 @@ mod objectives;
 mod teeth;
 mod trajectory;
 
+pub use convergence::ConvergenceFigure;
 pub use gears::{animate, GearsFigure, MAX_FRAMES};
 pub use ground::GroundFigure;
 pub use lines::LinesFigure;
@@ -53,26 +55,296 @@ fn err<E: std::fmt::Display>(e: E) -> Error {
     Error::Figure(e.to_string())
 }
 
-/// The legend, drawn alike on every figure: a framed, lightly shaded box of `font_size`
-/// px text, at `position` (plotters' default where `None`).
-fn draw_legend<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
-    chart: &mut ChartContext<'a, DB, CT>,
-    font_size: u32,
-    position: Option<SeriesLabelPosition>,
-) -> Result<()> {
-    let mut legend = chart.configure_series_labels();
-    legend
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font((FONT, font_size));
-    if let Some(position) = position {
-        legend.position(position);
-    }
-    legend.draw().map_err(err)
+/// Where a chart's legend goes, as the room (px) left for it: right of the plotting area,
+/// or below it (under the x axis) where the figure is too narrow for that.
+#[derive(Debug, Clone, Copy)]
+struct LegendPlace {
+    right: u32,
+    below: u32,
 }
 
-/// A figure that can draw itself on any plotters backend.
+impl LegendPlace {
+    /// The plotting area (px) a chart on an area of `size` px leaves with this legend, its
+    /// `margin` all round and `(x, y)` label areas: what equal x and y scales are fitted to.
+    fn plot_size(
+        self,
+        (w, h): (u32, u32),
+        margin: u32,
+        (x_label, y_label): (u32, u32),
+    ) -> (u32, u32) {
+        (
+            w.saturating_sub(2 * margin + y_label + self.right).max(100),
+            h.saturating_sub(2 * margin + x_label + self.below).max(100),
+        )
+    }
+}
+
+/// A chart builder on `area` with `margin` px all round, the room for its legend at
+/// `place`, and `(x, y)` label areas (px).
+fn chart_on<'a, 'b, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    margin: u32,
+    place: LegendPlace,
+    (x_label, y_label): (u32, u32),
+) -> ChartBuilder<'a, 'b, DB> {
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .margin(margin)
+        .margin_right(margin + place.right)
+        .margin_bottom(margin + place.below)
+        .x_label_area_size(x_label)
+        .y_label_area_size(y_label);
+    builder
+}
+
+/// The legend's place for `labels` at `font_size` px on a chart of `size` px: right of
+/// the plot unless that takes more than two fifths of the width, else wherever it leaves
+/// the plot more room. DejaVu Sans averages about 0.6 em a character.
+fn legend_place<'s>(
+    labels: impl IntoIterator<Item = &'s str>,
+    font_size: u32,
+    (width, height): (u32, u32),
+) -> LegendPlace {
+    let (mut chars, mut rows) = (0, 0);
+    for label in labels {
+        chars = chars.max(label.chars().count());
+        rows += 1;
+    }
+    let right = 48 + (chars as f64 * f64::from(font_size) * 0.6).ceil() as u32;
+    let below = (f64::from(font_size) * 1.7).round() as u32 * rows + 16;
+    let area_right = u64::from(width.saturating_sub(right)) * u64::from(height);
+    let area_below = u64::from(width) * u64::from(height.saturating_sub(below));
+    if right * 5 <= width * 2 || area_right >= area_below {
+        LegendPlace { right, below: 0 }
+    } else {
+        LegendPlace { right: 0, below }
+    }
+}
+
+/// A tick label as a person writes it: `150`, `2.5`, `0.05`, not `150.0`.
+fn tick(v: &f64) -> String {
+    let text = format!("{v:.6}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" {
+        "0".into()
+    } else {
+        text.into()
+    }
+}
+
+/// How a legend entry shows its series.
+#[derive(Debug, Clone, Copy)]
+enum Swatch {
+    /// A line of this width (px).
+    Line(RGBAColor, u32),
+    /// A dashed line of this width.
+    Dashed(RGBAColor, u32),
+    /// A filled band.
+    Band(RGBAColor),
+    /// A filled dot.
+    Dot(RGBAColor),
+    /// A filled triangle.
+    Triangle(RGBAColor),
+    /// A short upright line of this width (a marker line, a seedling).
+    Tick(RGBAColor, u32),
+}
+
+/// A legend's entries, in order.
+type Entries = Vec<(String, Swatch)>;
+
+/// The legend, drawn alike on every figure and never over the data: a framed box of
+/// `font_size` px text beside `plot`, the plotting area of a chart built on `area` with
+/// `place`'s room as its right or bottom margin. Drawn on `area` itself: plotters pins
+/// whatever a chart draws to its plotting area.
+fn draw_legend<DB: DrawingBackend, CT: plotters::coord::CoordTranslate>(
+    area: &DrawingArea<DB, Shift>,
+    plot: &DrawingArea<DB, CT>,
+    entries: &[(String, Swatch)],
+    font_size: u32,
+    place: LegendPlace,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    if entries.is_empty() {
+        return Ok(());
+    }
+    let ((px, py), (ax, ay)) = (plot.get_base_pixel(), area.get_base_pixel());
+    let (x, y) = if place.below > 0 {
+        (
+            px - ax,
+            area.dim_in_pixel().1 as i32 - place.below as i32 + 4,
+        )
+    } else {
+        (px - ax + plot.dim_in_pixel().0 as i32 + 12, py - ay)
+    };
+    let row = (f64::from(font_size) * 1.7).round() as i32;
+    let width = 40
+        + entries
+            .iter()
+            .map(|(l, _)| l.chars().count())
+            .max()
+            .unwrap_or(0) as i32
+            * (f64::from(font_size) * 0.6).ceil() as i32;
+    let height = row * entries.len() as i32 + 8;
+    area.draw(&Rectangle::new(
+        [(x, y), (x + width, y + height)],
+        WHITE.filled(),
+    ))
+    .map_err(err)?;
+    area.draw(&Rectangle::new([(x, y), (x + width, y + height)], BLACK))
+        .map_err(err)?;
+    for (i, (label, swatch)) in entries.iter().enumerate() {
+        let (sx, sy) = (x + 8, y + 4 + row * i as i32 + row / 2);
+        let line = |c: RGBAColor, w: u32, a: i32, b: i32| {
+            PathElement::new(vec![(sx + a, sy), (sx + b, sy)], c.stroke_width(w))
+        };
+        match *swatch {
+            Swatch::Line(c, w) => area.draw(&line(c, w, 0, 22)),
+            Swatch::Dashed(c, w) => area
+                .draw(&line(c, w, 0, 8))
+                .and_then(|()| area.draw(&line(c, w, 13, 22))),
+            Swatch::Band(c) => area.draw(&Rectangle::new(
+                [(sx, sy - 6), (sx + 22, sy + 6)],
+                c.filled(),
+            )),
+            Swatch::Dot(c) => area.draw(&Circle::new((sx + 11, sy), 5, c.filled())),
+            Swatch::Triangle(c) => area.draw(&TriangleMarker::new((sx + 11, sy), 7, c.filled())),
+            Swatch::Tick(c, w) => area.draw(&PathElement::new(
+                vec![(sx + 11, sy - row / 2 + 2), (sx + 11, sy + row / 2 - 2)],
+                c.stroke_width(w),
+            )),
+        }
+        .map_err(err)?;
+        area.draw(&Text::new(
+            label.clone(),
+            (sx + 30, sy),
+            TextStyle::from((FONT, font_size)).pos(Pos::new(HPos::Left, VPos::Center)),
+        ))
+        .map_err(err)?;
+    }
+    Ok(())
+}
+
+thread_local! {
+    /// The curves drawn to sub-pixel precision while a figure is written as SVG: each
+    /// stands in the SVG as a placeholder text that [`save`] replaces by it.
+    static FINE_LINES: std::cell::RefCell<Option<Vec<String>>> = const { std::cell::RefCell::new(None) };
+}
+
+/// The placeholder of fine line `i` in the SVG text.
+fn fine_placeholder(i: usize) -> String {
+    format!("noncirc-fine-line-{i}")
+}
+
+/// A chart of two float axes.
+type FloatChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws `points` (data coordinates) as a line: to a hundredth of a pixel in the SVG (and
+/// so in the PNG and PDF rendered from it), where plotters rounds every point to a whole
+/// pixel, which shows as kinks along a smooth curve; as plotters draws it elsewhere (the
+/// animation). Points outside the chart's ranges are cut away.
+fn fine_line<DB: DrawingBackend>(
+    chart: &mut FloatChart<'_, DB>,
+    points: &[(f64, f64)],
+    colour: RGBAColor,
+    width: u32,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let (xr, yr) = (chart.x_range(), chart.y_range());
+    let runs = clipped_runs(points, (xr.start, xr.end), (yr.start, yr.end));
+    let collecting = FINE_LINES.with(|f| f.borrow().is_some());
+    if !collecting {
+        for run in runs {
+            chart
+                .draw_series(LineSeries::new(run, colour.stroke_width(width)))
+                .map_err(err)?;
+        }
+        return Ok(());
+    }
+    let area = chart.plotting_area();
+    let (px, py) = area.get_pixel_range();
+    let to_pixel = |(x, y): (f64, f64)| {
+        (
+            px.start as f64 + (px.end - px.start) as f64 * (x - xr.start) / (xr.end - xr.start),
+            py.end as f64 - (py.end - py.start) as f64 * (y - yr.start) / (yr.end - yr.start),
+        )
+    };
+    for run in runs {
+        let mut pts = String::new();
+        for p in run {
+            let (x, y) = to_pixel(p);
+            pts += &format!("{x:.2},{y:.2} ");
+        }
+        let (RGBAColor(r, g, b, a), w) = (colour, width);
+        let line = format!(
+            r##"<polyline fill="none" stroke="#{r:02X}{g:02X}{b:02X}" stroke-opacity="{a:.3}" stroke-width="{w}" stroke-linejoin="round" stroke-linecap="round" points="{}"/>"##,
+            pts.trim_end()
+        );
+        let i = FINE_LINES.with(|f| {
+            let mut f = f.borrow_mut();
+            let lines = f.as_mut().expect("collecting");
+            lines.push(line);
+            lines.len() - 1
+        });
+        // The placeholder keeps the line's place among what plotters draws.
+        chart
+            .plotting_area()
+            .draw(&Text::new(
+                fine_placeholder(i),
+                (xr.start, yr.start),
+                (FONT, 1),
+            ))
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// `svg` with each fine line's placeholder text replaced by the line.
+fn put_fine_lines(svg: &str, lines: &[String]) -> Result<String> {
+    let mut out = svg.to_string();
+    for (i, line) in lines.iter().enumerate() {
+        // `<text …>\nPLACEHOLDER\n</text>`: the placeholder is unique (its number ends
+        // at the newline), the element around it plotters' text.
+        let placeholder = format!("\n{}\n", fine_placeholder(i));
+        let broken = || Error::Figure(format!("fine line {i}: its placeholder is missing"));
+        let at = out.find(&placeholder).ok_or_else(broken)?;
+        let start = out[..at].rfind("<text").ok_or_else(broken)?;
+        let end = at + out[at..].find("</text>").ok_or_else(broken)? + "</text>".len();
+        out.replace_range(start..end, line);
+    }
+    Ok(out)
+}
+
+/// Samples per turn of the curves a figure draws: dense enough that no polyline kink
+/// shows, whatever the evaluation's resolution (at 1440 a chord of the paper's trajectory
+/// is under 1.5 mm and turns by under 1.5°).
+pub const FIGURE_SAMPLES: usize = 1440;
+
+/// The mechanism's motion sampled for drawing: the evaluation's own where it is at least
+/// [`FIGURE_SAMPLES`] per turn, else solved again at that density (the reported numbers
+/// stay the evaluation's).
+fn dense_kinematics<'k>(
+    scene: &Scene,
+    kin: &'k Kinematics,
+) -> Result<std::borrow::Cow<'k, Kinematics>> {
+    if kin.len() >= FIGURE_SAMPLES {
+        return Ok(std::borrow::Cow::Borrowed(kin));
+    }
+    let resolution = scene.resolution.with_samples(FIGURE_SAMPLES);
+    let curve = scene.gear.curve.build()?;
+    Ok(std::borrow::Cow::Owned(Kinematics::solve(
+        &curve,
+        &scene.train,
+        &resolution,
+    )?))
+}
+
+/// A figure that can draw itself on any plotters backend, at any size.
 pub trait Figure {
+    /// The size it is drawn at unless asked otherwise (CSS pixels, 96 to the inch).
     fn size(&self) -> (u32, u32) {
         (900, 700)
     }
@@ -81,43 +353,193 @@ pub trait Figure {
         DB::ErrorType: 'static;
 }
 
-/// Renders `fig` to `<base>.svg` and `<base>.png`; returns both paths.
-pub fn save(fig: &impl Figure, base: &Path) -> Result<Vec<PathBuf>> {
-    register_font()?;
-    let (svg, png) = (base.with_extension("svg"), base.with_extension("png"));
-    {
-        let root = SVGBackend::new(&svg, fig.size()).into_drawing_area();
-        fig.draw(&root)?;
-        root.present().map_err(err)?;
-    }
-    {
-        let root = BitMapBackend::new(&png, fig.size()).into_drawing_area();
-        fig.draw(&root)?;
-        root.present().map_err(err)?;
-    }
-    Ok(vec![svg, png])
+/// A file format of figures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FigureFormat {
+    /// Vector, text as text (DejaVu Sans).
+    Svg,
+    /// Raster at [`FigureOptions::dpi`].
+    Png,
+    /// Vector, the font embedded: for a paper.
+    Pdf,
 }
 
-/// A chart of the plane on `area`, both axes in millimetres over `x` and `y`.
+impl FigureFormat {
+    fn extension(self) -> &'static str {
+        match self {
+            FigureFormat::Svg => "svg",
+            FigureFormat::Png => "png",
+            FigureFormat::Pdf => "pdf",
+        }
+    }
+}
+
+/// How figures are written: which formats, at which size, the PNG at which resolution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FigureOptions {
+    /// The formats written, each to `<name>.<extension>`.
+    pub formats: Vec<FigureFormat>,
+    /// Width and height in CSS pixels (96 to the inch); `None`: each figure's own. The
+    /// layout (text sizes, margins) stays in pixels, so a smaller figure has larger text
+    /// relative to it, as a figure for a narrow column should.
+    pub size_px: Option<(u32, u32)>,
+    /// Resolution of the PNG (dots per inch): 96 draws one dot per pixel, 300 is print.
+    pub dpi: u32,
+}
+
+impl Default for FigureOptions {
+    fn default() -> Self {
+        Self {
+            formats: vec![FigureFormat::Svg, FigureFormat::Png],
+            size_px: None,
+            dpi: 96,
+        }
+    }
+}
+
+impl FigureOptions {
+    /// Smallest and largest side of a figure (CSS pixels): below it the axes' labels
+    /// do not fit; above it, a poster.
+    pub const SIDE_PX: std::ops::RangeInclusive<u32> = 320..=6000;
+    /// Accepted PNG resolutions (dpi).
+    pub const DPI: std::ops::RangeInclusive<u32> = 24..=1200;
+
+    /// Checks the settings, naming the bad one.
+    pub fn validate(&self) -> Result<()> {
+        if self.formats.is_empty() {
+            return Err(Error::Input("figure formats: none given".into()));
+        }
+        if let Some((w, h)) = self.size_px {
+            for (name, v) in [("width", w), ("height", h)] {
+                if !Self::SIDE_PX.contains(&v) {
+                    return Err(Error::Input(format!(
+                        "figure {name} {v} px is out of range: expected {} to {} px",
+                        Self::SIDE_PX.start(),
+                        Self::SIDE_PX.end()
+                    )));
+                }
+            }
+        }
+        if !Self::DPI.contains(&self.dpi) {
+            return Err(Error::Input(format!(
+                "figure resolution {} dpi is out of range: expected {} to {}",
+                self.dpi,
+                Self::DPI.start(),
+                Self::DPI.end()
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// The font database of the PNG and PDF renderers: the embedded DejaVu Sans, standing for
+/// every family the SVG names.
+fn font_options() -> &'static resvg::usvg::Options<'static> {
+    static OPTIONS: OnceLock<resvg::usvg::Options<'static>> = OnceLock::new();
+    OPTIONS.get_or_init(|| {
+        let mut options = resvg::usvg::Options::default();
+        let db = options.fontdb_mut();
+        db.load_font_data(dejavu::sans::regular().to_vec());
+        db.set_sans_serif_family("DejaVu Sans");
+        options.font_family = "DejaVu Sans".into();
+        options
+    })
+}
+
+/// RGBA pixels as PNG bytes that declare their resolution (`pHYs`), so that a word
+/// processor places them at their size in inches.
+fn png_bytes(rgba: &[u8], w: u32, h: u32, dpi: u32) -> Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, w, h);
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    let per_metre = (f64::from(dpi) / 0.0254).round() as u32;
+    encoder.set_pixel_dims(Some(png::PixelDimensions {
+        xppu: per_metre,
+        yppu: per_metre,
+        unit: png::Unit::Meter,
+    }));
+    let mut writer = encoder.write_header().map_err(err)?;
+    writer.write_image_data(rgba).map_err(err)?;
+    writer.finish().map_err(err)?;
+    Ok(bytes)
+}
+
+/// Renders `fig` once as SVG and writes it in every format of `options` to
+/// `<base>.<extension>`; returns the paths. The PNG and PDF are the SVG rendered (resvg,
+/// svg2pdf), so the three show the same figure.
+pub fn save(fig: &impl Figure, base: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>> {
+    options.validate()?;
+    register_font()?;
+    let size = options.size_px.unwrap_or_else(|| fig.size());
+    let mut svg = String::new();
+    FINE_LINES.with(|f| *f.borrow_mut() = Some(Vec::new()));
+    let drawn = {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        fig.draw(&root).and_then(|()| root.present().map_err(err))
+    };
+    let lines = FINE_LINES
+        .with(|f| f.borrow_mut().take())
+        .unwrap_or_default();
+    drawn?;
+    let svg = put_fine_lines(&svg, &lines)?;
+    let tree = || resvg::usvg::Tree::from_str(&svg, font_options()).map_err(err);
+    let mut files = Vec::new();
+    for &format in &options.formats {
+        let path = base.with_extension(format.extension());
+        let bytes = match format {
+            FigureFormat::Svg => svg.clone().into_bytes(),
+            FigureFormat::Png => {
+                let scale = options.dpi as f32 / 96.0;
+                let (w, h) = (
+                    (size.0 as f32 * scale).round() as u32,
+                    (size.1 as f32 * scale).round() as u32,
+                );
+                let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h)
+                    .ok_or_else(|| Error::Figure(format!("cannot allocate {w}×{h} pixels")))?;
+                pixmap.fill(resvg::tiny_skia::Color::WHITE);
+                resvg::render(
+                    &tree()?,
+                    resvg::tiny_skia::Transform::from_scale(scale, scale),
+                    &mut pixmap.as_mut(),
+                );
+                // Opaque (white behind everything), so premultiplied RGBA is plain RGBA.
+                png_bytes(pixmap.data(), w, h, options.dpi)?
+            }
+            FigureFormat::Pdf => svg2pdf::to_pdf(
+                &tree()?,
+                svg2pdf::ConversionOptions::default(),
+                svg2pdf::PageOptions { dpi: 96.0 },
+            )
+            .map_err(err)?,
+        };
+        crate::files::write_file(&path, &bytes)?;
+        files.push(path);
+    }
+    Ok(files)
+}
+
+/// A chart of the plane on `area`, both axes in millimetres over `x` and `y`, with room
+/// for a legend at `legend`.
 fn plane_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     caption: &str,
     caption_size: u32,
     x: std::ops::Range<f64>,
     y: std::ops::Range<f64>,
+    legend: LegendPlace,
 ) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>>
 where
     DB::ErrorType: 'static,
 {
-    let mut chart = ChartBuilder::on(area)
+    let mut chart = chart_on(area, 10, legend, (35, 50))
         .caption(caption, (FONT, caption_size))
-        .margin(10)
-        .x_label_area_size(35)
-        .y_label_area_size(50)
         .build_cartesian_2d(x, y)
         .map_err(err)?;
     chart
         .configure_mesh()
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
         .x_desc("x (mm)")
         .y_desc("y (mm)")
         .label_style((FONT, 12))
@@ -216,10 +638,17 @@ const SECTION_COLOURS: [RGBColor; 4] = [
 ];
 
 /// Every figure of one evaluation into `dir`; returns the files written.
-pub fn evaluation_figures(scene: &Scene, eval: &Evaluation, dir: &Path) -> Result<Vec<PathBuf>> {
+pub fn evaluation_figures(
+    scene: &Scene,
+    eval: &Evaluation,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
     create_dir(dir)?;
     let mut files = Vec::new();
     if let (Some(kin), Some(ev)) = (&eval.kinematics, &eval.events) {
+        let dense = dense_kinematics(scene, kin)?;
+        let kin = dense.as_ref();
         files.extend(save(
             &TrajectoryFigure {
                 kin,
@@ -227,6 +656,7 @@ pub fn evaluation_figures(scene: &Scene, eval: &Evaluation, dir: &Path) -> Resul
                 scene,
             },
             &dir.join("trajectory"),
+            options,
         )?);
         files.extend(save(
             &GroundFigure {
@@ -235,6 +665,7 @@ pub fn evaluation_figures(scene: &Scene, eval: &Evaluation, dir: &Path) -> Resul
                 scene,
             },
             &dir.join("ground"),
+            options,
         )?);
         files.extend(save(
             &GearsFigure {
@@ -242,6 +673,7 @@ pub fn evaluation_figures(scene: &Scene, eval: &Evaluation, dir: &Path) -> Resul
                 theta: ev.picking.carrier_rad,
             },
             &dir.join("gears"),
+            options,
         )?);
     }
     if !eval.objectives.is_empty() {
@@ -251,6 +683,7 @@ pub fn evaluation_figures(scene: &Scene, eval: &Evaluation, dir: &Path) -> Resul
                 scene,
             },
             &dir.join("objectives"),
+            options,
         )?);
     }
     if let Some(report) = &eval.moving_box {
@@ -260,6 +693,7 @@ pub fn evaluation_figures(scene: &Scene, eval: &Evaluation, dir: &Path) -> Resul
                 report,
             },
             &dir.join("moving_box"),
+            options,
         )?);
     }
     Ok(files)

@@ -29,7 +29,7 @@ impl Figure for BoxFigure<'_> {
                 &top,
                 "Box displacement over one input turn",
                 [&c.elliptic_mm, &c.uniform_mm, &c.sinusoidal_mm],
-                "mm",
+                "box displacement (mm)",
             ),
             (
                 &bottom,
@@ -43,7 +43,7 @@ impl Figure for BoxFigure<'_> {
                     ],
                     &speed(&c.sinusoidal_mm, &c.input_deg, self.spec.omega()),
                 ],
-                "mm/s",
+                "box speed (mm/s)",
             ),
         ] {
             let ymax = series
@@ -51,15 +51,24 @@ impl Figure for BoxFigure<'_> {
                 .flat_map(|s| s.iter())
                 .fold(0.0f64, |m, &v| m.max(v))
                 * 1.08;
-            let mut chart = ChartBuilder::on(area)
+            let place = legend_place(
+                [
+                    "picking window 150°–210°",
+                    "elliptical gears",
+                    "constant speed",
+                    "sinusoidal shaft",
+                ],
+                12,
+                area.dim_in_pixel(),
+            );
+            let mut chart = chart_on(area, 10, place, (35, 55))
                 .caption(title, (FONT, 18))
-                .margin(10)
-                .x_label_area_size(35)
-                .y_label_area_size(55)
                 .build_cartesian_2d(0.0..360.0, 0.0..ymax)
                 .map_err(err)?;
             chart
                 .configure_mesh()
+                .x_label_formatter(&tick)
+                .y_label_formatter(&tick)
                 .x_desc("driving gear angle (°)")
                 .y_desc(unit)
                 .label_style((FONT, 12))
@@ -70,31 +79,22 @@ impl Figure for BoxFigure<'_> {
                     [(w0.min(360.0), 0.0), (w1.min(360.0), ymax)],
                     RGBColor(255, 230, 160).filled(),
                 )))
-                .map_err(err)?
-                .label(format!("picking window {:.0}°–{:.0}°", w[0], w[1]))
-                .legend(|(x, y)| {
-                    Rectangle::new(
-                        [(x, y - 5), (x + 20, y + 5)],
-                        RGBColor(255, 230, 160).filled(),
-                    )
-                });
+                .map_err(err)?;
+            let mut entries: Entries = vec![(
+                format!("picking window {:.0}°–{:.0}°", w[0], w[1]),
+                Swatch::Band(RGBColor(255, 230, 160).into()),
+            )];
             for (s, (name, colour)) in series.iter().zip([
                 ("elliptical gears", RED),
                 ("constant speed", BLACK),
                 ("sinusoidal shaft", BLUE),
             ]) {
-                chart
-                    .draw_series(LineSeries::new(
-                        c.input_deg.iter().copied().zip(s.iter().copied()),
-                        colour.stroke_width(2),
-                    ))
-                    .map_err(err)?
-                    .label(name)
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                    });
+                let pts: Vec<(f64, f64)> =
+                    c.input_deg.iter().copied().zip(s.iter().copied()).collect();
+                fine_line(&mut chart, &pts, colour.into(), 2)?;
+                entries.push((name.to_string(), Swatch::Line(colour.into(), 2)));
             }
-            draw_legend(&mut chart, 12, None)?;
+            draw_legend(area, chart.plotting_area(), &entries, 12, place)?;
         }
         Ok(())
     }

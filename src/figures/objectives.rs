@@ -10,7 +10,7 @@ pub struct ObjectivesFigure<'a> {
 
 impl Figure for ObjectivesFigure<'_> {
     fn size(&self) -> (u32, u32) {
-        (1000, 80 + 60 * self.objectives.len() as u32)
+        (1000, 90 + 78 * self.objectives.len() as u32)
     }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
@@ -20,7 +20,7 @@ impl Figure for ObjectivesFigure<'_> {
         let m = self.objectives.len().max(1) as f64;
         let mut chart = ChartBuilder::on(root)
             .caption(
-                "Objectives against their bounds (bound = 0; two-sided ranges span 0..1)",
+                "Objectives against their bounds: green band admissible, marker the design",
                 (FONT, 18),
             )
             .margin(12)
@@ -28,11 +28,15 @@ impl Figure for ObjectivesFigure<'_> {
             .y_label_area_size(10)
             .build_cartesian_2d(-1.5..2.5, 0.0..m)
             .map_err(err)?;
+        // Each row has its own scale (the band's edges are labelled with the bounds in the
+        // objective's unit), so a shared numbered axis would mean nothing.
         chart
             .configure_mesh()
             .disable_y_mesh()
             .disable_y_axis()
-            .x_desc("position relative to the bounds")
+            .disable_x_mesh()
+            .x_labels(0)
+            .x_desc("each row on its own scale: a one-sided band spans ten times the objective's margin scale")
             .label_style((FONT, 12))
             .draw()
             .map_err(err)?;
@@ -48,7 +52,7 @@ impl Figure for ObjectivesFigure<'_> {
             let x = x.clamp(-1.45, 2.45);
             chart
                 .draw_series(std::iter::once(Rectangle::new(
-                    [(lo, y - 0.3), (hi, y + 0.3)],
+                    [(lo, y - 0.22), (hi, y + 0.22)],
                     RGBColor(210, 235, 210).filled(),
                 )))
                 .map_err(err)?;
@@ -59,24 +63,38 @@ impl Figure for ObjectivesFigure<'_> {
             };
             chart
                 .draw_series(std::iter::once(Rectangle::new(
-                    [(x - 0.02, y - 0.35), (x + 0.02, y + 0.35)],
+                    [(x - 0.02, y - 0.27), (x + 0.02, y + 0.27)],
                     colour.filled(),
                 )))
                 .map_err(err)?;
+            let unit = o.kind.unit();
             let status = if o.violation == 0.0 {
                 "met".to_string()
             } else {
-                format!("missed by {:.2}", o.violation)
+                format!("missed by {:.2} {unit}", o.violation)
             };
+            // The bounds at the band's edges, under it.
+            let edges: Vec<(f64, String)> = match (o.lower, o.upper) {
+                (Some(l), Some(u)) => {
+                    vec![(0.0, format!("{l} {unit}")), (1.0, format!("{u} {unit}"))]
+                }
+                (Some(l), None) => vec![(0.0, format!("≥ {l} {unit}"))],
+                (None, Some(u)) => vec![(0.0, format!("≤ {u} {unit}"))],
+                (None, None) => Vec::new(),
+            };
+            for (at, text) in edges {
+                chart
+                    .draw_series(std::iter::once(Text::new(
+                        text,
+                        (at, y - 0.32),
+                        TextStyle::from((FONT, 12)).pos(Pos::new(HPos::Center, VPos::Top)),
+                    )))
+                    .map_err(err)?;
+            }
             chart
                 .draw_series(std::iter::once(Text::new(
-                    format!(
-                        "{}: {:.2} {} ({status})",
-                        o.kind.label(),
-                        o.value,
-                        o.kind.unit()
-                    ),
-                    (-1.45, y + 0.42),
+                    format!("{}: {:.2} {unit} ({status})", o.kind.label(), o.value,),
+                    (-1.45, y + 0.45),
                     (FONT, 14),
                 )))
                 .map_err(err)?;

@@ -47,7 +47,14 @@ impl Figure for TeethFigure<'_> {
         };
         let points = all.iter().flatten().map(|&(x, y)| Vec2::new(x, y));
         let ((x0, x1), (y0, y1)) = equal_ranges(points, 640.0, 600.0, 2.0);
-        let mut c = plane_chart(&left, &title, 18, x0..x1, y0..y1)?;
+        let mut c = plane_chart(
+            &left,
+            &title,
+            18,
+            x0..x1,
+            y0..y1,
+            LegendPlace { right: 0, below: 0 },
+        )?;
         for (k, pts) in all.iter().enumerate() {
             c.draw_series(LineSeries::new(pts.clone(), colour(k).stroke_width(1)))
                 .map_err(err)?;
@@ -71,7 +78,14 @@ impl Figure for TeethFigure<'_> {
             r.mesh.contact_ratio_min
         );
         let (wx, wy) = window;
-        let mut c = plane_chart(&right, &caption, 16, wx.0..wx.1, wy.0..wy.1)?;
+        let mut c = plane_chart(
+            &right,
+            &caption,
+            16,
+            wx.0..wx.1,
+            wy.0..wy.1,
+            LegendPlace { right: 0, below: 0 },
+        )?;
         for k in [0, other] {
             let style = colour(k).stroke_width(2);
             let runs = clipped_runs(&all[k], window.0, window.1);
@@ -106,7 +120,7 @@ fn pitch_point_distance(run: &TeethRun, d: Vec2) -> f64 {
 }
 
 /// The teeth figure into `dir`.
-pub fn teeth_figures(run: &TeethRun, dir: &Path) -> Result<Vec<PathBuf>> {
+pub fn teeth_figures(run: &TeethRun, dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>> {
     create_dir(dir)?;
-    save(&TeethFigure { run }, &dir.join("teeth"))
+    save(&TeethFigure { run }, &dir.join("teeth"), options)
 }

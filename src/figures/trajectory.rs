@@ -22,7 +22,13 @@ pub struct TrajectoryFigure<'a> {
     pub scene: &'a Scene,
 }
 
+/// Legend text size (px).
+const LEGEND_FONT: u32 = 13;
+
 impl Figure for TrajectoryFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        (1240, 720)
+    }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
         DB::ErrorType: 'static,
@@ -31,121 +37,149 @@ impl Figure for TrajectoryFigure<'_> {
         let ev = self.events;
         let agro = &self.scene.agronomy;
         root.fill(&WHITE).map_err(err)?;
-        let tips = kin.tips();
-        let ((x0, x1), (y0, y1)) =
-            equal_ranges(tips.iter().copied().chain([Vec2::ZERO]), 800.0, 600.0, 40.0);
-        let mut chart = ChartBuilder::on(root)
-            .caption(
-                "Tip trajectory relative to the machine (three arms)",
-                (FONT, 22),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc("x (mm)")
-            .y_desc("y (mm)")
-            .label_style((FONT, 14))
-            .draw()
-            .map_err(err)?;
-        // Ground and tray lines.
-        let ground = ev.y_min_mm + agro.planting_depth_mm;
-        chart
-            .draw_series(LineSeries::new(
-                [(x0, ground), (x1, ground)],
-                RGBColor(120, 80, 40).stroke_width(2),
-            ))
-            .map_err(err)?
-            .label(format!(
-                "ground ({} mm above the lowest point)",
-                agro.planting_depth_mm
-            ))
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(120, 80, 40)));
-        let n = unit(agro.tray_normal_deg.to_radians());
-        let p = ev.picking.tip_mm;
-        let s = p - n * agro.tray_depth_mm;
-        let t = n.turn_90();
-        chart
-            .draw_series(LineSeries::new(
-                [(s - t * 120.0).into(), (s + t * 120.0).into()],
-                RGBColor(90, 90, 90).stroke_width(2),
-            ))
-            .map_err(err)?
-            .label(format!("tray surface (normal {}°)", agro.tray_normal_deg))
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(90, 90, 90)));
-        // Trajectory coloured by section, and all three arms at five carrier angles 24° apart.
         let anatomy = anatomy(kin, agro, ev);
-        for (section, colour) in Section::ALL.into_iter().zip(SECTION_COLOURS) {
-            let m = anatomy.section(section);
-            let points = section_points(kin, m.carrier_deg);
-            chart
-                .draw_series(LineSeries::new(points, colour.stroke_width(3)))
-                .map_err(err)?
-                .label(format!(
+        // Every legend entry first: the room they need sets the plot's size.
+        let ground_label = format!(
+            "ground ({} mm above the lowest point)",
+            agro.planting_depth_mm
+        );
+        let tray_label = format!("tray surface (normal {}°)", agro.tray_normal_deg);
+        let section_labels: Vec<String> = (Section::ALL.iter())
+            .map(|&section| {
+                let m = anatomy.section(section);
+                format!(
                     "{} ({:.0} mm, θ {:.0}°..{:.0}°)",
                     section.label(),
                     m.length_mm,
                     m.carrier_deg[0],
                     m.carrier_deg[1]
-                ))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3))
-                });
-        }
-        for (k, colour) in ARM_COLOURS.iter().enumerate() {
-            for step in 0..5 {
-                let theta = step as f64 * TAU / 15.0 - k as f64 * TAU / 3.0;
-                let st = kin.state_at(theta);
-                chart
-                    .draw_series(LineSeries::new(
-                        [st.o3.into(), st.tip.into()],
-                        colour.mix(0.55).stroke_width(2),
-                    ))
-                    .map_err(err)?;
-            }
+                )
+            })
+            .collect();
+        let arm_labels: Vec<String> = (0..3)
+            .map(|k| format!("arm {} at θ = 0°, 24°, …, 96°", ["I", "II", "III"][k]))
+            .collect();
+        let event_labels: Vec<String> = [("picking", &ev.picking), ("planting", &ev.planting)]
+            .iter()
+            .map(|(label, e)| {
+                format!(
+                    "{label}: θ = {:.1}°, attitude {:.1}°",
+                    e.carrier_rad.to_degrees(),
+                    e.attitude_deg
+                )
+            })
+            .collect();
+        // The arms at the poses drawn: all three at five carrier angles 24° apart.
+        let poses: Vec<(usize, Vec2, Vec2)> = (0..3)
+            .flat_map(|k| {
+                (0..5).map(move |step| {
+                    let theta = step as f64 * TAU / 15.0 - k as f64 * TAU / 3.0;
+                    let st = kin.state_at(theta);
+                    (k, st.o3, st.tip)
+                })
+            })
+            .collect();
+        let (margin, x_label, y_label) = (12u32, 40u32, 60u32);
+        let area = root
+            .titled(
+                "Tip trajectory relative to the machine (three arms)",
+                (FONT, 22),
+            )
+            .map_err(err)?;
+        let (w, h) = area.dim_in_pixel();
+        let place = legend_place(
+            [&ground_label, &tray_label]
+                .into_iter()
+                .chain(&section_labels)
+                .chain(&arm_labels)
+                .chain(&event_labels)
+                .map(String::as_str),
+            LEGEND_FONT,
+            (w, h),
+        );
+        let (plot_w, plot_h) = place.plot_size((w, h), margin, (x_label, y_label));
+        // Equal scale in x and y, everything drawn inside: the path, the arms, the carrier.
+        let drawn = (kin.tips().iter().copied())
+            .chain(poses.iter().flat_map(|&(_, o3, tip)| [o3, tip]))
+            .chain([Vec2::ZERO]);
+        let ((x0, x1), (y0, y1)) = equal_ranges(drawn, plot_w as f64, plot_h as f64, 15.0);
+        let mut chart = chart_on(&area, margin, place, (x_label, y_label))
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_label_formatter(&tick)
+            .x_labels((plot_w / 70).max(3) as usize)
+            .y_label_formatter(&tick)
+            .x_desc("x (mm)")
+            .y_desc("y (mm)")
+            .label_style((FONT, 14))
+            .draw()
+            .map_err(err)?;
+        let clip = |points: &[(f64, f64)]| clipped_runs(points, (x0, x1), (y0, y1));
+        let mut entries: Entries = Vec::new();
+        // Ground and tray lines.
+        let ground = ev.y_min_mm + agro.planting_depth_mm;
+        let brown = RGBColor(120, 80, 40);
+        chart
+            .draw_series(LineSeries::new(
+                [(x0, ground), (x1, ground)],
+                brown.stroke_width(2),
+            ))
+            .map_err(err)?;
+        entries.push((ground_label, Swatch::Line(brown.into(), 2)));
+        let n = unit(agro.tray_normal_deg.to_radians());
+        let s = ev.picking.tip_mm - n * agro.tray_depth_mm;
+        let t = n.turn_90();
+        let grey = RGBColor(90, 90, 90);
+        for run in clip(&[(s - t * 120.0).into(), (s + t * 120.0).into()]) {
             chart
-                .draw_series(std::iter::once(PathElement::new(
-                    vec![(0.0, 0.0), (0.0, 0.0)],
-                    colour.stroke_width(2),
-                )))
-                .map_err(err)?
-                .label(format!(
-                    "arm {} at θ = 0°, 24°, …, 96°",
-                    ["I", "II", "III"][k]
+                .draw_series(LineSeries::new(run, grey.stroke_width(2)))
+                .map_err(err)?;
+        }
+        entries.push((tray_label, Swatch::Line(grey.into(), 2)));
+        // The arms under the path, so that it stays readable.
+        for &(k, o3, tip) in &poses {
+            chart
+                .draw_series(LineSeries::new(
+                    [o3.into(), tip.into()],
+                    ARM_COLOURS[k].mix(0.45).stroke_width(2),
                 ))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                });
+                .map_err(err)?;
+        }
+        for (k, label) in arm_labels.into_iter().enumerate() {
+            entries.push((label, Swatch::Line(ARM_COLOURS[k].mix(0.45), 2)));
+        }
+        // The path, coloured by section.
+        for ((section, colour), label) in Section::ALL
+            .into_iter()
+            .zip(SECTION_COLOURS)
+            .zip(section_labels)
+        {
+            let points = section_points(kin, anatomy.section(section).carrier_deg);
+            fine_line(&mut chart, &points, colour.into(), 3)?;
+            entries.push((label, Swatch::Line(colour.into(), 3)));
         }
         chart
             .draw_series(std::iter::once(Circle::new((0.0, 0.0), 4, BLACK.filled())))
             .map_err(err)?;
-        for (label, e) in [("picking", &ev.picking), ("planting", &ev.planting)] {
-            let Vec2 { x, y } = e.tip_mm;
-            chart
-                .draw_series(std::iter::once(Circle::new((x, y), 6, MAGENTA.filled())))
-                .map_err(err)?;
-            chart
-                .draw_series(std::iter::once(Text::new(
-                    format!(
-                        "{label}: θ = {:.1}°, attitude {:.1}°",
-                        e.carrier_rad.to_degrees(),
-                        e.attitude_deg
-                    ),
-                    (x, y),
-                    // Text on the side of the point with more room, so it stays in the plot.
-                    TextStyle::from((FONT, 15)).pos(if x > 0.5 * (x0 + x1) {
-                        Pos::new(HPos::Right, VPos::Bottom)
-                    } else {
-                        Pos::new(HPos::Left, VPos::Bottom)
-                    }),
-                )))
-                .map_err(err)?;
-        }
-        draw_legend(&mut chart, 13, Some(SeriesLabelPosition::UpperRight))?;
+        // The events as markers, their numbers in the legend: no text over the path.
+        let [picking, planting] = [event_labels[0].clone(), event_labels[1].clone()];
+        let Vec2 { x, y } = ev.picking.tip_mm;
+        chart
+            .draw_series(std::iter::once(Circle::new((x, y), 7, MAGENTA.filled())))
+            .map_err(err)?;
+        entries.push((picking, Swatch::Dot(MAGENTA.into())));
+        let Vec2 { x, y } = ev.planting.tip_mm;
+        chart
+            .draw_series(std::iter::once(TriangleMarker::new(
+                (x, y),
+                9,
+                MAGENTA.filled(),
+            )))
+            .map_err(err)?;
+        entries.push((planting, Swatch::Triangle(MAGENTA.into())));
+        draw_legend(&area, chart.plotting_area(), &entries, LEGEND_FONT, place)?;
         Ok(())
     }
 }

@@ -148,7 +148,7 @@ test('a bad value in a field is reported beside it, kept as typed, and the desig
   const field = page.locator('input[data-path="train.arm_length_mm"]');
   await field.fill('-5');
   const message = page.locator('.row:has(input[data-path="train.arm_length_mm"]) .msg');
-  assert.match(await message.textContent(), /train\.arm_length_mm = -5 is out of range/);
+  assert.match(await message.textContent(), /train\.arm_length_mm \(S\) = -5 is out of range/);
   assert.equal(await field.inputValue(), '-5');
   assert.equal(await pageScene(), scene);
   await field.fill('145');
@@ -166,7 +166,7 @@ test('a scene file that does not parse, or that the model refuses, gives the mes
   const refused = readFileSync(join(repo, 'scenes/paper.toml'), 'utf8').replace('arm_length_mm = 145', 'arm_length_mm = -145');
   await page.setInputFiles('#open', { name: 'refused.toml', mimeType: 'text/plain', buffer: Buffer.from(refused) });
   await page.waitForFunction(() => /arm_length_mm/.test(document.getElementById('file-error').textContent));
-  assert.match(await page.locator('#file-error').textContent(), /train\.arm_length_mm = -145 is out of range/);
+  assert.match(await page.locator('#file-error').textContent(), /train\.arm_length_mm \(S\) = -145 is out of range/);
   assert.equal(await pageScene(), scene);
 });
 

@@ -54,6 +54,58 @@ struct SceneArgs {
     /// Write figures (SVG and PNG) and CSV exports into this directory.
     #[arg(long, value_name = "DIR")]
     plot: Option<std::path::PathBuf>,
+    /// Figure formats written by --plot (comma-separated): svg, png, pdf (vector with the
+    /// font embedded, for a paper).
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [FigureFormatArg::Svg, FigureFormatArg::Png])]
+    figure_format: Vec<FigureFormatArg>,
+    /// Figure size WIDTHxHEIGHT in CSS pixels (96 to the inch), e.g. 640x480; default:
+    /// each figure's own. Text keeps its size, so a smaller figure reads larger.
+    #[arg(long, value_name = "WxH")]
+    figure_size: Option<String>,
+    /// Resolution of the PNG figures (dots per inch; 300 for print).
+    #[arg(long, default_value_t = 96)]
+    dpi: u32,
+}
+
+/// A figure format (`--figure-format`).
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum FigureFormatArg {
+    Svg,
+    Png,
+    Pdf,
+}
+
+impl SceneArgs {
+    /// The figure options asked for, checked.
+    fn figures(&self) -> Result<noncirc::figures::FigureOptions, Box<dyn std::error::Error>> {
+        use noncirc::figures::FigureFormat;
+        let size_px = match &self.figure_size {
+            None => None,
+            Some(text) => {
+                let parsed = text
+                    .split_once(['x', 'X'])
+                    .and_then(|(w, h)| Some((w.trim().parse().ok()?, h.trim().parse().ok()?)));
+                Some(parsed.ok_or_else(|| {
+                    noncirc::Error::Input(format!(
+                        "--figure-size '{text}': expected WIDTHxHEIGHT in pixels, e.g. 640x480"
+                    ))
+                })?)
+            }
+        };
+        let options = noncirc::figures::FigureOptions {
+            formats: (self.figure_format.iter())
+                .map(|f| match f {
+                    FigureFormatArg::Svg => FigureFormat::Svg,
+                    FigureFormatArg::Png => FigureFormat::Png,
+                    FigureFormatArg::Pdf => FigureFormat::Pdf,
+                })
+                .collect(),
+            size_px,
+            dpi: self.dpi,
+        };
+        options.validate()?;
+        Ok(options)
+    }
 }
 
 #[derive(clap::Args)]
@@ -175,13 +227,21 @@ enum Command {
     /// turn (undercut, tip land, clearance, backlash, contact ratio) and export them for
     /// manufacturing. The tooth count is `gear.module.teeth` or the module rule's.
     Teeth(TeethArgs),
-    /// List the built-in scenes.
-    Scenes,
+    /// List the built-in scenes; with --reference, every field of a scene (docs/scenes.md).
+    Scenes(ScenesArgs),
     /// List every measure (`sweep --measure`, goals `min:NAME`/`max:NAME`) with its unit.
     Measures,
     /// Serve the design studio (build it first: `bash studio/build.sh`) on 127.0.0.1 and
     /// print its address. docs/studio.md
     Studio(StudioArgs),
+}
+
+#[derive(clap::Args)]
+struct ScenesArgs {
+    /// Print the scene reference instead (Markdown: every field with the papers' symbol,
+    /// unit, default, admissible values and meaning; docs/scenes.md is this output).
+    #[arg(long)]
+    reference: bool,
 }
 
 #[derive(clap::Args)]
@@ -356,7 +416,7 @@ fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> 
         outcome.write(dir)?;
     }
     if let Some(dir) = &args.scene.plot {
-        for f in noncirc::plots::search_figures(&outcome, dir)? {
+        for f in noncirc::plots::search_figures(&outcome, dir, &args.scene.figures()?)? {
             eprintln!("wrote {}", f.display());
         }
     }
@@ -377,8 +437,9 @@ fn plot_evaluation(
     scene: &noncirc::core::Scene,
     eval: &noncirc::core::Evaluation,
     dir: &std::path::Path,
+    options: &noncirc::figures::FigureOptions,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    for f in noncirc::plots::evaluation_outputs(scene, eval, dir)? {
+    for f in noncirc::plots::evaluation_outputs(scene, eval, dir, options)? {
         eprintln!("wrote {}", f.display());
     }
     Ok(())
@@ -417,7 +478,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
                 }
             }
             if let Some(dir) = &args.scene.plot {
-                for f in noncirc::figures::teeth_figures(&run, dir)? {
+                for f in noncirc::figures::teeth_figures(&run, dir, &args.scene.figures()?)? {
                     eprintln!("wrote {}", f.display());
                 }
             }
@@ -446,7 +507,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             let (report, eval) = EvaluationReport::from_scene(&scene)?;
             noncirc::report::check_finite(&report)?;
             if let Some(dir) = &args.plot {
-                plot_evaluation(&scene, &eval, dir)?;
+                plot_evaluation(&scene, &eval, dir, &args.figures()?)?;
             }
             match args.format {
                 Format::Json => out(&json(&report)?)?,
@@ -471,7 +532,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
                     spec: &box_scene.moving_box,
                     report: &b,
                 };
-                for f in noncirc::figures::save(&fig, &dir.join("moving_box"))? {
+                for f in noncirc::figures::save(&fig, &dir.join("moving_box"), &args.figures()?)? {
                     eprintln!("wrote {}", f.display());
                 }
             }
@@ -503,7 +564,13 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
                 &measures,
             )?;
             if let Some(dir) = &args.scene.plot {
-                for f in noncirc::plots::sweep_figures(&scene, &args.param, &rows, dir)? {
+                for f in noncirc::plots::sweep_figures(
+                    &scene,
+                    &args.param,
+                    &rows,
+                    dir,
+                    &args.scene.figures()?,
+                )? {
                     eprintln!("wrote {}", f.display());
                 }
             }
@@ -523,7 +590,10 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             let dir = args.dir.unwrap_or_else(studio::default_dir);
             studio::serve(&dir, args.port)?;
         }
-        Command::Scenes => {
+        Command::Scenes(args) if args.reference => {
+            out(&noncirc::scene_reference::markdown())?;
+        }
+        Command::Scenes(_) => {
             let mut lines = String::new();
             for (name, text) in BUILTIN {
                 let scene = noncirc::scene_file::parse_scene(text, name)?;

@@ -4,10 +4,10 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {
     /// A number that must be finite is NaN or infinite.
-    #[error("{name} must be a finite number, got {}", Num(*value))]
+    #[error("{} must be a finite number, got {}", Named(name), Num(*value))]
     NonFinite { name: String, value: f64 },
     /// A scalar parameter is outside its admissible range.
-    #[error("{name} = {} is out of range: expected {expected}", Num(*value))]
+    #[error("{} = {} is out of range: expected {expected}", Named(name), Num(*value))]
     OutOfRange {
         name: String,
         value: f64,
@@ -90,6 +90,18 @@ pub enum Error {
 }
 
 /// Displays a number readably: scientific notation when very large or very small.
+/// A scene path with the papers' symbol where they name one: `train.arm_length_mm (S)`.
+struct Named<'a>(&'a str);
+
+impl std::fmt::Display for Named<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match crate::reference::symbol(self.0) {
+            Some(symbol) => write!(f, "{} ({symbol})", self.0),
+            None => write!(f, "{}", self.0),
+        }
+    }
+}
+
 struct Num(f64);
 
 impl std::fmt::Display for Num {

@@ -18,6 +18,7 @@ mod objectives;
 mod params;
 mod planetary;
 mod quadrature;
+mod reference;
 mod resolution;
 mod scene;
 mod search;
@@ -33,6 +34,7 @@ pub use moving_box::BoxSpec;
 pub use objectives::{Agronomy, Bounds, ObjectiveKind};
 pub use params::Param;
 pub use planetary::{PusherSide, Rotation, SunFrame, TrainSpec};
+pub use reference::{field, symbol, Field, FIELDS};
 pub use resolution::Resolution;
 pub use scene::{FreeParam, GearSpec, Scene, SceneKind, SearchSpec};
 

@@ -1,0 +1,136 @@
+//! The scene reference (docs/scenes.md) is current, covers every field of a scene and
+//! only those, and every admissible range it states refuses a value outside it.
+
+use noncirc::scene_file::{apply_overrides, parse_scene, BUILTIN};
+use noncirc_core::FIELDS;
+use std::collections::BTreeSet;
+
+/// The field paths of a scene's tree: a list of numbers or names is one field (`key`), a
+/// list of tables has fields `key[i].name`.
+fn field_paths(v: &serde_json::Value, path: &str, out: &mut BTreeSet<String>) {
+    let join = |k: &str| {
+        if path.is_empty() {
+            k.to_string()
+        } else {
+            format!("{path}.{k}")
+        }
+    };
+    match v {
+        serde_json::Value::Object(m) => {
+            for (k, x) in m {
+                field_paths(x, &join(k), out);
+            }
+        }
+        serde_json::Value::Array(a) if a.iter().any(|x| x.is_object()) => {
+            out.insert(path.to_string());
+            for x in a {
+                field_paths(x, &format!("{path}[i]"), out);
+            }
+        }
+        _ => {
+            out.insert(path.to_string());
+        }
+    }
+}
+
+/// Scenes that between them hold every field: the built-ins, and edits that set what the
+/// built-ins leave out (the other curve kinds, a shaper, the optional values).
+fn scenes() -> Vec<noncirc_core::Scene> {
+    let mut scenes: Vec<_> = (BUILTIN.iter())
+        .map(|(name, text)| parse_scene(text, name).unwrap())
+        .collect();
+    let base = scenes[0].clone();
+    let edits: &[&[&str]] = &[
+        &["gear.curve={kind=\"fourier\",c0_mm=40.0,cos_mm=[5.0],sin_mm=[2.0]}"],
+        &["gear.curve={kind=\"ellipse\",semi_major_mm=40.0,eccentricity=0.3}"],
+        &[
+            "gear.teeth.cutter={kind=\"shaper\",teeth=12}",
+            "gear.module.teeth=40",
+            "search.confirm_with_teeth=true",
+            "agronomy.tray_distance_mm=120",
+            "moving_box.speed_ratio=3",
+        ],
+    ];
+    for edit in edits {
+        let edit: Vec<String> = edit.iter().map(|s| s.to_string()).collect();
+        scenes.push(apply_overrides(base.clone(), &edit).unwrap());
+    }
+    scenes
+}
+
+#[test]
+fn docs_scenes_md_is_current() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scenes.md");
+    let written = std::fs::read_to_string(path).unwrap_or_default();
+    let generated = noncirc::scene_reference::markdown();
+    if written != generated {
+        if std::env::var_os("NONCIRC_WRITE_DOCS").is_some() {
+            std::fs::write(path, &generated).unwrap();
+        }
+        panic!(
+            "docs/scenes.md is not current: `noncirc scenes --reference > docs/scenes.md` \
+             (or run this test with NONCIRC_WRITE_DOCS=1)"
+        );
+    }
+}
+
+#[test]
+fn the_reference_names_every_field_and_only_fields() {
+    let mut paths = BTreeSet::new();
+    for scene in scenes() {
+        field_paths(&serde_json::to_value(&scene).unwrap(), "", &mut paths);
+    }
+    let listed: BTreeSet<String> = FIELDS.iter().map(|f| f.key.to_string()).collect();
+    let missing: Vec<_> = paths.difference(&listed).collect();
+    let extra: Vec<_> = listed.difference(&paths).collect();
+    assert!(
+        missing.is_empty(),
+        "fields missing from the reference: {missing:?}"
+    );
+    assert!(
+        extra.is_empty(),
+        "the reference lists what is no field: {extra:?}"
+    );
+    assert_eq!(listed.len(), FIELDS.len(), "a field is listed twice");
+}
+
+#[test]
+fn every_stated_range_refuses_a_value_outside_it() {
+    let base = parse_scene(BUILTIN[3].1, BUILTIN[3].0).unwrap();
+    assert_eq!(BUILTIN[3].0, "transplanter");
+    for field in FIELDS {
+        assert!(!field.refused.is_empty(), "{}: no refused value", field.key);
+        for probe in field.refused {
+            // The probe sets the field itself, or the table that holds it.
+            let (key, _) = probe.split_once('=').unwrap();
+            let plain = field.key.split('[').next().unwrap();
+            assert!(
+                plain.starts_with(key.split('[').next().unwrap()),
+                "{}: the probe {probe} sets another field",
+                field.key
+            );
+            let result = apply_overrides(base.clone(), &[probe.to_string()]);
+            assert!(result.is_err(), "{}: {probe} was accepted", field.key);
+        }
+    }
+}
+
+#[test]
+fn errors_name_the_papers_symbols() {
+    let base = parse_scene(BUILTIN[3].1, BUILTIN[3].0).unwrap();
+    for (probe, named) in [
+        (
+            "train.pusher_offset_mm=-1",
+            "train.pusher_offset_mm (H1) = -1",
+        ),
+        ("train.arm_length_mm=0", "train.arm_length_mm (S) = 0"),
+        (
+            "moving_box.spiral_angle_deg=90",
+            "moving_box.spiral_angle_deg (φs) = 90",
+        ),
+        ("train.gamma0_deg=180", "train.gamma0_deg (γ0) = 180"),
+    ] {
+        let err = apply_overrides(base.clone(), &[probe.to_string()]).unwrap_err();
+        assert!(err.to_string().contains(named), "{probe}: {err}");
+    }
+}
