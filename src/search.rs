@@ -316,6 +316,27 @@ pub fn read_checkpoint(path: &Path) -> Result<Checkpoint> {
     })
 }
 
+/// The `count` best members of the search in the checkpoint at `path`, to send to another
+/// island of the same search (an island model's migration).
+pub fn emigrants(path: &Path, count: usize) -> Result<noncirc_core::Migrants> {
+    Ok(read_checkpoint(path)?.emigrants(count))
+}
+
+/// Takes `migrants` into the search in the checkpoint at `path`, in place of its worst
+/// members, and writes the checkpoint back (atomically); a resumed search goes on with
+/// them. Migrants of another scene's search are refused, naming both.
+pub fn immigrate(path: &Path, migrants: &noncirc_core::Migrants) -> Result<()> {
+    let mut checkpoint = read_checkpoint(path)?;
+    checkpoint
+        .immigrate(migrants)
+        .map_err(|source| Error::Content {
+            path: path.into(),
+            source,
+        })?;
+    write_atomic(path, &checkpoint.to_json())
+        .map_err(|e| Error::file("write the checkpoint", path, e))
+}
+
 /// Largest checkpoint read (bytes): a state of the largest accepted population.
 pub const MAX_CHECKPOINT_BYTES: u64 = 1 << 30;
 

@@ -66,6 +66,65 @@ fn single_objective_solvers_find_the_constrained_optimum() {
     }
 }
 
+/// Migration between islands: the best members leave, and take the worst members' places
+/// on the other island, whose best screened design follows them; solvers without a
+/// population, and islands that have not started, refuse migrants.
+#[test]
+fn migrants_replace_the_worst_members_of_another_island() {
+    let mut eval = Closure {
+        dim: 6,
+        goals: 1,
+        f: constrained_sphere,
+    };
+    for algorithm in [Algorithm::De, Algorithm::Nsga2] {
+        let (mut from, mut to) = (
+            SearchState::new(algorithm, 6, 1, 24, 1),
+            SearchState::new(algorithm, 6, 1, 24, 2),
+        );
+        assert!(
+            to.immigrate(&from.emigrants(2), 6, 1).is_ok(),
+            "nothing to send yet"
+        );
+        for _ in 0..30 {
+            from.step(&mut eval);
+        }
+        to.step(&mut eval);
+        let sent = from.emigrants(3);
+        assert_eq!(sent.len(), 3);
+        let ranked = from.emigrants(usize::MAX);
+        assert_eq!(sent[..], ranked[..3], "{algorithm:?}: the best are sent");
+        let before = to.emigrants(usize::MAX);
+        assert!(SearchState::new(algorithm, 6, 1, 24, 2)
+            .immigrate(&sent, 6, 1)
+            .is_err());
+        to.immigrate(&sent, 6, 1).unwrap();
+        let after = to.emigrants(usize::MAX);
+        assert_eq!(after.len(), before.len());
+        for m in &sent {
+            assert!(after.contains(m), "{algorithm:?}: a migrant is missing");
+        }
+        // The three worst are gone (the rest stay), and the best follows the migrants.
+        let worst = &before[before.len() - 3..];
+        assert!(worst.iter().all(|w| !after.contains(w) || sent.contains(w)));
+        assert!(before[..before.len() - 3].iter().all(|m| after.contains(m)));
+        let best = to.best.as_ref().unwrap();
+        assert!(!sent[0].fitness.better_than(&best.fitness));
+        // A migrant of another problem (dimension) is refused.
+        let mut foreign = sent[0].clone();
+        foreign.u.push(0.5);
+        assert!(to.immigrate(&[foreign], 6, 1).is_err());
+    }
+    let mut cmaes = SearchState::new(Algorithm::Cmaes, 6, 1, 24, 1);
+    cmaes.step(&mut eval);
+    let sent = {
+        let mut de = SearchState::new(Algorithm::De, 6, 1, 24, 1);
+        de.step(&mut eval);
+        de.emigrants(2)
+    };
+    assert!(cmaes.immigrate(&sent, 6, 1).is_err());
+    assert!(cmaes.emigrants(2).is_empty());
+}
+
 #[test]
 fn nsga2_converges_to_the_zdt1_front() {
     // ZDT1 (d = 8): Pareto front f2 = 1 − √f1 for f1 in [0, 1], reached with u_1.. = 0.

@@ -110,3 +110,11 @@ def optimise(
     after the current generation and raises KeyboardInterrupt. `checkpoint` writes the
     state every `checkpoint_every` s and at the end; `resume` continues one (its scene and
     settings; `budget` may be raised)."""
+
+def emigrants(checkpoint: str | os.PathLike[str], count: int) -> str:
+    """The `count` best members of the search in a checkpoint file, as JSON text, for
+    another island of the same search (`noncirc.dask.islands`)."""
+
+def immigrate(checkpoint: str | os.PathLike[str], migrants: str) -> None:
+    """Takes `migrants` (the text of `emigrants` from another island of the same search)
+    into the checkpoint's search in place of its worst members; refuses another scene's."""

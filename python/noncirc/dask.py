@@ -2,8 +2,8 @@
 
 Per-design tasks drown in scheduler overhead (a design takes tens of microseconds), so
 `evaluate_batch_distributed` splits a batch into a few chunks per worker thread, each of at
-least `min_chunk_seconds` (0.1 s) of work, timed on this machine first. `islands` runs
-independent searches, one per task. Scenes pickle, so the same code runs on a
+least `min_chunk_seconds` (0.1 s) of work, timed on this machine first. `islands` runs an
+island model: a search per seed, each a task, exchanging their best members every epoch. Scenes pickle, so the same code runs on a
 `LocalCluster` or a real cluster.
 """
 
@@ -11,12 +11,16 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
+import tempfile
 import time
+import warnings
 from dataclasses import dataclass
-from typing import Any, Sequence
+from typing import Any, Optional, Sequence
 
 import numpy as np
 
+from . import _noncirc
 from ._noncirc import Scene
 from .api import evaluate_batch, optimise
 from .results import Batch, SearchResult
@@ -80,11 +84,89 @@ def evaluate_batch_distributed(
     return DistributedBatch(**merged, chunks=len(pieces))
 
 
-def _island(scene: Scene, seed: int, kwargs: dict) -> SearchResult:
-    return optimise(scene, seed=seed, threads=1, progress=False, **kwargs)
+def _epoch(
+    scene: Scene,
+    seed: int,
+    budget: int,
+    state: Optional[bytes],
+    immigrants: Optional[str],
+    emigrants: int,
+    last: bool,
+    kwargs: dict,
+) -> tuple[bytes, str, SearchResult]:
+    """One island's epoch: its search from `state` (None: a new one), with `immigrants`
+    taken in first, on to `budget` evaluations in all; returns the new state, the members
+    it sends on, and its result so far. The state travels as checkpoint bytes, so the
+    epoch may run on any worker. Only the `last` epoch warns of a search with no feasible
+    design yet."""
+    with tempfile.TemporaryDirectory() as folder, warnings.catch_warnings():
+        if not last:
+            warnings.simplefilter("ignore", RuntimeWarning)
+        path = os.path.join(folder, "island.ckpt")
+        if state is None:
+            result = optimise(
+                scene, seed=seed, budget=budget, threads=1, progress=False, checkpoint=path, **kwargs
+            )
+        else:
+            with open(path, "wb") as f:
+                f.write(state)
+            if immigrants is not None:
+                _noncirc.immigrate(path, immigrants)
+            result = optimise(resume=path, budget=budget, threads=1, progress=False, checkpoint=path)
+        with open(path, "rb") as f:
+            state = f.read()
+        return state, _noncirc.emigrants(path, emigrants), result
 
 
-def islands(client, scene: Scene, seeds: Sequence[int], **kwargs: Any) -> list[SearchResult]:
-    """Independent searches, one per seed and task; results in seed order."""
-    futures = client.map(_island, [scene] * len(seeds), list(seeds), [kwargs] * len(seeds), pure=False)
-    return client.gather(futures)
+def islands(
+    client,
+    scene: Scene,
+    seeds: Sequence[int],
+    *,
+    epochs: int = 4,
+    migrants: int = 2,
+    budget: Optional[int] = None,
+    **kwargs: Any,
+) -> list[SearchResult]:
+    """An island model: one search per seed, each a task, that run in `epochs` equal
+    parts of `budget` evaluations each (the scene's budget by default); after each part
+    every island sends its `migrants` best members to the next island of the ring (seed
+    order), which takes them in place of its worst. Results in seed order.
+
+    Deterministic: the same seeds give the same results on any cluster, whatever the
+    workers and the order tasks finish in (each epoch waits for the ring's previous one).
+    With `migrants=0` (or `epochs=1`) the islands are independent, and each equals
+    `optimise(scene, seed=s, budget=budget, **kwargs)`. Migration needs a population:
+    `algorithm` `de`, `nsga2` or `nsga3`."""
+    seeds = list(seeds)
+    if epochs < 1:
+        raise ValueError(f"epochs = {epochs}: expected 1 or more")
+    if migrants < 0:
+        raise ValueError(f"migrants = {migrants}: expected 0 or more")
+    if not seeds:
+        return []
+    total = budget if budget is not None else int(scene.get("search.budget"))
+    states: list[Optional[bytes]] = [None] * len(seeds)
+    outgoing: list[Optional[str]] = [None] * len(seeds)
+    results: list[SearchResult] = []
+    for epoch in range(epochs):
+        until = math.ceil(total * (epoch + 1) / epochs)
+        # Island i takes in what island i − 1 sent at the end of the last epoch.
+        incoming = [outgoing[i - 1] if migrants and len(seeds) > 1 else None for i in range(len(seeds))]
+        futures = client.map(
+            _epoch,
+            [scene] * len(seeds),
+            seeds,
+            [until] * len(seeds),
+            states,
+            incoming,
+            [migrants] * len(seeds),
+            [epoch == epochs - 1] * len(seeds),
+            [kwargs] * len(seeds),
+            pure=False,
+        )
+        done = client.gather(futures)
+        states = [d[0] for d in done]
+        outgoing = [d[1] for d in done]
+        results = [d[2] for d in done]
+    return results

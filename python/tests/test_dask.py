@@ -5,7 +5,7 @@ import pytest
 
 distributed = pytest.importorskip("distributed")
 
-from noncirc import Scene, evaluate_batch  # noqa: E402
+from noncirc import NoncircError, Scene, evaluate_batch, optimise  # noqa: E402
 from noncirc.dask import chunk_size, evaluate_batch_distributed, islands  # noqa: E402
 
 
@@ -48,3 +48,44 @@ def test_islands_run_independent_searches(client):
     results = islands(client, scene, [1, 2], algorithm="de", budget=3000)
     assert [r.seed for r in results] == [1, 2]
     assert all(r.evaluations >= 3000 for r in results)
+
+
+def test_islands_without_migrants_are_the_independent_searches(client):
+    # Epochs resume each island's checkpoint: with no migrants, exactly the searches alone.
+    scene = Scene.builtin("paper-search")
+    results = islands(client, scene, [1, 2], epochs=3, migrants=0, algorithm="de", budget=3000)
+    for seed, r in zip([1, 2], results):
+        alone = optimise(scene, algorithm="de", seed=seed, budget=3000, threads=1, progress=False)
+        assert r.best == alone.best
+        assert r.evaluations == alone.evaluations
+
+
+def test_islands_exchange_migrants_deterministically(client):
+    scene = Scene.builtin("paper-search")
+    kwargs = dict(epochs=3, migrants=3, algorithm="de", budget=6000)
+    first = islands(client, scene, [1, 2, 3], **kwargs)
+    again = islands(client, scene, [1, 2, 3], **kwargs)
+    assert [r.best for r in first] == [r.best for r in again]
+    assert [r.evaluations for r in first] == [r.evaluations for r in again]
+    # Migration changed the searches: they are not the independent ones.
+    alone = islands(client, scene, [1, 2, 3], **{**kwargs, "migrants": 0})
+    assert [r.best for r in first] != [r.best for r in alone]
+
+
+def test_migrants_of_another_scene_or_algorithm_are_refused(tmp_path):
+    from noncirc import _noncirc
+
+    a, b = tmp_path / "a.ckpt", tmp_path / "b.ckpt"
+    scene = Scene.builtin("paper-search")
+    optimise(scene, algorithm="de", seed=1, budget=500, checkpoint=a, progress=False)
+    other = scene.with_set("train.carrier_speed_rpm", 61.0)
+    optimise(other, algorithm="de", seed=1, budget=500, checkpoint=b, progress=False)
+    sent = _noncirc.emigrants(a, 2)
+    with pytest.raises(NoncircError, match="migrants from a search of another problem"):
+        _noncirc.immigrate(b, sent)
+    c = tmp_path / "c.ckpt"
+    optimise(scene, algorithm="cmaes", seed=1, budget=500, checkpoint=c, progress=False)
+    with pytest.raises(NoncircError, match="no population"):
+        _noncirc.immigrate(c, sent)
+    with pytest.raises(Exception, match="not the text of emigrants"):
+        _noncirc.immigrate(a, "{}")

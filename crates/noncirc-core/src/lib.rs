@@ -64,6 +64,6 @@ pub use evaluation::{Evaluation, Evaluator, GearSummary, StageCounts};
 pub use search::{
     das_dennis, execute, non_dominated_fronts, scale, stop_after_generations, Algorithm,
     BatchEvaluator, Candidate, Checkpoint, Cmaes, Control, DifferentialEvolution, Ending, Fitness,
-    Goal, GoalQuantity, HistoryRow, Nsga, Observer, ParameterGuided, Rng, SceneProblem,
+    Goal, GoalQuantity, HistoryRow, Migrants, Nsga, Observer, ParameterGuided, Rng, SceneProblem,
     SearchState, SerialEvaluator, Solver, SolverState, Survival, CHECKPOINT_FORMAT, INVALID_CV,
 };

@@ -967,6 +967,25 @@ fn optimise<'py>(
     Ok(out)
 }
 
+/// The `count` best members of the search in the checkpoint file `checkpoint`, as JSON
+/// text, to send to another island of the same search (`noncirc.dask.islands`).
+#[pyfunction]
+fn emigrants(checkpoint: std::path::PathBuf, count: usize) -> PyResult<String> {
+    let migrants = noncirc::search::emigrants(&checkpoint, count).map_err(lib_err)?;
+    serde_json::to_string(&migrants).map_err(err)
+}
+
+/// Takes `migrants` (the JSON text of `emigrants` from another island of the same search)
+/// into the search in the checkpoint file `checkpoint`, in place of its worst members; a
+/// search resumed from it goes on with them.
+#[pyfunction]
+fn immigrate(checkpoint: std::path::PathBuf, migrants: &str) -> PyResult<()> {
+    let migrants: noncirc::core::Migrants = serde_json::from_str(migrants).map_err(|e| {
+        ParameterError::new_err(format!("migrants: not the text of emigrants(): {e}"))
+    })?;
+    noncirc::search::immigrate(&checkpoint, &migrants).map_err(lib_err)
+}
+
 #[pymodule]
 fn _noncirc(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
@@ -974,6 +993,8 @@ fn _noncirc(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(measures, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(optimise, m)?)?;
+    m.add_function(wrap_pyfunction!(emigrants, m)?)?;
+    m.add_function(wrap_pyfunction!(immigrate, m)?)?;
     m.add("NoncircError", m.py().get_type::<NoncircError>())?;
     m.add("UnknownNameError", m.py().get_type::<UnknownNameError>())?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;

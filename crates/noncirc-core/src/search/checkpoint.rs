@@ -7,7 +7,7 @@
 //! or running a state against another problem.
 
 use super::problem::SceneProblem;
-use super::{state_error, Algorithm, SearchState};
+use super::{state_error, Algorithm, Candidate, SearchState};
 use crate::error::Result;
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
@@ -16,6 +16,16 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "noncirc-checkpoint";
 /// The version this build writes and reads; raised whenever the state's layout changes.
 pub const VERSION: u32 = 1;
+
+/// Members of one island's population on their way to another island of the same
+/// problem, with the problem they belong to.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Migrants {
+    /// The hash of the problem of the search they come from ([`problem_hash`]).
+    pub problem_hash: String,
+    pub candidates: Vec<Candidate>,
+}
 
 /// A resumable search: everything needed to continue it exactly.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -51,6 +61,31 @@ impl Checkpoint {
             scene: scene.clone(),
             state: state.clone(),
         }
+    }
+
+    /// The `count` best members of the search's population, for another island of the
+    /// same search (an island model, `noncirc.dask.islands`).
+    pub fn emigrants(&self, count: usize) -> Migrants {
+        Migrants {
+            problem_hash: problem_hash(&self.scene),
+            candidates: self.state.emigrants(count),
+        }
+    }
+
+    /// Takes `migrants` in place of the worst members. Migrants from a search of another
+    /// problem are refused: their points would mean other parameters, or their fitness
+    /// other objectives.
+    pub fn immigrate(&mut self, migrants: &Migrants) -> Result<()> {
+        let own = problem_hash(&self.scene);
+        if migrants.problem_hash != own {
+            return Err(state_error(format!(
+                "migrants from a search of another problem ({}, not this search's {own}): \
+                 islands share the scene and differ only in how they search it",
+                migrants.problem_hash
+            )));
+        }
+        self.state
+            .immigrate(&migrants.candidates, self.dim, self.goals)
     }
 
     /// The checkpoint as JSON (non-finite numbers of the state are written as strings).
@@ -116,6 +151,19 @@ impl Checkpoint {
 /// FNV-1a (64 bits) of the scene's JSON, in hex. Written here (a few lines) because it
 /// must never change between versions, unlike `std`'s hashers; it detects edits, it does
 /// not defend against tampering.
+/// The hash of a scene's search problem: the scene but for how it is searched (the
+/// algorithm, population, seed and budget), which islands of one island model may differ
+/// in.
+pub fn problem_hash(scene: &Scene) -> String {
+    let mut problem = scene.clone();
+    let defaults = crate::scene::SearchSpec::default();
+    problem.search.algorithm = defaults.algorithm;
+    problem.search.population = defaults.population;
+    problem.search.seed = defaults.seed;
+    problem.search.budget = defaults.budget;
+    scene_hash(&problem)
+}
+
 pub fn scene_hash(scene: &Scene) -> String {
     let bytes = serde_json::to_vec(scene).expect("a scene always serialises");
     let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {

@@ -52,6 +52,25 @@ impl SolverState for DifferentialEvolution {
         Ok(())
     }
 
+    fn ranked_population(&self) -> Vec<Candidate> {
+        let mut ranked = self.population.clone();
+        // Stable: equal members keep their order, so the ranking is deterministic.
+        ranked.sort_by(|a, b| a.fitness.merit().total_cmp(&b.fitness.merit()));
+        ranked
+    }
+
+    fn immigrate(&mut self, migrants: &[Candidate]) -> crate::Result<()> {
+        let mut order: Vec<usize> = (0..self.population.len()).collect();
+        order.sort_by(|&a, &b| {
+            let (fa, fb) = (&self.population[a].fitness, &self.population[b].fitness);
+            fb.merit().total_cmp(&fa.merit()).then(b.cmp(&a))
+        });
+        for (&worst, m) in order.iter().zip(migrants) {
+            self.population[worst] = m.clone();
+        }
+        Ok(())
+    }
+
     fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
         if self.population.is_empty() {
             let points = (0..self.size).map(|_| self.rng.point(self.dim)).collect();

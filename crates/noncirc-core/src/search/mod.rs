@@ -18,7 +18,7 @@ mod serial;
 #[cfg(test)]
 mod test_problem;
 
-pub use checkpoint::{Checkpoint, FORMAT as CHECKPOINT_FORMAT};
+pub use checkpoint::{Checkpoint, Migrants, FORMAT as CHECKPOINT_FORMAT};
 pub use cmaes::Cmaes;
 pub use de::DifferentialEvolution;
 pub use executor::{execute, stop_after_generations, Control, Ending, Observer};
@@ -138,6 +138,19 @@ pub trait SolverState {
     /// The current non-dominated feasible set (multi-objective solvers).
     fn front(&self) -> Vec<Candidate> {
         Vec::new()
+    }
+    /// The population, best first, for an island model's migration; empty for a solver
+    /// without one (CMA-ES, the parameter-guided probes), which then takes no migrants.
+    fn ranked_population(&self) -> Vec<Candidate> {
+        Vec::new()
+    }
+    /// Puts `migrants` in place of the worst members, as an island model's migration
+    /// does. Only solvers with a population take them.
+    fn immigrate(&mut self, _migrants: &[Candidate]) -> crate::Result<()> {
+        Err(state_error(
+            "this algorithm keeps no population to take migrants into (use de, nsga2 or nsga3)"
+                .into(),
+        ))
     }
 }
 
@@ -354,6 +367,45 @@ impl SearchState {
                         "no"
                     }
                 )));
+            }
+        }
+        Ok(())
+    }
+
+    /// The `count` best members of the population, to send to another island (fewer if
+    /// the population is smaller; none before the first generation or for a solver
+    /// without a population).
+    pub fn emigrants(&self, count: usize) -> Vec<Candidate> {
+        let mut ranked = self.solver.state().ranked_population();
+        ranked.truncate(count);
+        ranked
+    }
+
+    /// Takes `migrants` from another island of the same problem in place of the worst
+    /// members, and as the best screened design when one is better. Checked as a
+    /// checkpoint is: a migrant of another problem is refused. The confirmed best stays
+    /// this island's own, as do the counters: a migrant was evaluated elsewhere.
+    pub fn immigrate(
+        &mut self,
+        migrants: &[Candidate],
+        dim: usize,
+        goals: usize,
+    ) -> crate::Result<()> {
+        for (i, m) in migrants.iter().enumerate() {
+            check_candidate(&format!("migrant {i}"), m, dim, goals)?;
+        }
+        if migrants.is_empty() {
+            return Ok(());
+        }
+        if self.generation == 0 {
+            return Err(state_error(
+                "an island takes migrants after its first generation, not before".into(),
+            ));
+        }
+        self.solver.state_mut().immigrate(migrants)?;
+        for m in migrants {
+            if (self.best.as_ref()).is_none_or(|b| m.fitness.better_than(&b.fitness)) {
+                self.best = Some(m.clone());
             }
         }
         Ok(())

@@ -190,6 +190,33 @@ impl SolverState for Nsga {
             .collect()
     }
 
+    fn ranked_population(&self) -> Vec<Candidate> {
+        let mut order: Vec<usize> = (0..self.population.len()).collect();
+        order.sort_by(|&a, &b| {
+            (self.rank[a].cmp(&self.rank[b]))
+                .then(self.crowding[b].total_cmp(&self.crowding[a]))
+                .then(a.cmp(&b))
+        });
+        order
+            .into_iter()
+            .map(|i| self.population[i].clone())
+            .collect()
+    }
+
+    fn immigrate(&mut self, migrants: &[Candidate]) -> crate::Result<()> {
+        let mut order: Vec<usize> = (0..self.population.len()).collect();
+        order.sort_by(|&a, &b| {
+            (self.rank[b].cmp(&self.rank[a]))
+                .then(self.crowding[a].total_cmp(&self.crowding[b]))
+                .then(b.cmp(&a))
+        });
+        for (&worst, m) in order.iter().zip(migrants) {
+            self.population[worst] = m.clone();
+        }
+        self.rank_and_crowd();
+        Ok(())
+    }
+
     fn step(&mut self, eval: &mut dyn BatchEvaluator) -> Vec<Candidate> {
         if self.population.is_empty() {
             let points = (0..self.size).map(|_| self.rng.point(self.dim)).collect();
