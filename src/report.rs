@@ -639,22 +639,44 @@ pub fn natural_cmp(a: &str, b: &str) -> std::cmp::Ordering {
 
 /// A sweep as a table: one row per value, one column per objective.
 pub fn sweep_table(param: &str, rows: &[crate::search::SweepRow]) -> String {
-    let names: Vec<String> = rows
-        .iter()
-        .find(|r| !r.objectives.is_empty())
-        .map(|r| r.objectives.keys().cloned().collect())
-        .unwrap_or_default();
+    // The objectives in the paper's order, then the measures asked for.
+    let evaluated = rows.iter().find(|r| !r.objectives.is_empty());
+    let names: Vec<String> = (noncirc_core::ObjectiveKind::ALL.iter())
+        .map(|k| k.name().to_string())
+        .filter(|n| evaluated.is_some_and(|r| r.objectives.contains_key(n)))
+        .collect();
     let measures: Vec<String> = rows
         .iter()
         .flat_map(|r| r.measures.keys().cloned())
         .collect::<std::collections::BTreeSet<_>>()
         .into_iter()
         .collect();
+    let unit = |n: &str| {
+        (noncirc_core::ObjectiveKind::ALL.iter())
+            .find(|k| k.name() == n)
+            .map(|k| k.unit())
+            .or_else(|| noncirc_core::Measure::parse(n).ok().map(|m| m.unit()))
+            .unwrap_or("")
+    };
     let mut out = format!("{param:>24}");
     for n in names.iter().chain(&measures) {
         out += &format!(" {:>17}", n);
     }
     out += "   violation\n";
+    // Units under the names.
+    let shown = |u: &str| {
+        if u.is_empty() {
+            "–".to_string()
+        } else {
+            format!("({u})")
+        }
+    };
+    let param_unit = noncirc_core::field(param).map_or("", |f| f.unit);
+    out += &format!("{:>24}", shown(param_unit));
+    for n in names.iter().chain(&measures) {
+        out += &format!(" {:>17}", shown(unit(n)));
+    }
+    out += "  (normalised)\n";
     for r in rows {
         out += &format!("{:>24.4}", r.value);
         match &r.error {
@@ -718,7 +740,49 @@ pub fn check_finite(report: &impl Serialize) -> crate::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::{check_finite, natural_cmp, scene_order};
+    use super::{check_finite, natural_cmp, scene_order, sweep_table};
+
+    /// A sweep's table lists the objectives in the paper's order (not alphabetically) and
+    /// the measures after them, with a row of units under the names.
+    #[test]
+    fn the_sweep_table_is_in_the_papers_order_with_units() {
+        let objectives = [
+            ("module", 0.19),
+            ("interference", 45.0),
+            ("picking_angle", 0.3),
+        ];
+        let row = crate::search::SweepRow {
+            value: -50.0,
+            objectives: objectives
+                .iter()
+                .map(|&(n, v)| (n.to_string(), v))
+                .collect(),
+            measures: [("picking_tip_speed_m_s".to_string(), 0.8)].into(),
+            violation: Some(2.3),
+            error: None,
+        };
+        let table = sweep_table("train.gamma0_deg", &[row]);
+        let lines: Vec<Vec<&str>> = table
+            .lines()
+            .map(|l| l.split_whitespace().collect())
+            .collect();
+        assert_eq!(
+            lines[0],
+            [
+                "train.gamma0_deg",
+                "interference",
+                "picking_angle",
+                "module",
+                "picking_tip_speed_m_s",
+                "violation"
+            ]
+        );
+        assert_eq!(
+            lines[1],
+            ["(°)", "(mm)", "(deg)", "(mm)", "(m/s)", "(normalised)"]
+        );
+        assert_eq!(lines[2][0], "-50.0000");
+    }
 
     /// The best design's parameters come in a scene file's order: the radii by index, then
     /// the train as docs/scenes.md lists it (Φ0, β0, S, H1, γ0), not alphabetically.
