@@ -106,12 +106,9 @@ pub fn sweep_figures(
         _ => param.to_string(),
     };
     for name in &names {
-        // An objective's unit and admissible range, or a measure's unit.
+        // Its unit (objectives are measures too), and an objective's admissible range.
+        let unit = noncirc_core::Measure::parse(name).map_or("", |m| m.unit());
         let kind = (noncirc_core::ObjectiveKind::ALL.iter()).find(|k| k.name() == name);
-        let unit = match kind {
-            Some(k) => k.unit(),
-            None => noncirc_core::Measure::parse(name).map_or("", |m| m.unit()),
-        };
         let band = kind.map(|k| k.bounds(&scene.bounds));
         let series = vec![(
             name.clone(),

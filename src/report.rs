@@ -651,13 +651,8 @@ pub fn sweep_table(param: &str, rows: &[crate::search::SweepRow]) -> String {
         .collect::<std::collections::BTreeSet<_>>()
         .into_iter()
         .collect();
-    let unit = |n: &str| {
-        (noncirc_core::ObjectiveKind::ALL.iter())
-            .find(|k| k.name() == n)
-            .map(|k| k.unit())
-            .or_else(|| noncirc_core::Measure::parse(n).ok().map(|m| m.unit()))
-            .unwrap_or("")
-    };
+    // Objectives are measures too: one lookup gives every column's unit.
+    let unit = |n: &str| noncirc_core::Measure::parse(n).map_or("", |m| m.unit());
     let mut out = format!("{param:>24}");
     for n in names.iter().chain(&measures) {
         out += &format!(" {:>17}", n);

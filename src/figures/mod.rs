@@ -97,9 +97,17 @@ fn chart_on<'a, 'b, DB: DrawingBackend>(
     builder
 }
 
+/// The size (px) of a legend box of `rows` labels, the longest `chars` characters long, at
+/// `font_size` px: the row height, and DejaVu Sans's average of about 0.6 em a character.
+fn legend_box(chars: usize, rows: usize, font_size: u32) -> (u32, u32) {
+    let row = (f64::from(font_size) * 1.7).round() as u32;
+    let width = 40 + (chars as f64 * f64::from(font_size) * 0.6).ceil() as u32;
+    (width, row * rows as u32 + 8)
+}
+
 /// The legend's place for `labels` at `font_size` px on a chart of `size` px: right of
 /// the plot unless that takes more than two fifths of the width, else wherever it leaves
-/// the plot more room. DejaVu Sans averages about 0.6 em a character.
+/// the plot more room.
 fn legend_place<'s>(
     labels: impl IntoIterator<Item = &'s str>,
     font_size: u32,
@@ -110,8 +118,9 @@ fn legend_place<'s>(
         chars = chars.max(label.chars().count());
         rows += 1;
     }
-    let right = 48 + (chars as f64 * f64::from(font_size) * 0.6).ceil() as u32;
-    let below = (f64::from(font_size) * 1.7).round() as u32 * rows + 16;
+    let (w, h) = legend_box(chars, rows, font_size);
+    // The box, the gap to the plot (12 px) and a little room beyond it.
+    let (right, below) = (w + 20, h + 8);
     let area_right = u64::from(width.saturating_sub(right)) * u64::from(height);
     let area_below = u64::from(width) * u64::from(height.saturating_sub(below));
     if right * 5 <= width * 2 || area_right >= area_below {
@@ -179,14 +188,12 @@ where
         (px - ax + plot.dim_in_pixel().0 as i32 + 12, py - ay)
     };
     let row = (f64::from(font_size) * 1.7).round() as i32;
-    let width = 40
-        + entries
-            .iter()
-            .map(|(l, _)| l.chars().count())
-            .max()
-            .unwrap_or(0) as i32
-            * (f64::from(font_size) * 0.6).ceil() as i32;
-    let height = row * entries.len() as i32 + 8;
+    let chars = (entries.iter())
+        .map(|(l, _)| l.chars().count())
+        .max()
+        .unwrap_or(0);
+    let (width, height) = legend_box(chars, entries.len(), font_size);
+    let (width, height) = (width as i32, height as i32);
     area.draw(&Rectangle::new(
         [(x, y), (x + width, y + height)],
         WHITE.filled(),
