@@ -332,7 +332,7 @@ pub fn value_at(scene: &Scene, key: &str) -> Result<serde_json::Value, SceneErro
 }
 
 /// The scene's serialised tree, with what a scene leaves out while it is the default (the
-/// teeth, `search.confirm_with_teeth`) filled in, so that it can be read and set.
+/// teeth, `search.confirm_with_teeth`, the tolerances) filled in, so that it can be read and set.
 fn scene_tree(scene: &Scene) -> serde_json::Value {
     let mut tree = serde_json::to_value(scene).expect("a scene always serialises");
     if let Some(gear) = tree.get_mut("gear").and_then(|g| g.as_object_mut()) {
@@ -344,6 +344,11 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
         search
             .entry("confirm_with_teeth")
             .or_insert(serde_json::Value::Bool(false));
+    }
+    if let Some(top) = tree.as_object_mut() {
+        top.entry("tolerances").or_insert_with(|| {
+            serde_json::to_value(noncirc_core::Tolerances::default()).expect("serialises")
+        });
     }
     tree
 }

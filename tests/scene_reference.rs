@@ -50,6 +50,18 @@ fn scenes() -> Vec<noncirc_core::Scene> {
             "agronomy.tray_distance_mm=120",
             "moving_box.speed_ratio=3",
         ],
+        &[
+            "tolerances.radius_mm={sigma=0.01}",
+            "tolerances.centre_distance_mm={sigma=0.01}",
+            "tolerances.phi0_deg={sigma=0.05}",
+            "tolerances.beta0_deg={sigma=0.05}",
+            "tolerances.gamma0_deg={sigma=0.02}",
+            "tolerances.arm_length_mm={sigma=0.2}",
+            "tolerances.pusher_offset_mm={sigma=0.1}",
+            "tolerances.tray_distance_mm={sigma=0.3}",
+            "tolerances.tray_normal_deg={sigma=0.2}",
+        ],
+        &["tolerances.samples=32"],
     ];
     for edit in edits {
         let edit: Vec<String> = edit.iter().map(|s| s.to_string()).collect();

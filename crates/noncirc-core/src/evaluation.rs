@@ -58,6 +58,22 @@ pub struct Evaluation {
 }
 
 impl Evaluation {
+    /// An evaluation of `scene` at `resolution` before any stage ran.
+    fn empty(scene: &Scene, resolution: Resolution) -> Self {
+        Self {
+            resolution,
+            kind: scene.kind,
+            centre_distance_mm: None,
+            gear: None,
+            objectives: Vec::with_capacity(scene.objectives.len()),
+            events: None,
+            moving_box: None,
+            kinematics: None,
+            gear_pair: None,
+            teeth: None,
+        }
+    }
+
     /// Sum of the objectives' violations (0: every requested objective is met).
     pub fn total_violation(&self) -> f64 {
         self.objectives.iter().map(|o| o.violation).sum()
@@ -141,22 +157,112 @@ impl Evaluator {
         }
     }
 
+    /// Builds the scene's pitch curve, closes the pair and solves the train at
+    /// `resolution` (the stages before the events).
+    pub fn solve_train(&mut self, scene: &Scene, resolution: &Resolution) -> Result<Kinematics> {
+        self.counts.pitch_curve += 1;
+        let curve = scene.gear.curve.build()?;
+        self.counts.closure += 1;
+        self.counts.kinematics += 1;
+        let integrator = self.integrator(resolution.samples_per_turn);
+        Kinematics::solve_with(curve, &scene.train, resolution, integrator)
+    }
+
+    /// Evaluates a three-arm scene on a train already solved for it (`kin`'s curve and
+    /// train are the scene's, or a [`Kinematics::reassembled`] variant of them): the
+    /// events, the objectives and the moving box, without closing the gears again. The
+    /// tolerance analysis evaluates its assembly variants this way: `scene` is a validated
+    /// scene with another train and agronomy, and only those two are checked here.
+    pub(crate) fn evaluate_solved(&mut self, scene: &Scene, kin: Kinematics) -> Result<Evaluation> {
+        scene.train.validate()?;
+        scene.agronomy.validate()?;
+        if !matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter) {
+            return Err(Error::OutOfRange {
+                name: "kind".into(),
+                value: f64::NAN,
+                expected: format!("a three-arm or transplanter scene (not {:?})", scene.kind),
+            });
+        }
+        self.counts.kinematics += 1;
+        let mut out = Evaluation::empty(scene, kin.resolution());
+        self.mechanism(scene, kin, &mut out)?;
+        Ok(out)
+    }
+
+    /// The three-arm stages after the train is solved: events, objectives, moving box.
+    fn mechanism(&mut self, scene: &Scene, kin: Kinematics, out: &mut Evaluation) -> Result<()> {
+        let resolution = &kin.resolution();
+        out.centre_distance_mm = Some(kin.centre_distance());
+        let coupled = scene.kind == SceneKind::Transplanter;
+        let ev = if coupled || scene.objectives.iter().any(|o| o.needs_events()) {
+            self.counts.events += 1;
+            Some(events(&kin, &scene.agronomy))
+        } else {
+            None
+        };
+        let gear_module = scene
+            .objectives
+            .contains(&ObjectiveKind::Module)
+            .then(|| kin.module(&scene.gear.module));
+        if gear_module.is_some() {
+            out.teeth = self.teeth(scene, kin.curve(), kin.centre_distance())?;
+        }
+        for &kind in &scene.objectives {
+            self.counts.objectives[kind as usize] += 1;
+            let value = objective_value(
+                kind,
+                &kin,
+                ev.as_ref(),
+                &scene.agronomy,
+                gear_module.as_ref(),
+            );
+            let mut value = ObjectiveValue::new(kind, value, &scene.bounds);
+            if kind == ObjectiveKind::Module {
+                value.add_teeth(out.teeth.as_ref());
+            }
+            out.objectives.push(value);
+        }
+        if coupled {
+            let window = ev
+                .as_ref()
+                .map(|e| e.picking_window_rad)
+                .unwrap_or_default();
+            let span = (window[1] - window[0]) * scene.moving_box.input_turns_per_carrier_turn;
+            let centre = scene.moving_box.window_centre_deg.to_radians();
+            self.counts.moving_box += 1;
+            out.moving_box = Some(evaluate_box_with(
+                &scene.moving_box,
+                Some([centre - span / 2.0, centre + span / 2.0]),
+                resolution,
+                self.integrator(resolution.samples_per_turn),
+            )?);
+        }
+        out.gear = gear_module.map(|module| GearSummary {
+            centre_distance_mm: kin.centre_distance(),
+            closure_error_mm: kin.pair().closure().error_estimate,
+            perimeter_mm: kin.pair().perimeter(),
+            module,
+        });
+        out.events = ev;
+        out.kinematics = Some(kin);
+        // Safety net: a value that broke down numerically is an error, never a NaN.
+        if let Some(o) = out.objectives.iter().find(|o| o.value.is_nan()) {
+            return Err(Error::NonFinite {
+                name: format!(
+                    "objective '{}' (numerical breakdown for this design)",
+                    o.kind.name()
+                ),
+                value: o.value,
+            });
+        }
+        Ok(())
+    }
+
     /// Evaluates `scene` at `resolution`, running only the stages its outputs need.
     pub fn evaluate_at(&mut self, scene: &Scene, resolution: &Resolution) -> Result<Evaluation> {
         scene.validate()?;
         resolution.validate()?;
-        let mut out = Evaluation {
-            resolution: *resolution,
-            kind: scene.kind,
-            centre_distance_mm: None,
-            gear: None,
-            objectives: Vec::with_capacity(scene.objectives.len()),
-            events: None,
-            moving_box: None,
-            kinematics: None,
-            gear_pair: None,
-            teeth: None,
-        };
+        let mut out = Evaluation::empty(scene, *resolution);
         match scene.kind {
             SceneKind::Gear => {
                 self.counts.pitch_curve += 1;
@@ -182,76 +288,8 @@ impl Evaluator {
                 out.gear_pair = Some(pair);
             }
             SceneKind::ThreeArm | SceneKind::Transplanter => {
-                self.counts.pitch_curve += 1;
-                let curve = scene.gear.curve.build()?;
-                self.counts.closure += 1;
-                self.counts.kinematics += 1;
-                let integrator = self.integrator(resolution.samples_per_turn);
-                let kin = Kinematics::solve_with(curve, &scene.train, resolution, integrator)?;
-                out.centre_distance_mm = Some(kin.centre_distance());
-                let coupled = scene.kind == SceneKind::Transplanter;
-                let ev = if coupled || scene.objectives.iter().any(|o| o.needs_events()) {
-                    self.counts.events += 1;
-                    Some(events(&kin, &scene.agronomy))
-                } else {
-                    None
-                };
-                let gear_module = scene
-                    .objectives
-                    .contains(&ObjectiveKind::Module)
-                    .then(|| kin.pair().module(&scene.gear.module));
-                if gear_module.is_some() {
-                    out.teeth = self.teeth(scene, kin.curve(), kin.centre_distance())?;
-                }
-                for &kind in &scene.objectives {
-                    self.counts.objectives[kind as usize] += 1;
-                    let value = objective_value(
-                        kind,
-                        &kin,
-                        ev.as_ref(),
-                        &scene.agronomy,
-                        gear_module.as_ref(),
-                    );
-                    let mut value = ObjectiveValue::new(kind, value, &scene.bounds);
-                    if kind == ObjectiveKind::Module {
-                        value.add_teeth(out.teeth.as_ref());
-                    }
-                    out.objectives.push(value);
-                }
-                if coupled {
-                    let window = ev
-                        .as_ref()
-                        .map(|e| e.picking_window_rad)
-                        .unwrap_or_default();
-                    let span =
-                        (window[1] - window[0]) * scene.moving_box.input_turns_per_carrier_turn;
-                    let centre = scene.moving_box.window_centre_deg.to_radians();
-                    self.counts.moving_box += 1;
-                    out.moving_box = Some(evaluate_box_with(
-                        &scene.moving_box,
-                        Some([centre - span / 2.0, centre + span / 2.0]),
-                        resolution,
-                        self.integrator(resolution.samples_per_turn),
-                    )?);
-                }
-                out.gear = gear_module.map(|module| GearSummary {
-                    centre_distance_mm: kin.centre_distance(),
-                    closure_error_mm: kin.pair().closure().error_estimate,
-                    perimeter_mm: kin.pair().perimeter(),
-                    module,
-                });
-                out.events = ev;
-                out.kinematics = Some(kin);
-                // Safety net: a value that broke down numerically is an error, never a NaN.
-                if let Some(o) = out.objectives.iter().find(|o| o.value.is_nan()) {
-                    return Err(Error::NonFinite {
-                        name: format!(
-                            "objective '{}' (numerical breakdown for this design)",
-                            o.kind.name()
-                        ),
-                        value: o.value,
-                    });
-                }
+                let kin = self.solve_train(scene, resolution)?;
+                self.mechanism(scene, kin, &mut out)?;
             }
             SceneKind::MovingBox => {
                 self.counts.moving_box += 1;

@@ -205,7 +205,9 @@ fn extreme_and_runner_up(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
 pub fn housing_radius(kin: &Kinematics, agro: &Agronomy) -> f64 {
     let a = kin.centre_distance();
     let (rmin, rmax) = kin.radius_range();
-    rmax.max(a + (a - rmin)).max(kin.planet_radius() + rmax) + agro.housing_margin_mm
+    rmax.max(kin.carrier_distance() + (a - rmin))
+        .max(kin.planet_radius() + rmax)
+        + agro.housing_margin_mm
 }
 
 /// Locates picking and planting, checks the picking, and finds the window and the

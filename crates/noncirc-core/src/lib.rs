@@ -20,9 +20,12 @@ mod planetary;
 mod quadrature;
 mod reference;
 mod resolution;
+mod robustness;
 mod scene;
 mod search;
+mod sensitivity;
 mod teeth;
+mod tolerance;
 mod vec2;
 
 // The scene: what is designed and asked, and at which resolution.
@@ -59,6 +62,15 @@ pub use vec2::Vec2;
 pub use accuracy::{compare, observed_order, ErrorRow};
 pub use error::{Error, Result};
 pub use evaluation::{Evaluation, Evaluator, GearSummary, StageCounts};
+
+// Tolerances, robustness and global sensitivity.
+pub use robustness::{
+    analyse, least_normalised_margin, quantile, radius_count, robust_score, sobol, Deviated,
+    ObjectiveSpread, RobustScore, SampleOutcome, ToleranceReport, ToleranceSamples, WorstCase,
+    BRANCH_SWITCH_RAD, REPORTED_QUANTILES,
+};
+pub use sensitivity::{saltelli_points, sobol_indices, SobolIndices};
+pub use tolerance::{Spread, Tolerances, ASSEMBLY};
 
 // Search: the problem, the solvers, the executor and its checkpoints.
 pub use search::{

@@ -4,11 +4,12 @@
 use crate::angle::unit;
 use crate::curve::{PitchCurve, TAU};
 use crate::error::{finite, length, positive, Error, Result};
-use crate::gear::{GearPair, SampleGrid};
+use crate::gear::{GearPair, ModuleReport, ModuleRule, SampleGrid};
 use crate::quadrature::{DriftInverse, MonotoneDrift, SpectralIntegrator};
 use crate::resolution::Resolution;
 use crate::vec2::Vec2;
 use serde::{Deserialize, Serialize};
+use std::sync::{Arc, Mutex};
 
 /// Sense in which the carrier turns, seen in the frame with `y` up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -174,14 +175,54 @@ pub struct ArmState {
     pub pusher_angle: f64,
 }
 
-/// The sampled motion of arm I over one carrier turn, plus what is needed to evaluate it at
-/// any carrier angle. Arms II and III follow at `θ − 120°` and `θ − 240°`.
-#[derive(Debug, Clone)]
-pub struct Kinematics {
+/// What the gears alone determine, shared by every assembly of them
+/// ([`Kinematics::reassembled`]): the pair on the carrier grid, `Φ`'s derivatives, and the
+/// module (computed once per rule).
+#[derive(Debug)]
+struct SolvedPair {
     /// The sun–intermediate pair, sampled on the carrier grid: node `j` is the sun's
     /// own-frame parameter `psi_start + σθ_j` at the contact, and the pair's driven angle at
     /// the node is `Φ(θ_j)`, the intermediate's turn relative to the carrier.
     pair: GearPair,
+    /// `Φ''(θ_j) = g̃'` (`Φ' = g̃` is the pair's ratio at the nodes).
+    dg: Vec<f64>,
+    /// `(Φ⁻¹)' = 1/g̃` and `(Φ⁻¹)'' = −g̃'/g̃³` at the nodes.
+    inv_d1: Vec<f64>,
+    inv_d2: Vec<f64>,
+    /// `Φ(2π) − Φ(0)` (rad; 2π up to the closure error).
+    phi_period: f64,
+    /// The module under the last rule asked.
+    module: Mutex<Option<(ModuleRule, ModuleReport)>>,
+}
+
+impl SolvedPair {
+    fn new(pair: GearPair, sigma: f64) -> Self {
+        let a = pair.centre_distance();
+        let dg: Vec<f64> = (pair.samples().iter())
+            .map(|p| sigma * a * p.d1 / ((a - p.rho) * (a - p.rho)))
+            .collect();
+        let (inv_d1, inv_d2) = (pair.ratio_nodes().iter())
+            .zip(&dg)
+            .map(|(&g, &dg)| DriftInverse::node_derivatives(g, dg))
+            .unzip();
+        let phi_period = pair.phi2_mean_rate() * TAU;
+        Self {
+            pair,
+            dg,
+            inv_d1,
+            inv_d2,
+            phi_period,
+            module: Mutex::new(None),
+        }
+    }
+}
+
+/// The sampled motion of arm I over one carrier turn, plus what is needed to evaluate it at
+/// any carrier angle. Arms II and III follow at `θ − 120°` and `θ − 240°`.
+#[derive(Debug, Clone)]
+pub struct Kinematics {
+    /// The gears, shared with every reassembly of them.
+    gears: Arc<SolvedPair>,
     spec: TrainSpec,
     sigma: f64,
     /// The spec's angles in radians: `Φ0`, `γ0`, `β0`, the sun's own-frame parameter at the
@@ -191,22 +232,20 @@ pub struct Kinematics {
     beta0: f64,
     psi_start: f64,
     sun_angle: f64,
-    /// `Φ''(θ_j) = g̃'` (`Φ' = g̃` is the pair's ratio at the nodes).
-    dg: Vec<f64>,
-    /// `(Φ⁻¹)' = 1/g̃` and `(Φ⁻¹)'' = −g̃'/g̃³` at the nodes.
-    inv_d1: Vec<f64>,
-    inv_d2: Vec<f64>,
     /// Pusher-axis direction less the planet orientation (rad): `β0 ± asin(H1/S)`.
     pusher_turn: f64,
     /// Mesh delay of the intermediate between its two meshes (rad).
     delay: f64,
-    /// `Φ(2π) − Φ(0)` (rad; 2π up to the closure error).
-    phi_period: f64,
+    /// Distance at which the carrier holds each gear from the last (mm): the pair's
+    /// centre distance plus the assembly's error ([`Kinematics::reassembled`]).
+    carrier_a: f64,
     /// Per node: `θ_s`, planet orientation, planet centre, tip.
     theta_s: Vec<f64>,
     theta3: Vec<f64>,
     o3: Vec<Vec2>,
     tip: Vec<Vec2>,
+    /// Per node, the arm's direction `unit(θ3 + β0)`: a reassembly turns it.
+    arm_dir: Vec<Vec2>,
 }
 
 impl Kinematics {
@@ -230,28 +269,72 @@ impl Kinematics {
         integrator: &mut SpectralIntegrator,
     ) -> Result<Self> {
         spec.validate()?;
-        let sigma = spec.rotation.sign();
         let grid = SampleGrid {
             start: spec.psi_start(),
             sense: spec.rotation,
         };
         let pair = GearPair::solve_on(curve, *resolution, grid, integrator)?;
-        let n = resolution.samples_per_turn;
+        let gears = Arc::new(SolvedPair::new(pair, spec.rotation.sign()));
+        Ok(Self::assemble(gears, spec, 0.0, None))
+    }
+
+    /// The same gears assembled anew: another `spec` (its `Φ0`, `β0`, `γ0`, `S`, `H1`) and
+    /// the carrier holding the gears `centre_offset_mm` further apart than their centre
+    /// distance (a bore error: the gears then mesh with backlash, at the same ratio).
+    /// Reuses the closed pair: no closure, no re-sampling. Refused where the pair's grid
+    /// would change (another rotation sense, or `Φ0` under [`SunFrame::Ground`]): solve
+    /// those anew.
+    pub fn reassembled(&self, spec: &TrainSpec, centre_offset_mm: f64) -> Result<Self> {
+        spec.validate()?;
+        finite("centre distance offset (mm)", centre_offset_mm)?;
+        if spec.rotation != self.spec.rotation || spec.psi_start() != self.psi_start {
+            return Err(Error::OutOfRange {
+                name: "train.phi0_deg".into(),
+                value: spec.phi0_deg,
+                expected: format!(
+                    "the solved train's sampling grid (Φ0 = {}° with the sun measured in the \
+                     ground frame, rotation {:?}): solve the train anew",
+                    self.spec.phi0_deg, self.spec.rotation
+                ),
+            });
+        }
+        let a = self.centre_distance() + centre_offset_mm;
+        if a <= 0.0 {
+            return Err(Error::OutOfRange {
+                name: "centre distance offset (mm)".into(),
+                value: centre_offset_mm,
+                expected: format!("above -{} mm", self.centre_distance()),
+            });
+        }
+        // The same carrier angle γ0 keeps θ_s: the assembly then only turns and moves.
+        let same_carrier = spec.gamma0_deg == self.spec.gamma0_deg;
+        Ok(Self::assemble(
+            self.gears.clone(),
+            spec,
+            centre_offset_mm,
+            same_carrier.then_some(self),
+        ))
+    }
+
+    /// Places the arm for `spec` on a solved pair (`spec` valid, the pair on its grid). With
+    /// `same_carrier`, a train on the same pair with the same `γ0`, its `θ_s` are reused
+    /// and its arm directions turned (no inversion, no trigonometry per node): `Φ0` turns
+    /// the planets, `β0` the arm on them.
+    fn assemble(
+        gears: Arc<SolvedPair>,
+        spec: &TrainSpec,
+        centre_offset_mm: f64,
+        same_carrier: Option<&Kinematics>,
+    ) -> Self {
+        let sigma = spec.rotation.sign();
+        let n = gears.pair.samples().len();
         let h = TAU / n as f64;
-        let a = pair.centre_distance();
-        let dg: Vec<f64> = (pair.samples().iter())
-            .map(|p| sigma * a * p.d1 / ((a - p.rho) * (a - p.rho)))
-            .collect();
-        let (inv_d1, inv_d2) = (pair.ratio_nodes().iter())
-            .zip(&dg)
-            .map(|(&g, &dg)| DriftInverse::node_derivatives(g, dg))
-            .unzip();
-        let phi_period = pair.phi2_mean_rate() * TAU;
+        let a = gears.pair.centre_distance();
         let gamma0 = spec.gamma0_deg.to_radians();
         let beta0 = spec.beta0_deg.to_radians();
         let delay = (sigma * (gamma0 - std::f64::consts::PI)).rem_euclid(TAU);
         let mut kin = Self {
-            pair,
+            gears,
             spec: *spec,
             sigma,
             phi0: spec.phi0_deg.to_radians(),
@@ -259,55 +342,74 @@ impl Kinematics {
             beta0,
             psi_start: spec.psi_start(),
             sun_angle: spec.sun_angle(),
-            dg,
-            inv_d1,
-            inv_d2,
             pusher_turn: beta0
                 + match spec.pusher_side {
                     PusherSide::Left => 1.0,
                     PusherSide::Right => -1.0,
                 } * (spec.pusher_offset_mm / spec.arm_length_mm).asin(),
             delay,
-            phi_period,
+            carrier_a: a + centre_offset_mm,
             theta_s: Vec::new(),
             theta3: vec![0.0; n],
             o3: vec![Vec2::ZERO; n],
             tip: vec![Vec2::ZERO; n],
+            arm_dir: vec![Vec2::ZERO; n],
         };
-        // θ_s at every node: sorted targets, so each cell search starts at the last cell.
-        let inverse = kin.phi_inverse();
-        let mut hint = 0;
-        let theta_s = (kin.pair.phi2_nodes().iter())
-            .map(|&phi| {
-                let (ts, cell) = inverse.eval(phi - delay, hint);
-                hint = cell;
-                ts
-            })
-            .collect();
-        kin.theta_s = theta_s;
+        // The arms' turn relative to `same_carrier`'s: θ3 moves with the sun's angle, the
+        // arm with β0 on top.
+        let turn = same_carrier.map(|src| {
+            let planets = kin.sun_angle - src.sun_angle;
+            (planets, unit(planets + beta0 - src.beta0))
+        });
+        kin.theta_s = match same_carrier {
+            Some(src) => src.theta_s.clone(),
+            None => {
+                // θ_s at every node: sorted targets, so each cell search starts at the last.
+                let inverse = kin.phi_inverse();
+                let mut hint = 0;
+                (kin.gears.pair.phi2_nodes().iter())
+                    .map(|&phi| {
+                        let (ts, cell) = inverse.eval(phi - delay, hint);
+                        hint = cell;
+                        ts
+                    })
+                    .collect()
+            }
+        };
         // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
         let step = unit(sigma * h);
         let (mut e1, mut e2) = (unit(kin.phi0), unit(kin.phi0 + gamma0));
+        let carrier_a = kin.carrier_a;
         for j in 0..n {
             let theta = h * j as f64;
             let ts = kin.theta_s[j];
-            let o3 = (e1 + e2) * a;
+            let o3 = (e1 + e2) * carrier_a;
             (e1, e2) = (e1.rotated(step), e2.rotated(step));
-            let theta3 = kin.sun_angle + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
+            let (theta3, arm_dir) = match (same_carrier, turn) {
+                (Some(src), Some((planets, arm))) => {
+                    (src.theta3[j] + planets, src.arm_dir[j].rotated(arm))
+                }
+                _ => {
+                    let theta3 =
+                        kin.sun_angle + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
+                    (theta3, unit(theta3 + beta0))
+                }
+            };
             kin.theta3[j] = theta3;
             kin.o3[j] = o3;
-            kin.tip[j] = o3 + unit(theta3 + beta0) * spec.arm_length_mm;
+            kin.arm_dir[j] = arm_dir;
+            kin.tip[j] = o3 + arm_dir * spec.arm_length_mm;
         }
-        Ok(kin)
+        kin
     }
 
     /// `Φ(θ)`, the intermediate's turn relative to the carrier, as an invertible function.
     fn phi_fn(&self) -> MonotoneDrift<'_> {
         MonotoneDrift {
-            value: self.pair.phi2_nodes(),
-            d1: self.pair.ratio_nodes(),
-            d2: &self.dg,
-            period_increment: self.phi_period,
+            value: self.gears.pair.phi2_nodes(),
+            d1: self.gears.pair.ratio_nodes(),
+            d2: &self.gears.dg,
+            period_increment: self.gears.phi_period,
         }
     }
 
@@ -315,35 +417,55 @@ impl Kinematics {
     fn phi_inverse(&self) -> DriftInverse<'_> {
         DriftInverse {
             forward: self.phi_fn(),
-            d1: &self.inv_d1,
-            d2: &self.inv_d2,
+            d1: &self.gears.inv_d1,
+            d2: &self.gears.inv_d2,
         }
     }
 
     /// The sun–intermediate gear pair on the carrier grid (the planet–intermediate mesh is
     /// the same pair: the planet is congruent to the sun).
     pub fn pair(&self) -> &GearPair {
-        &self.pair
+        &self.gears.pair
+    }
+
+    /// The pair's module under `rule` (spec §1.4), computed once per rule for the gears
+    /// and every reassembly of them.
+    pub fn module(&self, rule: &ModuleRule) -> ModuleReport {
+        let mut cache = self.gears.module.lock().unwrap_or_else(|e| e.into_inner());
+        match *cache {
+            Some((r, report)) if r == *rule => report,
+            _ => {
+                let report = self.gears.pair.module(rule);
+                *cache = Some((*rule, report));
+                report
+            }
+        }
     }
 
     /// Centre distance `a` shared by both meshes (mm).
     pub fn centre_distance(&self) -> f64 {
-        self.pair.centre_distance()
+        self.gears.pair.centre_distance()
     }
 
     /// Least and largest radius of the sun's pitch curve (mm).
     pub fn radius_range(&self) -> (f64, f64) {
-        self.pair.radius_range()
+        self.gears.pair.radius_range()
+    }
+
+    /// Distance at which the carrier holds each gear centre from the last (mm): the
+    /// centre distance, plus the bore error of a [`Kinematics::reassembled`] train.
+    pub fn carrier_distance(&self) -> f64 {
+        self.carrier_a
     }
 
     /// Distance from the carrier axis to a planet centre (mm): `2a·|cos(γ0/2)|`.
     pub fn planet_radius(&self) -> f64 {
-        2.0 * self.centre_distance() * (self.gamma0 / 2.0).cos().abs()
+        2.0 * self.carrier_a * (self.gamma0 / 2.0).cos().abs()
     }
 
     /// The sun's pitch curve.
     pub fn curve(&self) -> &PitchCurve {
-        self.pair.curve()
+        self.gears.pair.curve()
     }
 
     /// The train parameters.
@@ -353,7 +475,7 @@ impl Kinematics {
 
     /// The resolution that produced this motion.
     pub fn resolution(&self) -> Resolution {
-        self.pair.resolution()
+        self.gears.pair.resolution()
     }
 
     /// Number of carrier-angle samples per turn.
@@ -429,7 +551,7 @@ impl Kinematics {
         let (ts, _) = self.phi_inverse().eval(big_phi - self.delay, hint);
         let (gamma0, beta0) = (self.gamma0, self.beta0);
         let s = self.spec.arm_length_mm;
-        let a = self.centre_distance();
+        let a = self.carrier_a;
         let theta3 = self.sun_angle + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
         let (g_t, dg_t) = self.ratio_at(theta);
         let (g_s, dg_s) = self.ratio_at(ts);

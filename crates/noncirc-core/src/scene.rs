@@ -9,6 +9,7 @@ use crate::planetary::TrainSpec;
 use crate::resolution::Resolution;
 use crate::search::{Algorithm, Goal};
 use crate::teeth::ToothSpec;
+use crate::tolerance::Tolerances;
 use serde::{Deserialize, Serialize};
 
 /// A gear pair's specification: the driver's pitch curve and the tooth-cutting rules.
@@ -154,6 +155,10 @@ pub struct Scene {
     /// Search settings.
     #[serde(default)]
     pub search: SearchSpec,
+    /// Manufacturing and assembly tolerances (`noncirc robustness`, robust goals). Left
+    /// out of a written scene while they are the defaults.
+    #[serde(default, skip_serializing_if = "Tolerances::is_default")]
+    pub tolerances: Tolerances,
 }
 
 impl Default for Scene {
@@ -170,6 +175,7 @@ impl Default for Scene {
             bounds: Bounds::default(),
             moving_box: BoxSpec::default(),
             search: SearchSpec::default(),
+            tolerances: Tolerances::default(),
         }
     }
 }
@@ -183,6 +189,7 @@ impl Scene {
         self.gear.module.validate()?;
         self.gear.teeth.validate()?;
         self.bounds.validate()?;
+        self.tolerances.validate()?;
         if matches!(self.kind, SceneKind::MovingBox | SceneKind::Transplanter) {
             self.moving_box.validate()?;
         }
@@ -258,6 +265,10 @@ impl Scene {
                 format!("'{name}' is listed twice")
             } else if goal.needs_moving_box() && self.kind != SceneKind::Transplanter {
                 format!("'{name}' needs a moving box: only a transplanter scene computes it")
+            } else if goal.is_robust()
+                && !matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter)
+            {
+                format!("'{name}' samples a mechanism's tolerances: a three-arm scene needs it")
             } else {
                 continue;
             };

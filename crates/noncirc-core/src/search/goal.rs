@@ -5,6 +5,7 @@ use crate::error::{Error, Result};
 use crate::evaluation::Evaluation;
 use crate::measures::{nearest, Measure};
 use crate::objectives::{Bounds, ObjectiveKind, ObjectiveValue};
+use crate::robustness::RobustScore;
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 
@@ -63,6 +64,12 @@ pub enum Goal {
     BoxTravel,
     /// Minimise (`min:NAME`) or maximise (`max:NAME`) any measure (`noncirc measures`).
     Measure { measure: Measure, maximise: bool },
+    /// Maximise the probability that the design meets every objective once cut and
+    /// assembled with the scene's tolerances (`probability`).
+    Probability,
+    /// Maximise the least normalised margin at quantile `q` of the tolerance samples
+    /// (`margin_quantile:0.05`: the margin 95 % of the built machines exceed).
+    MarginQuantile(f64),
 }
 
 impl Goal {
@@ -73,6 +80,20 @@ impl Goal {
             "least_margin" => Ok(Goal::LeastMargin),
             "picking_tip_speed" => Ok(Goal::PickingTipSpeed),
             "box_travel" => Ok(Goal::BoxTravel),
+            "probability" => Ok(Goal::Probability),
+            other if other.starts_with("margin_quantile:") => {
+                let text = &other["margin_quantile:".len()..];
+                match text.parse::<f64>() {
+                    Ok(q) if q > 0.0 && q < 1.0 => Ok(Goal::MarginQuantile(q)),
+                    _ => Err(Error::OutOfRange {
+                        name: format!("search goal '{other}' (its quantile)"),
+                        value: text.parse().unwrap_or(f64::NAN),
+                        expected: "a probability strictly between 0 and 1, e.g. \
+                                   margin_quantile:0.05"
+                            .into(),
+                    }),
+                }
+            }
             other if other.starts_with("min:") || other.starts_with("max:") => Ok(Goal::Measure {
                 measure: Measure::parse(&other[4..])?,
                 maximise: other.starts_with("max:"),
@@ -81,10 +102,14 @@ impl Goal {
                 .find(|k| k.name() == other)
                 .map(|&k| Goal::Margin(k))
                 .ok_or_else(|| {
-                    let mut names: Vec<String> =
-                        ["least_margin", "picking_tip_speed", "box_travel"]
-                            .map(String::from)
-                            .to_vec();
+                    let mut names: Vec<String> = [
+                        "least_margin",
+                        "picking_tip_speed",
+                        "box_travel",
+                        "probability",
+                    ]
+                    .map(String::from)
+                    .to_vec();
                     names.extend(ObjectiveKind::ALL.iter().map(|k| k.name().to_string()));
                     Error::UnknownName {
                         what: "search goal (or min:NAME / max:NAME of a measure)",
@@ -117,6 +142,10 @@ impl Goal {
                 measure.unit(),
                 maximise,
             ),
+            Goal::Probability => ("success_probability".to_string(), "", true),
+            Goal::MarginQuantile(q) => {
+                (format!("least_normalised_margin_p{}", q * 100.0), "", true)
+            }
         };
         GoalQuantity {
             name,
@@ -143,6 +172,7 @@ impl Goal {
                 }
             }
             Goal::PickingTipSpeed | Goal::BoxTravel => f,
+            Goal::Probability | Goal::MarginQuantile(_) => -f,
             Goal::Measure { maximise, .. } => {
                 if maximise {
                     -f
@@ -167,6 +197,31 @@ impl Goal {
                     measure.name()
                 )
             }
+            Goal::Probability => "probability".into(),
+            Goal::MarginQuantile(q) => format!("margin_quantile:{q}"),
+        }
+    }
+
+    /// Whether the goal reads the design's tolerance samples (a robust goal).
+    pub fn is_robust(self) -> bool {
+        matches!(self, Goal::Probability | Goal::MarginQuantile(_))
+    }
+
+    /// A robust goal's minimised value from the design's samples; `None` (a design that
+    /// misses an objective at its nominal dimensions, whose samples are not drawn) scores
+    /// probability 0 and its nominal least margin as the quantile.
+    pub(crate) fn robust_value(self, score: Option<&RobustScore>, nominal_least: f64) -> f64 {
+        let v = match (self, score) {
+            (Goal::Probability, Some(s)) => -s.probability,
+            (Goal::Probability, None) => 0.0,
+            (Goal::MarginQuantile(q), Some(s)) => -s.margin_quantile(q),
+            (Goal::MarginQuantile(_), None) => -nominal_least,
+            _ => f64::NAN,
+        };
+        if v.is_finite() {
+            v
+        } else {
+            INVALID_CV
         }
     }
 
@@ -199,6 +254,7 @@ impl Goal {
                 .moving_box
                 .as_ref()
                 .map_or(f64::INFINITY, |b| b.elliptic_delta_h_mm),
+            Goal::Probability | Goal::MarginQuantile(_) => f64::NAN,
             Goal::Measure { measure, maximise } => {
                 let anatomy = if measure.needs_anatomy() {
                     eval.anatomy(&scene.agronomy)
@@ -240,7 +296,13 @@ mod tests {
 
     #[test]
     fn every_goal_name_parses_back() {
-        let mut goals = vec![Goal::LeastMargin, Goal::PickingTipSpeed, Goal::BoxTravel];
+        let mut goals = vec![
+            Goal::LeastMargin,
+            Goal::PickingTipSpeed,
+            Goal::BoxTravel,
+            Goal::Probability,
+            Goal::MarginQuantile(0.05),
+        ];
         goals.extend(ObjectiveKind::ALL.iter().map(|&k| Goal::Margin(k)));
         for m in Measure::all() {
             for maximise in [false, true] {

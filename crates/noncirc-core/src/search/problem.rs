@@ -7,6 +7,7 @@ use crate::evaluation::{Evaluation, Evaluator};
 use crate::objectives::{Bounds, ObjectiveKind};
 use crate::params::Param;
 use crate::resolution::Resolution;
+use crate::robustness::{least_normalised_margin, radius_count, robust_score, ToleranceSamples};
 use crate::scene::{FreeParam, Scene};
 
 /// Violation for a design the model refuses (invalid curve, under-resolved, …).
@@ -78,6 +79,8 @@ pub struct SceneProblem {
     upper: Vec<f64>,
     goals: Vec<Goal>,
     screening: Resolution,
+    /// The deviations every design meets under robust goals (common random numbers).
+    tolerance_samples: Option<ToleranceSamples>,
 }
 
 impl SceneProblem {
@@ -111,7 +114,18 @@ impl SceneProblem {
             scene.search.goals.clone()
         };
         scene.search.screening.validate()?;
+        let tolerance_samples = if goals.iter().any(|g| g.is_robust()) {
+            let tol = &scene.tolerances;
+            Some(ToleranceSamples::new(
+                tol,
+                radius_count(&scene.gear.curve),
+                tol.seed,
+            )?)
+        } else {
+            None
+        };
         Ok(Self {
+            tolerance_samples,
             base: scene.clone(),
             params,
             lower,
@@ -155,6 +169,11 @@ impl SceneProblem {
         (self.goals.iter().zip(f))
             .map(|(g, &v)| g.physical(v, &self.base.bounds))
             .collect()
+    }
+
+    /// The free parameters' lower and upper bounds.
+    pub fn bounds(&self) -> (&[f64], &[f64]) {
+        (&self.lower, &self.upper)
     }
 
     /// The free parameters' names.
@@ -253,7 +272,20 @@ impl SceneProblem {
                 } else {
                     INVALID_CV
                 };
-                let f = self.goals.iter().map(|g| g.value(&eval, scratch)).collect();
+                // Robust goals sample only designs that meet every objective as drawn.
+                let robust = (self.tolerance_samples.as_ref())
+                    .filter(|_| cv == 0.0)
+                    .and_then(|samples| robust_score(evaluator, scratch, &eval, samples).ok());
+                let f = (self.goals.iter())
+                    .map(|g| {
+                        if g.is_robust() {
+                            let least = least_normalised_margin(&eval, scratch);
+                            g.robust_value(robust.as_ref(), least)
+                        } else {
+                            g.value(&eval, scratch)
+                        }
+                    })
+                    .collect();
                 (Fitness { cv, f }, Ok(eval))
             }
             Err(e) => (

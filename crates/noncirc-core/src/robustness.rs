@@ -1,0 +1,666 @@
+//! Tolerance analysis: how a design fares once it is cut and assembled with the scene's
+//! [`Tolerances`]. Deviations come from a scrambled Sobol sequence keyed on the tolerance
+//! seed, so every design meets the same deviations (common random numbers). Each of the
+//! `gear_variants` cut gears is closed once; its samples only reassemble the train
+//! ([`Kinematics::reassembled`]) and re-run the events and objectives.
+//!
+//! The tray stays where the nominal design puts it: a scene that places the tray by the
+//! trajectory (no `agronomy.tray_distance_mm`) has it fixed at the nominal design's tray
+//! surface, as a machine's tray is bolted where the drawing says, with pots twice the
+//! tray depth deep (the tip may then reach one tray depth less or more than drawn).
+
+use crate::curve::{CurveSpec, TAU};
+use crate::error::{Error, Result};
+use crate::evaluation::{Evaluation, Evaluator};
+use crate::objectives::ObjectiveKind;
+use crate::planetary::Kinematics;
+use crate::resolution::Resolution;
+use crate::scene::{Scene, SceneKind};
+use crate::search::scale;
+use crate::tolerance::{Tolerances, ASSEMBLY};
+use serde::Serialize;
+
+/// A picking or planting instant that moves further than this (rad, 10°) under the
+/// tolerances has jumped to another branch of the trajectory.
+pub const BRANCH_SWITCH_RAD: f64 = 10.0 * std::f64::consts::PI / 180.0;
+
+/// Most Sobol dimensions (the sequence's table): 8 assembly groups and the radii.
+const MAX_DIMENSIONS: usize = 256;
+
+/// A point in (0, 1) from the scrambled Sobol sequence: dimension `dim` of point `index`.
+/// The sequence's f32 is moved off 0 to the middle of its cell, so that no deviation is
+/// infinite under a normal spread.
+pub fn sobol(index: usize, dim: usize, seed: u64) -> f64 {
+    let seed = (seed ^ (seed >> 32)) as u32;
+    let u = sobol_burley::sample(index as u32, dim as u32, seed) as f64;
+    let cells = (1u64 << 24) as f64;
+    ((u * cells).floor() + 0.5) / cells
+}
+
+/// The number of radius-like values of a pitch curve that the radius tolerance deviates:
+/// the control radii, a Fourier curve's `c0`, an ellipse's semi-major axis.
+pub fn radius_count(curve: &CurveSpec) -> usize {
+    match curve {
+        CurveSpec::Spline { radii_mm, .. }
+        | CurveSpec::Bspline { radii_mm, .. }
+        | CurveSpec::Bezier { radii_mm, .. }
+        | CurveSpec::Table { radii_mm, .. } => radii_mm.len(),
+        CurveSpec::Fourier { .. } | CurveSpec::Ellipse { .. } => 1,
+    }
+}
+
+/// `curve` with its radius-like values moved by `deviations` (mm).
+fn deviated_curve(curve: &CurveSpec, deviations: &[f64]) -> CurveSpec {
+    let mut out = curve.clone();
+    match &mut out {
+        CurveSpec::Spline { radii_mm, .. }
+        | CurveSpec::Bspline { radii_mm, .. }
+        | CurveSpec::Bezier { radii_mm, .. }
+        | CurveSpec::Table { radii_mm, .. } => {
+            for (r, d) in radii_mm.iter_mut().zip(deviations) {
+                *r += d;
+            }
+        }
+        CurveSpec::Fourier { c0_mm, .. } => *c0_mm += deviations[0],
+        CurveSpec::Ellipse { semi_major_mm, .. } => *semi_major_mm += deviations[0],
+    }
+    out
+}
+
+/// The deviations a tolerance analysis or a robust goal applies: per cut gear the radius
+/// deviations, per sample the assembly deviations (in [`ASSEMBLY`] order) and its gear.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ToleranceSamples {
+    /// Per gear variant, one deviation per radius-like value (mm).
+    pub radii: Vec<Vec<f64>>,
+    /// Per sample, the assembly deviations.
+    pub assembly: Vec<[f64; 8]>,
+}
+
+impl ToleranceSamples {
+    /// `tol.samples` samples for a curve of `radii` radius-like values, keyed on `seed`.
+    /// A variant is a set of machined parts, the cut gears (their radii) and the carrier
+    /// (its corner angle `γ0`): each is solved once, and its samples only turn and move
+    /// the assembly. Sobol dimensions: 0–7 the assembly of each sample (its `γ0` slot
+    /// unused), 8 the variant's `γ0`, 9… its radii.
+    pub fn new(tol: &Tolerances, radii: usize, seed: u64) -> Result<Self> {
+        tol.validate()?;
+        if 9 + radii > MAX_DIMENSIONS {
+            return Err(Error::OutOfRange {
+                name: "gear.curve.radii_mm (count, for the tolerance analysis)".into(),
+                value: radii as f64,
+                expected: format!("at most {} radii", MAX_DIMENSIONS - 9),
+            });
+        }
+        let spreads = tol.assembly();
+        let variants = tol.gear_variants;
+        let gamma0: Vec<f64> = (0..variants)
+            .map(|v| tol.gamma0_deg.deviation(sobol(v, 8, seed)))
+            .collect();
+        let assembly = (0..tol.samples)
+            .map(|i| {
+                std::array::from_fn(|d| match ASSEMBLY[d] {
+                    "gamma0_deg" => gamma0[i % variants],
+                    _ => spreads[d].deviation(sobol(i, d, seed)),
+                })
+            })
+            .collect();
+        let radii = (0..variants)
+            .map(|v| {
+                (0..radii)
+                    .map(|r| tol.radius_mm.deviation(sobol(v, 9 + r, seed)))
+                    .collect()
+            })
+            .collect();
+        Ok(Self { radii, assembly })
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.assembly.len()
+    }
+
+    /// Whether there are none (never, for samples made by [`ToleranceSamples::new`]).
+    pub fn is_empty(&self) -> bool {
+        self.assembly.is_empty()
+    }
+
+    /// The gear variant of sample `i`.
+    pub fn variant(&self, i: usize) -> usize {
+        i % self.radii.len()
+    }
+}
+
+/// One sample's outcome.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SampleOutcome {
+    /// Each objective's margin in its unit, in the scene's objective order (negative when
+    /// violated; NaN when the model refused the sample).
+    pub margins: Vec<f64>,
+    /// The least normalised margin over the objectives (as the `least_margin` goal reads
+    /// it; −∞ when refused).
+    pub least_normalised_margin: f64,
+    /// Every objective met.
+    pub met: bool,
+    /// The model refused the deviated design (e.g. the pusher offset past the arm).
+    pub refused: bool,
+    /// The picking (planting) instant moved to another branch of the trajectory.
+    pub picking_switch: bool,
+    pub planting_switch: bool,
+}
+
+/// The least normalised margin of an evaluation, skipping the seedling push (its margin is
+/// 0 whenever it is met).
+pub fn least_normalised_margin(eval: &Evaluation, scene: &Scene) -> f64 {
+    (eval.objectives.iter())
+        .filter(|o| o.kind != ObjectiveKind::SeedlingPush)
+        .map(|o| o.margin / scale(o.kind, &scene.bounds))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Wrapped distance between two carrier angles (rad).
+fn angle_gap(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(TAU);
+    d.min(TAU - d)
+}
+
+/// A design and its nominal evaluation, ready to be deviated.
+pub struct Deviated<'a> {
+    /// The design with its tray fixed where the nominal design puts it.
+    fixed: Scene,
+    nominal: &'a Evaluation,
+    resolution: Resolution,
+}
+
+impl<'a> Deviated<'a> {
+    /// `scene`'s design, whose evaluation at `resolution` is `nominal`.
+    pub fn new(scene: &Scene, nominal: &'a Evaluation) -> Result<Self> {
+        if !matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter) {
+            return Err(Error::OutOfRange {
+                name: "kind".into(),
+                value: f64::NAN,
+                expected: format!(
+                    "a three-arm or transplanter scene for a tolerance analysis (not {:?})",
+                    scene.kind
+                ),
+            });
+        }
+        let mut fixed = scene.clone();
+        let agro = &mut fixed.agronomy;
+        if agro.tray_distance_mm.is_none() {
+            // Such a scene says how deep the tip reaches, not how deep the pots are: take
+            // pots twice as deep, so the tip may reach one tray depth less or more.
+            agro.tray_distance_mm = nominal.events.map(|e| e.check.tray_surface_mm);
+            agro.tray_depth_mm *= 2.0;
+        }
+        Ok(Self {
+            fixed,
+            nominal,
+            resolution: nominal.resolution,
+        })
+    }
+
+    /// The design with its tray fixed.
+    pub fn scene(&self) -> &Scene {
+        &self.fixed
+    }
+
+    /// The train of a gear cut with `radii` deviations (the nominal train when all are 0).
+    pub fn variant(&self, evaluator: &mut Evaluator, radii: &[f64]) -> Result<Kinematics> {
+        let nominal = self.nominal.kinematics.as_ref().ok_or(Error::Missing {
+            name: "kinematics".into(),
+            needed_by: "the tolerance analysis".into(),
+        })?;
+        if radii.iter().all(|&d| d == 0.0) {
+            return Ok(nominal.clone());
+        }
+        let mut scene = self.fixed.clone();
+        scene.gear.curve = deviated_curve(&scene.gear.curve, radii);
+        evaluator.solve_train(&scene, &self.resolution)
+    }
+
+    /// Evaluates the train `kin` (a [`Deviated::variant`] cut with `radii` deviations)
+    /// assembled with `assembly` deviations ([`ASSEMBLY`] order).
+    pub fn assembled(
+        &self,
+        evaluator: &mut Evaluator,
+        kin: &Kinematics,
+        radii: &[f64],
+        assembly: &[f64; 8],
+    ) -> Result<Evaluation> {
+        self.assembled_in(evaluator, kin, radii, assembly, &mut self.fixed.clone())
+    }
+
+    /// As [`Deviated::assembled`], writing the deviated train and agronomy into `scratch`
+    /// (a copy of [`Deviated::scene`]) instead of copying the scene.
+    fn assembled_in(
+        &self,
+        evaluator: &mut Evaluator,
+        kin: &Kinematics,
+        radii: &[f64],
+        assembly: &[f64; 8],
+        scratch: &mut Scene,
+    ) -> Result<Evaluation> {
+        let [da, phi0, beta0, gamma0, s, h1, tray_d, tray_n] = *assembly;
+        let mut train = self.fixed.train;
+        train.phi0_deg += phi0;
+        train.beta0_deg += beta0;
+        train.gamma0_deg += gamma0;
+        train.arm_length_mm += s;
+        train.pusher_offset_mm += h1;
+        let mut agronomy = self.fixed.agronomy;
+        agronomy.tray_distance_mm = agronomy.tray_distance_mm.map(|d| d + tray_d);
+        agronomy.tray_normal_deg += tray_n;
+        (scratch.train, scratch.agronomy) = (train, agronomy);
+        let kin = match kin.reassembled(&train, da) {
+            Ok(k) => k,
+            // Φ0 under a ground-frame sun moves the pair's grid: solve anew.
+            Err(_) if train.psi_start() != kin.spec().psi_start() => {
+                let mut scene = scratch.clone();
+                scene.gear.curve = deviated_curve(&scene.gear.curve, radii);
+                evaluator
+                    .solve_train(&scene, &self.resolution)?
+                    .reassembled(&train, da)?
+            }
+            Err(e) => return Err(e),
+        };
+        evaluator.evaluate_solved(scratch, kin)
+    }
+
+    /// The outcome of an evaluation (or of the model's refusal) of a deviated design.
+    pub fn outcome(&self, eval: Result<Evaluation>) -> SampleOutcome {
+        match eval {
+            Ok(eval) => {
+                let switch = |get: fn(&crate::events::Events) -> f64| match (
+                    self.nominal.events.as_ref(),
+                    eval.events.as_ref(),
+                ) {
+                    (Some(n), Some(e)) => angle_gap(get(n), get(e)) > BRANCH_SWITCH_RAD,
+                    _ => false,
+                };
+                SampleOutcome {
+                    margins: eval.objectives.iter().map(|o| o.margin).collect(),
+                    least_normalised_margin: least_normalised_margin(&eval, &self.fixed),
+                    met: eval.total_violation() == 0.0,
+                    refused: false,
+                    picking_switch: switch(|e| e.picking.carrier_rad),
+                    planting_switch: switch(|e| e.planting.carrier_rad),
+                }
+            }
+            Err(_) => SampleOutcome {
+                margins: vec![f64::NAN; self.fixed.objectives.len()],
+                least_normalised_margin: f64::NEG_INFINITY,
+                met: false,
+                refused: true,
+                picking_switch: false,
+                planting_switch: false,
+            },
+        }
+    }
+
+    /// Every sample's outcome, in sample order: each gear variant closed once, its samples
+    /// reassembled from it.
+    pub fn run(&self, evaluator: &mut Evaluator, samples: &ToleranceSamples) -> Vec<SampleOutcome> {
+        let mut out: Vec<Option<SampleOutcome>> = vec![None; samples.len()];
+        let mut scratch = self.fixed.clone();
+        for (v, radii) in samples.radii.iter().enumerate() {
+            // The variant's carrier (its γ0) assembled once: its samples keep its θ_s.
+            let gamma0 = samples.assembly[v][3];
+            let kin = self.variant(evaluator, radii).and_then(|kin| {
+                let mut train = self.fixed.train;
+                train.gamma0_deg += gamma0;
+                kin.reassembled(&train, 0.0)
+            });
+            for i in (v..samples.len()).step_by(samples.radii.len()) {
+                let eval = match &kin {
+                    Ok(kin) => {
+                        let assembly = &samples.assembly[i];
+                        self.assembled_in(evaluator, kin, radii, assembly, &mut scratch)
+                    }
+                    Err(e) => Err(e.clone()),
+                };
+                out[i] = Some(self.outcome(eval));
+            }
+        }
+        out.into_iter().map(|o| o.expect("every sample")).collect()
+    }
+}
+
+/// The `q`-quantile of `values` (linear between order statistics, numpy's default);
+/// NaN for no values.
+pub fn quantile(values: &[f64], q: f64) -> f64 {
+    let mut v: Vec<f64> = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    let pos = q.clamp(0.0, 1.0) * (v.len() - 1) as f64;
+    let (lo, hi) = (pos.floor() as usize, pos.ceil() as usize);
+    let (a, b) = (v[lo], v[hi]);
+    if lo == hi || a == b {
+        a
+    } else {
+        a + (b - a) * (pos - lo as f64)
+    }
+}
+
+/// The quantiles a report gives of each margin.
+pub const REPORTED_QUANTILES: [f64; 5] = [0.01, 0.05, 0.5, 0.95, 0.99];
+
+/// One objective under the tolerances.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ObjectiveSpread {
+    pub objective: ObjectiveKind,
+    /// Unit of the value and the margins.
+    pub unit: &'static str,
+    pub nominal_value: f64,
+    pub nominal_margin: f64,
+    /// Fraction of the samples that meet it (refused samples do not).
+    pub probability: f64,
+    /// The margin's quantiles at [`REPORTED_QUANTILES`] over the samples the model took.
+    pub margin_quantiles: [f64; 5],
+    pub margin_mean: f64,
+    pub margin_sd: f64,
+    /// The worst-case bound, when computed.
+    pub worst_case: Option<WorstCase>,
+}
+
+/// A linearised worst case: the margin predicted at the corner of the tolerance box that
+/// the sensitivities point to, and the margin evaluated there.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorstCase {
+    /// `m0 − Σ |∂m/∂x_i| w_i` (w: the band, or 3σ).
+    pub predicted_margin: f64,
+    /// The margin evaluated at the corner (NaN when the model refused it).
+    pub corner_margin: f64,
+    /// The quantity that moves the margin most, and by how much over its half-width.
+    pub dominant: String,
+    pub dominant_share: f64,
+}
+
+/// A tolerance analysis of one design.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ToleranceReport {
+    pub samples: usize,
+    pub gear_variants: usize,
+    pub seed: u64,
+    /// Fraction of the samples meeting every objective.
+    pub probability_all: f64,
+    /// Its standard error as if the samples were independent, `√(p(1−p)/n)` (scrambled
+    /// Sobol points do at least as well).
+    pub probability_all_se: f64,
+    /// Samples the model refused.
+    pub refused: usize,
+    /// Samples whose picking (planting) moved to another branch of the trajectory.
+    pub picking_branch_switches: usize,
+    pub planting_branch_switches: usize,
+    /// The least normalised margin's quantiles at [`REPORTED_QUANTILES`].
+    pub least_margin_quantiles: [f64; 5],
+    pub objectives: Vec<ObjectiveSpread>,
+    /// The tray distance the samples were evaluated against (mm).
+    pub tray_distance_mm: Option<f64>,
+}
+
+/// Analyses `scene`'s design under its tolerances at `resolution`: the samples (with the
+/// worst-case bound when `worst_case`), and every sample's outcome.
+pub fn analyse(
+    evaluator: &mut Evaluator,
+    scene: &Scene,
+    resolution: &Resolution,
+    worst_case: bool,
+) -> Result<(ToleranceReport, Vec<SampleOutcome>)> {
+    let tol = &scene.tolerances;
+    let nominal = evaluator.evaluate_at(scene, resolution)?;
+    let deviated = Deviated::new(scene, &nominal)?;
+    let samples = ToleranceSamples::new(tol, radius_count(&scene.gear.curve), tol.seed)?;
+    let outcomes = deviated.run(evaluator, &samples);
+    let n = outcomes.len() as f64;
+    let p_all = outcomes.iter().filter(|o| o.met).count() as f64 / n;
+    let bounds = worst_case
+        .then(|| worst_case_bounds(evaluator, &deviated))
+        .transpose()?;
+    let objectives = (nominal.objectives.iter().enumerate())
+        .map(|(k, o)| {
+            let margins: Vec<f64> = (outcomes.iter())
+                .map(|s| s.margins[k])
+                .filter(|m| !m.is_nan())
+                .collect();
+            let mean = margins.iter().sum::<f64>() / margins.len().max(1) as f64;
+            let var = margins.iter().map(|m| (m - mean).powi(2)).sum::<f64>()
+                / (margins.len().max(2) - 1) as f64;
+            ObjectiveSpread {
+                objective: o.kind,
+                unit: o.kind.unit(),
+                nominal_value: o.value,
+                nominal_margin: o.margin,
+                probability: (outcomes.iter())
+                    .filter(|s| s.margins[k] >= 0.0 && !s.refused)
+                    .count() as f64
+                    / n,
+                margin_quantiles: REPORTED_QUANTILES.map(|q| quantile(&margins, q)),
+                margin_mean: mean,
+                margin_sd: var.sqrt(),
+                worst_case: bounds.as_ref().map(|b| b[k].clone()),
+            }
+        })
+        .collect();
+    let least: Vec<f64> = outcomes.iter().map(|o| o.least_normalised_margin).collect();
+    let report = ToleranceReport {
+        samples: outcomes.len(),
+        gear_variants: samples.radii.len(),
+        seed: tol.seed,
+        probability_all: p_all,
+        probability_all_se: (p_all * (1.0 - p_all) / n).sqrt(),
+        refused: outcomes.iter().filter(|o| o.refused).count(),
+        picking_branch_switches: outcomes.iter().filter(|o| o.picking_switch).count(),
+        planting_branch_switches: outcomes.iter().filter(|o| o.planting_switch).count(),
+        least_margin_quantiles: REPORTED_QUANTILES.map(|q| quantile(&least, q)),
+        objectives,
+        tray_distance_mm: deviated.scene().agronomy.tray_distance_mm,
+    };
+    Ok((report, outcomes))
+}
+
+/// The toleranced quantities' names and half-widths (the band, or 3σ), radii first.
+fn quantities(scene: &Scene) -> Vec<(String, f64)> {
+    let tol = &scene.tolerances;
+    let mut out: Vec<(String, f64)> = (0..radius_count(&scene.gear.curve))
+        .map(|i| (format!("radius[{i}]"), tol.radius_mm.worst_case()))
+        .collect();
+    out.extend((ASSEMBLY.iter().zip(tol.assembly())).map(|(n, s)| (n.to_string(), s.worst_case())));
+    out
+}
+
+/// Each objective's linearised worst case: secant slopes over each quantity's half-width
+/// (central, the others nominal), the predicted margin at the worst corner, and the margin
+/// evaluated at that corner.
+fn worst_case_bounds(evaluator: &mut Evaluator, d: &Deviated) -> Result<Vec<WorstCase>> {
+    let scene = d.scene();
+    let quantities = quantities(scene);
+    let radii = radius_count(&scene.gear.curve);
+    let objectives = d.nominal.objectives.len();
+    // The margins with only quantity q deviated by `x`.
+    let margins_at = |ev: &mut Evaluator, deviation: &[f64]| -> Vec<f64> {
+        let (r, a) = deviation.split_at(radii);
+        let assembly: [f64; 8] = a.try_into().expect("eight assembly deviations");
+        let eval = d
+            .variant(ev, r)
+            .and_then(|kin| d.assembled(ev, &kin, r, &assembly));
+        d.outcome(eval).margins
+    };
+    let mut slopes = vec![vec![0.0; quantities.len()]; objectives];
+    for (q, (_, w)) in quantities.iter().enumerate() {
+        if *w == 0.0 {
+            continue;
+        }
+        let mut dev = vec![0.0; quantities.len()];
+        dev[q] = *w;
+        let up = margins_at(evaluator, &dev);
+        dev[q] = -w;
+        let down = margins_at(evaluator, &dev);
+        for k in 0..objectives {
+            slopes[k][q] = (up[k] - down[k]) / (2.0 * w);
+        }
+    }
+    (0..objectives)
+        .map(|k| {
+            let m0 = d.nominal.objectives[k].margin;
+            let terms: Vec<f64> = (slopes[k].iter().zip(&quantities))
+                .map(|(s, (_, w))| if s.is_nan() { 0.0 } else { s.abs() * w })
+                .collect();
+            let spread: f64 = terms.iter().sum();
+            let (dominant, largest) = (terms.iter().enumerate())
+                .max_by(|a, b| a.1.total_cmp(b.1))
+                .map(|(i, t)| (quantities[i].0.clone(), *t))
+                .unwrap_or_default();
+            let corner: Vec<f64> = (slopes[k].iter().zip(&quantities))
+                .map(|(s, (_, w))| if *s > 0.0 { -w } else { *w })
+                .collect();
+            Ok(WorstCase {
+                predicted_margin: m0 - spread,
+                corner_margin: margins_at(evaluator, &corner)[k],
+                dominant,
+                dominant_share: if spread > 0.0 { largest / spread } else { 0.0 },
+            })
+        })
+        .collect()
+}
+
+/// What a robust goal reads from a design's samples.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobustScore {
+    /// Fraction of the samples meeting every objective.
+    pub probability: f64,
+    /// The samples' least normalised margins, sorted (−∞ for a refused sample).
+    least_margins: Vec<f64>,
+}
+
+impl RobustScore {
+    /// The least normalised margin's `q`-quantile over the samples.
+    pub fn margin_quantile(&self, q: f64) -> f64 {
+        quantile(&self.least_margins, q)
+    }
+}
+
+/// Scores `scene`'s design (its nominal evaluation `nominal`) on `samples`.
+pub fn robust_score(
+    evaluator: &mut Evaluator,
+    scene: &Scene,
+    nominal: &Evaluation,
+    samples: &ToleranceSamples,
+) -> Result<RobustScore> {
+    let outcomes = Deviated::new(scene, nominal)?.run(evaluator, samples);
+    let met = outcomes.iter().filter(|o| o.met).count();
+    let mut least_margins: Vec<f64> = outcomes.iter().map(|o| o.least_normalised_margin).collect();
+    least_margins.sort_by(f64::total_cmp);
+    Ok(RobustScore {
+        probability: met as f64 / outcomes.len() as f64,
+        least_margins,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tolerance::Spread;
+
+    #[test]
+    fn the_quantile_matches_numpy() {
+        // numpy.quantile([3, 1, 4, 1, 5], [0, 0.1, 0.5, 0.9, 1]) = [1, 1, 3, 4.6, 5]
+        let v = [3.0, 1.0, 4.0, 1.0, 5.0];
+        let q: Vec<f64> = [0.0, 0.1, 0.5, 0.9, 1.0]
+            .iter()
+            .map(|&q| quantile(&v, q))
+            .collect();
+        for (a, b) in q.iter().zip([1.0, 1.0, 3.0, 4.6, 5.0]) {
+            assert!((a - b).abs() < 1e-12, "{q:?}");
+        }
+    }
+
+    #[test]
+    fn sobol_points_fill_each_dimension_evenly_and_differ_by_seed() {
+        // A scrambled Sobol sequence is stratified: 64 points put one in each 1/64 cell.
+        for dim in [0, 7, 20] {
+            let mut cells = [0; 64];
+            for i in 0..64 {
+                cells[(sobol(i, dim, 5) * 64.0) as usize] += 1;
+            }
+            assert!(cells.iter().all(|&c| c == 1), "dimension {dim}: {cells:?}");
+        }
+        assert_ne!(sobol(3, 0, 1), sobol(3, 0, 2));
+        assert_eq!(sobol(3, 0, 1), sobol(3, 0, 1));
+    }
+
+    #[test]
+    fn exact_tolerances_reproduce_the_nominal_design() {
+        let mut scene = Scene::default();
+        let exact = Spread::Band(0.0);
+        let t = &mut scene.tolerances;
+        (t.radius_mm, t.centre_distance_mm, t.phi0_deg, t.beta0_deg) = (exact, exact, exact, exact);
+        (t.gamma0_deg, t.arm_length_mm, t.pusher_offset_mm) = (exact, exact, exact);
+        (t.tray_distance_mm, t.tray_normal_deg) = (exact, exact);
+        t.samples = 8;
+        let mut ev = Evaluator::new();
+        let placed = ev.evaluate(&scene).unwrap();
+        let nominal = ev
+            .evaluate(Deviated::new(&scene, &placed).unwrap().scene())
+            .unwrap();
+        let (report, outcomes) = analyse(&mut ev, &scene, &scene.resolution, false).unwrap();
+        for o in &outcomes {
+            for (m, n) in o.margins.iter().zip(&nominal.objectives) {
+                assert!(
+                    (m - n.margin).abs() < 1e-9 * n.margin.abs().max(1.0),
+                    "{m} {n:?}"
+                );
+            }
+        }
+        let met = nominal.total_violation() == 0.0;
+        assert_eq!(report.probability_all, if met { 1.0 } else { 0.0 });
+        assert_eq!(report.picking_branch_switches, 0);
+    }
+
+    #[test]
+    fn a_reassembled_train_equals_one_solved_for_its_assembly() {
+        // Reuse must not change the answer: β0, S, H1, γ0, Φ0 moved on a solved pair give
+        // the train solved from scratch with those values.
+        let scene = Scene::default();
+        let mut ev = Evaluator::new();
+        let kin = ev.solve_train(&scene, &scene.resolution).unwrap();
+        let mut moved = scene.clone();
+        moved.train.beta0_deg += 0.7;
+        moved.train.arm_length_mm -= 1.3;
+        moved.train.pusher_offset_mm += 0.4;
+        moved.train.gamma0_deg += 0.2;
+        moved.train.phi0_deg -= 0.3;
+        // Once with γ0 moved (θ_s solved anew), once with the carrier kept (turned only).
+        for keep_carrier in [false, true] {
+            if keep_carrier {
+                moved.train.gamma0_deg = scene.train.gamma0_deg;
+            }
+            let fresh = ev.solve_train(&moved, &moved.resolution).unwrap();
+            let reused = kin.reassembled(&moved.train, 0.0).unwrap();
+            for (a, b) in fresh.tips().iter().zip(reused.tips()) {
+                assert!((*a - *b).hypot() < 1e-9, "{a:?} {b:?}");
+            }
+            for (a, b) in fresh.planet_angles().iter().zip(reused.planet_angles()) {
+                assert!((a - b).abs() < 1e-12);
+            }
+            let (x, y) = (fresh.state_at(1.234), reused.state_at(1.234));
+            assert!((x.tip - y.tip).hypot() < 1e-9 && (x.tip_d2 - y.tip_d2).hypot() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn a_bore_error_moves_the_planets_out_at_the_same_ratio() {
+        let scene = Scene::default();
+        let mut ev = Evaluator::new();
+        let kin = ev.solve_train(&scene, &scene.resolution).unwrap();
+        let wide = kin.reassembled(&scene.train, 0.05).unwrap();
+        let ratio = wide.planet_radius() / kin.planet_radius();
+        let a = kin.centre_distance();
+        assert!((ratio - (a + 0.05) / a).abs() < 1e-12);
+        for (p, q) in kin.planet_angles().iter().zip(wide.planet_angles()) {
+            assert_eq!(p, q);
+        }
+    }
+}
