@@ -34,7 +34,7 @@ fn robust(c: &mut Criterion) {
     });
     group.finish();
 
-    let deviated = Deviated::new(&scene, &nominal).unwrap();
+    let deviated = Deviated::new(&mut ev, &scene, &nominal).unwrap();
     let kin = nominal.kinematics.clone().unwrap();
     let mut group = c.benchmark_group("tolerance_sample");
     group.bench_function("gear_variant", |b| {

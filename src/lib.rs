@@ -13,6 +13,7 @@ pub mod files;
 #[cfg(feature = "figures")]
 pub mod plots;
 pub mod report;
+pub mod robustness;
 pub mod scene_file;
 pub mod scene_reference;
 pub mod search;

@@ -171,3 +171,31 @@ pub fn sweep_figures(
     }
     Ok(files)
 }
+
+/// The tolerance analysis's figure: each objective's margin distribution against its bound.
+pub fn robustness_figures(
+    analysis: &crate::robustness::Robustness,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
+    create_dir(dir)?;
+    crate::figures::save(
+        &crate::figures::MarginsFigure { analysis },
+        &dir.join("robustness_margins"),
+        options,
+    )
+}
+
+/// The Sobol indices as a heat map.
+pub fn sensitivity_figures(
+    sensitivity: &crate::robustness::Sensitivity,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
+    create_dir(dir)?;
+    crate::figures::save(
+        &crate::figures::SensitivityFigure { sensitivity },
+        &dir.join("sensitivity"),
+        options,
+    )
+}

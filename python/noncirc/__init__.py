@@ -24,6 +24,8 @@ from ._noncirc import (
     UnknownNameError,
     __version__,
     measures,
+    robustness,
+    sensitivity,
 )
 from .api import evaluate, evaluate_batch, optimise
 from .progress import ProgressBar
@@ -48,5 +50,7 @@ __all__ = [
     "evaluate_batch",
     "measures",
     "optimise",
+    "robustness",
+    "sensitivity",
     "__version__",
 ]

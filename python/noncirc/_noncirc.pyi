@@ -118,3 +118,25 @@ def emigrants(checkpoint: str | os.PathLike[str], count: int) -> str:
 def immigrate(checkpoint: str | os.PathLike[str], migrants: str) -> None:
     """Takes `migrants` (the text of `emigrants` from another island of the same search)
     into the checkpoint's search in place of its worst members; refuses another scene's."""
+
+def robustness(
+    scene: Scene, *, samples: Optional[int] = None, seed: Optional[int] = None, worst_case: bool = True
+) -> dict[str, Any]:
+    """A tolerance analysis of the scene's design under its `[tolerances]` (`noncirc
+    robustness`): `probability_all`, `objectives` (each one's probability, margin
+    quantiles, worst case), branch switches, `convergence`, as the CLI's JSON; `margins`
+    an (objectives, samples) array of every sample's margin (NaN where refused)."""
+
+def sensitivity(
+    scene: Scene,
+    *,
+    base_samples: int = 1024,
+    bootstrap: int = 100,
+    box_scale: float = 0.25,
+    threads: Optional[int] = None,
+) -> dict[str, Any]:
+    """First-order and total Sobol indices of every output over the scene's search box
+    scaled by `box_scale` about the design (`noncirc sensitivity`), in SALib's layout:
+    `problem`, `X` and `Y` in SALib's sample order (`calc_second_order=False`), `outputs`,
+    `indices[name]` with `S1`, `S1_conf`, `ST`, `ST_conf`, and those as (outputs, k)
+    arrays."""

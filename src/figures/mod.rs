@@ -22,6 +22,7 @@ mod ground;
 mod lines;
 mod moving_box;
 mod objectives;
+mod robustness;
 mod teeth;
 mod trajectory;
 
@@ -31,6 +32,7 @@ pub use ground::GroundFigure;
 pub use lines::LinesFigure;
 pub use moving_box::BoxFigure;
 pub use objectives::ObjectivesFigure;
+pub use robustness::{MarginsFigure, SensitivityFigure};
 pub use teeth::{teeth_figures, TeethFigure};
 pub use trajectory::TrajectoryFigure;
 

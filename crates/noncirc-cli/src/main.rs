@@ -227,6 +227,15 @@ enum Command {
     /// turn (undercut, tip land, clearance, backlash, contact ratio) and export them for
     /// manufacturing. The tooth count is `gear.module.teeth` or the module rule's.
     Teeth(TeethArgs),
+    /// How the design fares once cut and assembled with the scene's tolerances
+    /// (`[tolerances]`): each objective's probability of being met, its margin's
+    /// distribution, a linearised worst case checked at its corner, and branch switches.
+    /// docs/robustness.md
+    Robustness(RobustnessArgs),
+    /// First-order and total Sobol indices of every objective and trajectory measure over
+    /// the scene's search box (Saltelli sampling, Jansen estimators, bootstrap intervals).
+    /// docs/robustness.md
+    Sensitivity(SensitivityArgs),
     /// List the built-in scenes; with --reference, every field of a scene (docs/scenes.md).
     Scenes(ScenesArgs),
     /// List every measure (`sweep --measure`, goals `min:NAME`/`max:NAME`) with its unit.
@@ -234,6 +243,40 @@ enum Command {
     /// Serve the design studio (build it first: `bash studio/build.sh`) on 127.0.0.1 and
     /// print its address. docs/studio.md
     Studio(StudioArgs),
+}
+
+#[derive(clap::Args)]
+struct RobustnessArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Samples (default: the scene's `tolerances.samples`, 64).
+    #[arg(long)]
+    samples: Option<usize>,
+    /// Seed of the deviations (default: the scene's `tolerances.seed`).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Skip the linearised worst case (it costs two evaluations per toleranced quantity).
+    #[arg(long)]
+    no_worst_case: bool,
+}
+
+#[derive(clap::Args)]
+struct SensitivityArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Base points N: N (k + 2) designs are evaluated for k free parameters.
+    #[arg(long, default_value_t = 1024)]
+    base_samples: usize,
+    /// Bootstrap resamples for the confidence intervals.
+    #[arg(long, default_value_t = 100)]
+    bootstrap: usize,
+    /// The box's share of the search box's widths, about the scene's design (1: the whole
+    /// search box, where the model refuses about a third of the designs).
+    #[arg(long, default_value_t = 0.25)]
+    box_scale: f64,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
 }
 
 #[derive(clap::Args)]
@@ -577,6 +620,48 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             match args.scene.format {
                 Format::Json => out(&json(&rows)?)?,
                 Format::Table => out(&noncirc::report::sweep_table(&args.param, &rows))?,
+            }
+        }
+        Command::Robustness(args) => {
+            let mut set = args.scene.input.set.clone();
+            if let Some(n) = args.samples {
+                set.push(format!("tolerances.samples={n}"));
+            }
+            if let Some(seed) = args.seed {
+                set.push(format!("tolerances.seed={seed}"));
+            }
+            let scene = load_scene_with(args.scene.input.scene.as_deref(), &set)?;
+            let analysis = noncirc::robustness::robustness(&scene, !args.no_worst_case)?;
+            if let Some(dir) = &args.scene.plot {
+                let options = args.scene.figures()?;
+                for f in noncirc::plots::robustness_figures(&analysis, dir, &options)? {
+                    eprintln!("wrote {}", f.display());
+                }
+            }
+            match args.scene.format {
+                Format::Json => out(&json(&analysis)?)?,
+                Format::Table => out(&noncirc::robustness::robustness_table(&analysis))?,
+            }
+        }
+        Command::Sensitivity(args) => {
+            let scene = load_scene_with(args.scene.input.scene.as_deref(), &args.scene.input.set)?;
+            let threads = noncirc::search::threads_or_all(args.threads)?;
+            let s = noncirc::robustness::sensitivity(
+                &scene,
+                args.base_samples,
+                args.bootstrap,
+                args.box_scale,
+                threads,
+            )?;
+            if let Some(dir) = &args.scene.plot {
+                let options = args.scene.figures()?;
+                for f in noncirc::plots::sensitivity_figures(&s, dir, &options)? {
+                    eprintln!("wrote {}", f.display());
+                }
+            }
+            match args.scene.format {
+                Format::Json => out(&json(&s)?)?,
+                Format::Table => out(&noncirc::robustness::sensitivity_table(&s))?,
             }
         }
         Command::Measures => {

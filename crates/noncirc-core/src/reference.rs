@@ -976,13 +976,17 @@ pub const FIELDS: &[Field] = &[
         refused: &["tolerances.samples=0", "tolerances.samples=70000"],
     },
     Field {
-        key: "tolerances.gear_variants",
+        key: "tolerances.assemblies_per_part_set",
         symbol: "",
         unit: "",
         range: "1 to `tolerances.samples`",
-        meaning: "Distinct sets of machined parts (cut gears, carrier) among the samples: \
-                  each is solved once and assembled the rest of the times.",
-        refused: &["tolerances.gear_variants=0", "tolerances.gear_variants=100"],
+        meaning: "How many samples share one set of machined parts (cut gears, carrier): \
+                  each set is solved once and assembled this many times; 1: every sample \
+                  its own parts.",
+        refused: &[
+            "tolerances.assemblies_per_part_set=0",
+            "tolerances.assemblies_per_part_set=100",
+        ],
     },
     Field {
         key: "tolerances.seed",

@@ -1,7 +1,7 @@
 //! Tolerance analysis: how a design fares once it is cut and assembled with the scene's
 //! [`Tolerances`]. Deviations come from a scrambled Sobol sequence keyed on the tolerance
 //! seed, so every design meets the same deviations (common random numbers). Each of the
-//! `gear_variants` cut gears is closed once; its samples only reassemble the train
+//! sets of machined parts (cut gears, carrier) is solved once; its samples only reassemble the train
 //! ([`Kinematics::reassembled`]) and re-run the events and objectives.
 //!
 //! The tray stays where the nominal design puts it: a scene that places the tray by the
@@ -93,7 +93,7 @@ impl ToleranceSamples {
             });
         }
         let spreads = tol.assembly();
-        let variants = tol.gear_variants;
+        let variants = tol.part_sets();
         let gamma0: Vec<f64> = (0..variants)
             .map(|v| tol.gamma0_deg.deviation(sobol(v, 8, seed)))
             .collect();
@@ -165,16 +165,19 @@ fn angle_gap(a: f64, b: f64) -> f64 {
 }
 
 /// A design and its nominal evaluation, ready to be deviated.
-pub struct Deviated<'a> {
+pub struct Deviated {
     /// The design with its tray fixed where the nominal design puts it.
     fixed: Scene,
-    nominal: &'a Evaluation,
+    /// The evaluation of `fixed` as drawn.
+    nominal: Evaluation,
     resolution: Resolution,
 }
 
-impl<'a> Deviated<'a> {
-    /// `scene`'s design, whose evaluation at `resolution` is `nominal`.
-    pub fn new(scene: &Scene, nominal: &'a Evaluation) -> Result<Self> {
+impl Deviated {
+    /// `scene`'s design, whose evaluation is `placed`. With the tray placed by the
+    /// trajectory, the design is evaluated again against the fixed tray (on the same
+    /// train: no closure).
+    pub fn new(evaluator: &mut Evaluator, scene: &Scene, placed: &Evaluation) -> Result<Self> {
         if !matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter) {
             return Err(Error::OutOfRange {
                 name: "kind".into(),
@@ -190,14 +193,24 @@ impl<'a> Deviated<'a> {
         if agro.tray_distance_mm.is_none() {
             // Such a scene says how deep the tip reaches, not how deep the pots are: take
             // pots twice as deep, so the tip may reach one tray depth less or more.
-            agro.tray_distance_mm = nominal.events.map(|e| e.check.tray_surface_mm);
+            agro.tray_distance_mm = placed.events.map(|e| e.check.tray_surface_mm);
             agro.tray_depth_mm *= 2.0;
         }
+        let nominal = match (&placed.kinematics, fixed.agronomy == scene.agronomy) {
+            (_, true) => placed.clone(),
+            (Some(kin), false) => evaluator.evaluate_solved(&fixed, kin.clone())?,
+            (None, false) => evaluator.evaluate_at(&fixed, &placed.resolution)?,
+        };
         Ok(Self {
             fixed,
-            nominal,
             resolution: nominal.resolution,
+            nominal,
         })
+    }
+
+    /// The evaluation of the design as drawn, against the fixed tray.
+    pub fn nominal(&self) -> &Evaluation {
+        &self.nominal
     }
 
     /// The design with its tray fixed.
@@ -382,7 +395,8 @@ pub struct WorstCase {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ToleranceReport {
     pub samples: usize,
-    pub gear_variants: usize,
+    /// Sets of machined parts among the samples.
+    pub part_sets: usize,
     pub seed: u64,
     /// Fraction of the samples meeting every objective.
     pub probability_all: f64,
@@ -410,8 +424,9 @@ pub fn analyse(
     worst_case: bool,
 ) -> Result<(ToleranceReport, Vec<SampleOutcome>)> {
     let tol = &scene.tolerances;
-    let nominal = evaluator.evaluate_at(scene, resolution)?;
-    let deviated = Deviated::new(scene, &nominal)?;
+    let placed = evaluator.evaluate_at(scene, resolution)?;
+    let deviated = Deviated::new(evaluator, scene, &placed)?;
+    let nominal = deviated.nominal();
     let samples = ToleranceSamples::new(tol, radius_count(&scene.gear.curve), tol.seed)?;
     let outcomes = deviated.run(evaluator, &samples);
     let n = outcomes.len() as f64;
@@ -447,7 +462,7 @@ pub fn analyse(
     let least: Vec<f64> = outcomes.iter().map(|o| o.least_normalised_margin).collect();
     let report = ToleranceReport {
         samples: outcomes.len(),
-        gear_variants: samples.radii.len(),
+        part_sets: samples.radii.len(),
         seed: tol.seed,
         probability_all: p_all,
         probability_all_se: (p_all * (1.0 - p_all) / n).sqrt(),
@@ -511,8 +526,9 @@ fn worst_case_bounds(evaluator: &mut Evaluator, d: &Deviated) -> Result<Vec<Wors
             let spread: f64 = terms.iter().sum();
             let (dominant, largest) = (terms.iter().enumerate())
                 .max_by(|a, b| a.1.total_cmp(b.1))
+                .filter(|(_, t)| **t > 0.0)
                 .map(|(i, t)| (quantities[i].0.clone(), *t))
-                .unwrap_or_default();
+                .unwrap_or_else(|| ("none".into(), 0.0));
             let corner: Vec<f64> = (slopes[k].iter().zip(&quantities))
                 .map(|(s, (_, w))| if *s > 0.0 { -w } else { *w })
                 .collect();
@@ -549,7 +565,7 @@ pub fn robust_score(
     nominal: &Evaluation,
     samples: &ToleranceSamples,
 ) -> Result<RobustScore> {
-    let outcomes = Deviated::new(scene, nominal)?.run(evaluator, samples);
+    let outcomes = Deviated::new(evaluator, scene, nominal)?.run(evaluator, samples);
     let met = outcomes.iter().filter(|o| o.met).count();
     let mut least_margins: Vec<f64> = outcomes.iter().map(|o| o.least_normalised_margin).collect();
     least_margins.sort_by(f64::total_cmp);
@@ -602,9 +618,8 @@ mod tests {
         t.samples = 8;
         let mut ev = Evaluator::new();
         let placed = ev.evaluate(&scene).unwrap();
-        let nominal = ev
-            .evaluate(Deviated::new(&scene, &placed).unwrap().scene())
-            .unwrap();
+        let fixed = Deviated::new(&mut ev, &scene, &placed).unwrap().scene().clone();
+        let nominal = ev.evaluate(&fixed).unwrap();
         let (report, outcomes) = analyse(&mut ev, &scene, &scene.resolution, false).unwrap();
         for o in &outcomes {
             for (m, n) in o.margins.iter().zip(&nominal.objectives) {

@@ -86,10 +86,10 @@ pub struct Tolerances {
     pub tray_normal_deg: Spread,
     /// Samples of the tolerance analysis and of a robust goal, per design.
     pub samples: usize,
-    /// Distinct sets of machined parts among the samples, the cut gears (their radii) and
-    /// the carrier (its `γ0`): each is closed and solved once, and assembled
-    /// `samples / gear_variants` times (assembly errors cost no closure).
-    pub gear_variants: usize,
+    /// How many samples share one set of machined parts, the cut gears (their radii) and
+    /// the carrier (its `γ0`): each set is closed and solved once and assembled this many
+    /// times (assembly errors cost no closure). 1: every sample its own parts.
+    pub assemblies_per_part_set: usize,
     /// Seed of the scrambled Sobol points: every design of a robust search meets the same
     /// deviations (common random numbers).
     pub seed: u64,
@@ -108,7 +108,7 @@ impl Default for Tolerances {
             tray_distance_mm: Spread::Band(1.0),
             tray_normal_deg: Spread::Band(0.5),
             samples: 64,
-            gear_variants: 8,
+            assemblies_per_part_set: 8,
             seed: 1,
         }
     }
@@ -162,14 +162,19 @@ impl Tolerances {
                 expected: format!("1 to {}", Self::MAX_SAMPLES),
             });
         }
-        if !(1..=self.samples).contains(&self.gear_variants) {
+        if !(1..=self.samples).contains(&self.assemblies_per_part_set) {
             return Err(Error::OutOfRange {
-                name: "tolerances.gear_variants".into(),
-                value: self.gear_variants as f64,
+                name: "tolerances.assemblies_per_part_set".into(),
+                value: self.assemblies_per_part_set as f64,
                 expected: format!("1 to tolerances.samples = {}", self.samples),
             });
         }
         Ok(())
+    }
+
+    /// The sets of machined parts among the samples.
+    pub fn part_sets(&self) -> usize {
+        self.samples.div_ceil(self.assemblies_per_part_set)
     }
 }
 
@@ -200,10 +205,10 @@ mod tests {
         t.beta0_deg = Spread::Band(f64::NAN);
         assert!(t.validate().is_err());
         t = Tolerances {
-            gear_variants: 65,
+            assemblies_per_part_set: 65,
             ..Tolerances::default()
         };
         let e = t.validate().unwrap_err().to_string();
-        assert!(e.contains("tolerances.gear_variants"), "{e}");
+        assert!(e.contains("tolerances.assemblies_per_part_set"), "{e}");
     }
 }

@@ -157,10 +157,36 @@ impl SceneProblem {
             .collect()
     }
 
-    /// The goals' quantities in their units for an evaluation of `scene`.
+    /// The goals' quantities in their units for an evaluation of `scene` (robust goals
+    /// sample its tolerances again).
     pub fn goal_values_of(&self, eval: &Evaluation, scene: &Scene) -> Vec<f64> {
+        let feasible = eval.total_violation() == 0.0;
+        let f = self.minimised(&mut Evaluator::new(), eval, scene, feasible);
+        (self.goals.iter().zip(f))
+            .map(|(g, v)| g.physical(v, &scene.bounds))
+            .collect()
+    }
+
+    /// The goals' minimised values for an evaluation of `scene`; robust goals sample the
+    /// design's tolerances when it is `feasible` as drawn.
+    fn minimised(
+        &self,
+        evaluator: &mut Evaluator,
+        eval: &Evaluation,
+        scene: &Scene,
+        feasible: bool,
+    ) -> Vec<f64> {
+        let robust = (self.tolerance_samples.as_ref())
+            .filter(|_| feasible)
+            .and_then(|samples| robust_score(evaluator, scene, eval, samples).ok());
         (self.goals.iter())
-            .map(|g| g.physical(g.value(eval, scene), &scene.bounds))
+            .map(|g| {
+                if g.is_robust() {
+                    g.robust_value(robust.as_ref(), least_normalised_margin(eval, scene))
+                } else {
+                    g.value(eval, scene)
+                }
+            })
             .collect()
     }
 
@@ -273,19 +299,7 @@ impl SceneProblem {
                     INVALID_CV
                 };
                 // Robust goals sample only designs that meet every objective as drawn.
-                let robust = (self.tolerance_samples.as_ref())
-                    .filter(|_| cv == 0.0)
-                    .and_then(|samples| robust_score(evaluator, scratch, &eval, samples).ok());
-                let f = (self.goals.iter())
-                    .map(|g| {
-                        if g.is_robust() {
-                            let least = least_normalised_margin(&eval, scratch);
-                            g.robust_value(robust.as_ref(), least)
-                        } else {
-                            g.value(&eval, scratch)
-                        }
-                    })
-                    .collect();
+                let f = self.minimised(evaluator, &eval, scratch, cv == 0.0);
                 (Fitness { cv, f }, Ok(eval))
             }
             Err(e) => (
