@@ -1,6 +1,6 @@
 //! Robust evaluation: one design under its tolerances (64 samples at the default
-//! resolution, 8 gears closed and 64 assemblies), against 64 full evaluations, and the
-//! parts of a sample.
+//! resolution, 8 sets of machined parts solved and 64 assemblies), against 64 full
+//! evaluations, the parts of a sample, and a robust DE search.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use noncirc::core::{
@@ -62,5 +62,30 @@ fn robust(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, robust);
+/// A robust DE search of the default search scene (goal: the probability of meeting every
+/// objective under the default tolerances, 64 samples per feasible candidate), on one and
+/// two threads.
+fn robust_search(c: &mut Criterion) {
+    let mut scene = load_scene(Some("paper-search")).unwrap();
+    scene.search.goals = vec![noncirc::core::Goal::Probability];
+    let mut group = c.benchmark_group("robust_search");
+    group.sample_size(10);
+    for threads in [1, 2] {
+        let options = noncirc::search::RunOptions {
+            threads,
+            checkpoint: None,
+            checkpoint_every: std::time::Duration::from_secs(3600),
+            resume: None,
+            resume_budget: None,
+            stop: std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false)),
+            max_generations: None,
+        };
+        group.bench_function(format!("de_probability/{threads}_threads"), |b| {
+            b.iter(|| noncirc::search::run(&scene, &options, &mut []).unwrap())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, robust, robust_search);
 criterion_main!(benches);

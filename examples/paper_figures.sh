@@ -2,8 +2,8 @@
 # Every figure of docs/figures/ from the command line, as a reader of the papers would make
 # them: the three-arm paper's design (Yin et al. 2021: its trajectory, gear train and
 # objectives, and the parameter response of its Figure 5), the moving-box paper's Figures 3
-# and 11 (Zhou et al. 2018), a search from the paper's space, an NSGA-II front and the
-# animation. CI runs it (tests/run_all.sh) into a temporary folder.
+# and 11 (Zhou et al. 2018), a search from the paper's space, an NSGA-II front, the margins
+# under the tolerances, the Sobol indices and the animation. CI runs it (tests/run_all.sh) into a temporary folder.
 #
 #   bash examples/paper_figures.sh [OUT_DIR] [FORMATS] [DPI]
 #
@@ -53,5 +53,14 @@ plot ground_frame evaluate paper --set 'train.sun_frame="ground"'
 keep ground_frame/trajectory replication_ground_frame
 plot bezier evaluate paper --set 'gear.curve.kind="bezier"'
 keep bezier/trajectory replication_bezier
+# Robust design (docs/robustness.md): the tip-speed optimum's margins under the default
+# tolerances (10 000 independent samples), and the Sobol indices of the paper's design.
+"$NONCIRC" optimise paper-search --seed 1 --quiet --set 'search.goals=["picking_tip_speed"]' \
+  --out "$TMP/tip-results" >/dev/null 2>&1
+plot robust robustness "$TMP/tip-results/best.toml" --samples 10000 --seed 2 \
+  --set tolerances.assemblies_per_part_set=1
+keep robust/robustness_margins robustness_margins
+plot sensitivity sensitivity paper
+keep sensitivity/sensitivity sensitivity
 "$NONCIRC" animate paper --out "$OUT/mechanism.gif" 2>/dev/null
 echo "wrote the figures of docs/figures.md into $OUT ($FORMATS)"

@@ -23,3 +23,11 @@ def test_the_worked_example_and_the_long_search_example_run_as_written(tmp_path,
     assert (tmp_path / "run.ckpt").exists()
     printed = capsys.readouterr().out
     assert "85.0175" in printed and "Objective(name='picking_angle'" in printed
+
+
+def test_the_robust_design_example_runs_as_written(capsys):
+    block = next(b for b in blocks() if "noncirc.robustness(" in b)
+    exec(compile(block, str(DOC), "exec"), {})
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == "0.0" and lines[1] == "0.0"
+    assert lines[2] == "(9, 1024)" and lines[3] == "train.arm_length_mm"

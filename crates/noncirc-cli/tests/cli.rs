@@ -239,3 +239,44 @@ fn teeth_reports_its_checks_and_names_what_it_refuses() {
         "{err}"
     );
 }
+
+#[test]
+fn robustness_and_sensitivity_report_and_name_what_they_refuse() {
+    let run = |args: &[&str]| noncirc().args(args).output().unwrap();
+    // The paper's design misses its module bound: no built machine meets every objective,
+    // and the table says so with the worst case of each objective.
+    let ok = run(&["robustness", "--samples", "32"]);
+    assert_eq!(ok.status.code(), Some(0));
+    let table = String::from_utf8(ok.stdout).unwrap();
+    assert!(table.contains("P(every objective met) = 0.0000"), "{table}");
+    assert!(
+        table.contains("module") && table.contains("at corner"),
+        "{table}"
+    );
+    let json = run(&["robustness", "--samples", "16", "--format", "json"]);
+    let v: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    assert_eq!(v["samples"], 16);
+    assert_eq!(v["objectives"].as_array().unwrap().len(), 9);
+    for (args, named) in [
+        (&["robustness", "--samples", "0"][..], "tolerances.samples"),
+        (
+            &["robustness", "--set", "tolerances.beta0_deg={sigma=-1}"][..],
+            "tolerances.beta0_deg.sigma",
+        ),
+        (&["sensitivity", "--box-scale", "2"][..], "box scale = 2"),
+        (&["sensitivity", "--base-samples", "1"][..], "base samples"),
+        (
+            &[
+                "optimise",
+                "--set",
+                "search.goals=[\"margin_quantile:1.5\"]",
+            ][..],
+            "margin_quantile:1.5",
+        ),
+    ] {
+        let out = run(args);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(named), "{args:?}: {err}");
+    }
+}

@@ -618,7 +618,10 @@ mod tests {
         t.samples = 8;
         let mut ev = Evaluator::new();
         let placed = ev.evaluate(&scene).unwrap();
-        let fixed = Deviated::new(&mut ev, &scene, &placed).unwrap().scene().clone();
+        let fixed = Deviated::new(&mut ev, &scene, &placed)
+            .unwrap()
+            .scene()
+            .clone();
         let nominal = ev.evaluate(&fixed).unwrap();
         let (report, outcomes) = analyse(&mut ev, &scene, &scene.resolution, false).unwrap();
         for o in &outcomes {

@@ -172,7 +172,8 @@ impl Goal {
                 }
             }
             Goal::PickingTipSpeed | Goal::BoxTravel => f,
-            Goal::Probability | Goal::MarginQuantile(_) => -f,
+            // `0 − f`: a probability of 0 reads 0, not −0.
+            Goal::Probability | Goal::MarginQuantile(_) => 0.0 - f,
             Goal::Measure { maximise, .. } => {
                 if maximise {
                     -f
