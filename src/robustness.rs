@@ -8,7 +8,7 @@ use noncirc_core::{
 };
 use serde::Serialize;
 
-use crate::search::{check_threads, map_batch};
+use crate::search::{map_batch, thread_pool};
 use crate::{Error, Result};
 
 /// The success probability over the first `samples` samples.
@@ -231,7 +231,6 @@ pub fn sensitivity(
     box_scale: f64,
     threads: usize,
 ) -> Result<Sensitivity> {
-    check_threads(threads)?;
     if !(box_scale > 0.0 && box_scale <= 1.0) {
         return Err(Error::Input(format!(
             "box scale = {box_scale}: expected above 0, at most 1 (a share of the search box)"
@@ -285,13 +284,7 @@ pub fn sensitivity(
         .collect();
     let measures = outputs(scene);
     let anatomy = measures.iter().any(|m| m.needs_anatomy());
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| Error::Threads {
-            threads,
-            message: e.to_string(),
-        })?;
+    let pool = thread_pool(threads)?;
     let planned = Evaluator::planned(&scene.resolution);
     let y: Vec<Vec<f64>> = map_batch(&pool, &planned, scene, &points, |(ev, s), u| {
         problem.apply(u, s);

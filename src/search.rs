@@ -40,6 +40,18 @@ pub struct ParallelEvaluator<'a> {
 /// exhaust the process's thread limit ("Resource temporarily unavailable").
 pub const MAX_THREADS: usize = 256;
 
+/// A private rayon pool of `threads` threads (checked as [`check_threads`] does).
+pub fn thread_pool(threads: usize) -> Result<rayon::ThreadPool> {
+    check_threads(threads)?;
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::Threads {
+            threads,
+            message: e.to_string(),
+        })
+}
+
 /// Checks a thread count (1 to [`MAX_THREADS`]).
 pub fn check_threads(threads: usize) -> Result<usize> {
     if (1..=MAX_THREADS).contains(&threads) {
@@ -53,14 +65,7 @@ pub fn check_threads(threads: usize) -> Result<usize> {
 
 impl<'a> ParallelEvaluator<'a> {
     pub fn new(problem: &'a SceneProblem, threads: usize) -> Result<Self> {
-        check_threads(threads)?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(|e| Error::Threads {
-                threads,
-                message: e.to_string(),
-            })?;
+        let pool = thread_pool(threads)?;
         let confirm_at = problem.base().resolution;
         Ok(Self {
             problem,

@@ -1,14 +1,9 @@
-//! Robust design: the tolerance analysis converges and its worst case holds, robust
-//! searches reproduce across thread counts and resumes, the Sobol indices do not depend on
-//! the threads.
+//! Robust design: the tolerance analysis converges and its worst case holds, the Sobol
+//! indices do not depend on the threads (robust searches: tests/search.rs).
 
-use noncirc::core::{Algorithm, ObjectiveKind, Scene, SearchState, Spread};
+use noncirc::core::{ObjectiveKind, Scene, Spread};
 use noncirc::robustness::{robustness, sensitivity};
 use noncirc::scene_file::load_scene;
-use noncirc::search::{RunOptions, SearchSettings};
-use std::sync::atomic::AtomicBool;
-use std::sync::Arc;
-use std::time::Duration;
 
 /// The paper's design (without its module objective, which it misses by far) with its
 /// picking angle 0.1° inside the lower bound: the example of a design that fails
@@ -100,74 +95,6 @@ fn the_linearised_worst_case_holds_at_its_corner_and_bounds_the_samples() {
         let w = o.worst_case.as_ref().unwrap();
         assert_eq!(w.predicted_margin, o.nominal_margin, "{:?}", o.objective);
     }
-}
-
-fn robust_search(algorithm: Algorithm) -> Scene {
-    let mut scene = load_scene(Some("paper-search")).unwrap();
-    SearchSettings {
-        algorithm: Some(algorithm),
-        budget: Some(12_000),
-        population: Some(24),
-        seed: Some(1),
-        screening_samples_per_turn: None,
-    }
-    .apply(&mut scene)
-    .unwrap();
-    scene.search.goals = vec![noncirc::core::Goal::MarginQuantile(0.1)];
-    scene.tolerances.samples = 16;
-    scene.tolerances.assemblies_per_part_set = 4;
-    scene
-}
-
-fn options(
-    threads: usize,
-    checkpoint: Option<std::path::PathBuf>,
-    resume: Option<std::path::PathBuf>,
-    max_generations: Option<u64>,
-) -> RunOptions {
-    RunOptions {
-        threads,
-        checkpoint,
-        checkpoint_every: Duration::from_secs(3600),
-        resume,
-        resume_budget: None,
-        stop: Arc::new(AtomicBool::new(false)),
-        max_generations,
-    }
-}
-
-fn fingerprint(state: &SearchState) -> String {
-    serde_json::to_string(&(
-        &state.best,
-        &state.best_confirmed,
-        &state.history,
-        &state.evaluations,
-    ))
-    .unwrap()
-}
-
-#[test]
-fn a_robust_search_is_the_same_on_one_and_two_threads_and_after_a_resume() {
-    let scene = robust_search(Algorithm::De);
-    let run = |o: &RunOptions| noncirc::search::run(&scene, o, &mut []).unwrap();
-    let one = run(&options(1, None, None, None));
-    let two = run(&options(2, None, None, None));
-    assert!(fingerprint(&one.state) == fingerprint(&two.state));
-    // It found designs and scored them by their samples (a quantile, not the sentinel).
-    let best = one
-        .state
-        .best_confirmed
-        .as_ref()
-        .expect("a feasible design");
-    assert!(best.fitness.f[0] < 0.0 && best.fitness.f[0] > -10.0);
-    let dir = std::env::temp_dir().join(format!("noncirc-robust-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let cp = dir.join("run.ckpt");
-    let part = run(&options(2, Some(cp.clone()), None, Some(20)));
-    assert!(part.stopped_early);
-    let resumed = run(&options(1, Some(cp.clone()), Some(cp.clone()), None));
-    assert!(fingerprint(&resumed.state) == fingerprint(&one.state));
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]

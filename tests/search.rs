@@ -616,3 +616,38 @@ fn a_search_can_confirm_its_reported_designs_with_the_teeth() {
     let err = uncounted.validate_search().unwrap_err().to_string();
     assert!(err.contains("gear.module.teeth"), "{err}");
 }
+
+/// A short DE search of the default space under a robust goal (its samples few, for speed).
+fn robust_search() -> noncirc::core::Scene {
+    let mut scene = short_search(Algorithm::De);
+    // Long enough to find designs meeting every objective, whose samples are then drawn.
+    (scene.search.budget, scene.search.seed) = (12_000, 1);
+    scene.search.goals = vec![noncirc::core::Goal::MarginQuantile(0.1)];
+    scene.tolerances.samples = 16;
+    scene.tolerances.assemblies_per_part_set = 4;
+    scene
+}
+
+#[test]
+fn a_robust_search_is_the_same_on_one_and_two_threads_and_after_a_resume() {
+    let scene = robust_search();
+    let search = |o: &RunOptions| run(&scene, o).unwrap();
+    let one = search(&options(1, None, None, None));
+    let two = search(&options(2, None, None, None));
+    assert!(fingerprint(&one.state) == fingerprint(&two.state));
+    // It found designs and scored them by their samples (a quantile, not the sentinel).
+    let best = one
+        .state
+        .best_confirmed
+        .as_ref()
+        .expect("a feasible design");
+    assert!(best.fitness.f[0] < 0.0 && best.fitness.f[0] > -10.0);
+    let dir = std::env::temp_dir().join(format!("noncirc-robust-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cp = dir.join("run.ckpt");
+    let part = search(&options(2, Some(cp.clone()), None, Some(20)));
+    assert!(part.stopped_early);
+    let resumed = search(&options(1, Some(cp.clone()), Some(cp.clone()), None));
+    assert!(fingerprint(&resumed.state) == fingerprint(&one.state));
+    std::fs::remove_dir_all(dir).ok();
+}

@@ -344,6 +344,11 @@ impl Deviated {
 pub fn quantile(values: &[f64], q: f64) -> f64 {
     let mut v: Vec<f64> = values.to_vec();
     v.sort_by(f64::total_cmp);
+    quantile_of_sorted(&v, q)
+}
+
+/// [`quantile`] of values already sorted (by `f64::total_cmp`).
+fn quantile_of_sorted(v: &[f64], q: f64) -> f64 {
     if v.is_empty() {
         return f64::NAN;
     }
@@ -436,10 +441,11 @@ pub fn analyse(
         .transpose()?;
     let objectives = (nominal.objectives.iter().enumerate())
         .map(|(k, o)| {
-            let margins: Vec<f64> = (outcomes.iter())
+            let mut margins: Vec<f64> = (outcomes.iter())
                 .map(|s| s.margins[k])
                 .filter(|m| !m.is_nan())
                 .collect();
+            margins.sort_by(f64::total_cmp);
             let mean = margins.iter().sum::<f64>() / margins.len().max(1) as f64;
             let var = margins.iter().map(|m| (m - mean).powi(2)).sum::<f64>()
                 / (margins.len().max(2) - 1) as f64;
@@ -452,14 +458,15 @@ pub fn analyse(
                     .filter(|s| s.margins[k] >= 0.0 && !s.refused)
                     .count() as f64
                     / n,
-                margin_quantiles: REPORTED_QUANTILES.map(|q| quantile(&margins, q)),
+                margin_quantiles: REPORTED_QUANTILES.map(|q| quantile_of_sorted(&margins, q)),
                 margin_mean: mean,
                 margin_sd: var.sqrt(),
                 worst_case: bounds.as_ref().map(|b| b[k].clone()),
             }
         })
         .collect();
-    let least: Vec<f64> = outcomes.iter().map(|o| o.least_normalised_margin).collect();
+    let mut least: Vec<f64> = outcomes.iter().map(|o| o.least_normalised_margin).collect();
+    least.sort_by(f64::total_cmp);
     let report = ToleranceReport {
         samples: outcomes.len(),
         part_sets: samples.radii.len(),
@@ -469,7 +476,7 @@ pub fn analyse(
         refused: outcomes.iter().filter(|o| o.refused).count(),
         picking_branch_switches: outcomes.iter().filter(|o| o.picking_switch).count(),
         planting_branch_switches: outcomes.iter().filter(|o| o.planting_switch).count(),
-        least_margin_quantiles: REPORTED_QUANTILES.map(|q| quantile(&least, q)),
+        least_margin_quantiles: REPORTED_QUANTILES.map(|q| quantile_of_sorted(&least, q)),
         objectives,
         tray_distance_mm: deviated.scene().agronomy.tray_distance_mm,
     };
@@ -554,7 +561,7 @@ pub struct RobustScore {
 impl RobustScore {
     /// The least normalised margin's `q`-quantile over the samples.
     pub fn margin_quantile(&self, q: f64) -> f64 {
-        quantile(&self.least_margins, q)
+        quantile_of_sorted(&self.least_margins, q)
     }
 }
 
