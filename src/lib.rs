@@ -6,6 +6,7 @@
 
 pub mod accuracy;
 pub mod cad;
+pub mod compare;
 pub mod export;
 #[cfg(feature = "figures")]
 pub mod figures;

@@ -199,3 +199,33 @@ pub fn sensitivity_figures(
         options,
     )
 }
+
+/// Two arms against three: each arm count's slowest design in one figure
+/// (`speed_comparison`), and each design's own figures and exports in `arms_N/` beside its
+/// scene (`best.toml`).
+pub fn comparison_outputs(
+    designs: &[(Scene, Evaluation)],
+    picks_per_minute: f64,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
+    create_dir(dir)?;
+    let mut files = Vec::new();
+    for (scene, eval) in designs {
+        let arms = scene.train.arms;
+        let sub = dir.join(format!("arms_{arms}"));
+        files.extend(evaluation_outputs(scene, eval, &sub, options)?);
+        let toml = crate::files::toml_text(scene, "scene")?;
+        let path = sub.join("best.toml");
+        crate::files::write_file(&path, toml.as_bytes())?;
+        files.push(path);
+    }
+    let figure = crate::figures::SpeedComparisonFigure {
+        designs: (designs.iter())
+            .map(|(scene, eval)| crate::figures::ComparedDesign { scene, eval })
+            .collect(),
+        picks_per_minute,
+    };
+    files.extend(save(&figure, &dir.join("speed_comparison"), options)?);
+    Ok(files)
+}

@@ -183,17 +183,20 @@ pub struct EventsRow {
     /// Margins before the events move to another branch (mm; `None`: a single extreme).
     pub picking_branch_gap_mm: Option<f64>,
     pub planting_branch_gap_mm: Option<f64>,
-    /// Arms I, II and III: arm k's events are arm I's delayed by k·120° of carrier.
+    /// Every arm (I, II, III with three): arm k's events are arm I's delayed by
+    /// k·360°/arms of carrier.
     pub arms: Vec<ArmEvents>,
 }
 
-impl From<&Events> for EventsRow {
-    fn from(e: &Events) -> Self {
-        let arm = |k: usize, name| ArmEvents {
-            arm: name,
-            picking_carrier_deg: (e.picking.carrier_rad.to_degrees() + 120.0 * k as f64)
+impl EventsRow {
+    /// The events of a train of `arms` arm sets.
+    fn new(e: &Events, arms: usize) -> Self {
+        let lag = 360.0 / arms as f64;
+        let arm = |k: usize| ArmEvents {
+            arm: ["I", "II", "III", "IV"][k],
+            picking_carrier_deg: (e.picking.carrier_rad.to_degrees() + lag * k as f64)
                 .rem_euclid(360.0),
-            planting_carrier_deg: (e.planting.carrier_rad.to_degrees() + 120.0 * k as f64)
+            planting_carrier_deg: (e.planting.carrier_rad.to_degrees() + lag * k as f64)
                 .rem_euclid(360.0),
         };
         Self {
@@ -212,7 +215,7 @@ impl From<&Events> for EventsRow {
             picking_refused: e.check.failures(),
             picking_branch_gap_mm: e.picking_branch_gap_mm,
             planting_branch_gap_mm: e.planting_branch_gap_mm,
-            arms: vec![arm(0, "I"), arm(1, "II"), arm(2, "III")],
+            arms: (0..arms).map(arm).collect(),
         }
     }
 }
@@ -290,7 +293,8 @@ impl EvaluationReport {
             trajectory_height_mm: eval.events.as_ref().map(|e| e.y_max_mm - e.y_min_mm),
             feasible: eval.total_violation() == 0.0,
             total_violation: eval.total_violation(),
-            events: eval.events.as_ref().map(EventsRow::from),
+            events: (eval.events.as_ref())
+                .map(|e| EventsRow::new(e, eval.kinematics.as_ref().map_or(3, |k| k.arms()))),
             sections: anatomy.map(|a| a.sections),
             objectives: eval.objectives.iter().map(ObjectiveRow::from).collect(),
             measures: measure_rows(eval, anatomy.as_ref()),

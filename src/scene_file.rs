@@ -142,6 +142,7 @@ pub const BUILTIN: &[(&str, &str)] = &[
     ("moving-box", include_str!("../scenes/moving-box.toml")),
     ("transplanter", include_str!("../scenes/transplanter.toml")),
     ("ellipse-gear", include_str!("../scenes/ellipse-gear.toml")),
+    ("two-arm", include_str!("../scenes/two-arm.toml")),
 ];
 
 /// Largest scene file read (bytes): the built-in scenes are about 3 kB.
@@ -332,7 +333,8 @@ pub fn value_at(scene: &Scene, key: &str) -> Result<serde_json::Value, SceneErro
 }
 
 /// The scene's serialised tree, with what a scene leaves out while it is the default (the
-/// teeth, `search.confirm_with_teeth`, the tolerances) filled in, so that it can be read and set.
+/// teeth, `search.confirm_with_teeth`, the arm count, the picking rate, the tolerances)
+/// filled in, so that it can be read and set.
 fn scene_tree(scene: &Scene) -> serde_json::Value {
     let mut tree = serde_json::to_value(scene).expect("a scene always serialises");
     if let Some(gear) = tree.get_mut("gear").and_then(|g| g.as_object_mut()) {
@@ -344,6 +346,12 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
         search
             .entry("confirm_with_teeth")
             .or_insert(serde_json::Value::Bool(false));
+    }
+    if let Some(train) = tree.get_mut("train").and_then(|t| t.as_object_mut()) {
+        train.entry("arms").or_insert(serde_json::Value::from(3));
+        train
+            .entry("picks_per_minute")
+            .or_insert(serde_json::Value::Null);
     }
     if let Some(top) = tree.as_object_mut() {
         top.entry("tolerances").or_insert_with(|| {

@@ -5,7 +5,7 @@ use noncirc_core::{
     GearPair, Kinematics, Member, ModuleReading, Scene, SceneKind, TeethReport, ToothedPair, Vec2,
 };
 use serde::Serialize;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -244,10 +244,10 @@ impl TeethRun {
     }
 }
 
-/// Every gear of the three-arm train at carrier angle `theta` (rad): the sun turned by its
+/// Every gear of the planetary train at carrier angle `theta` (rad): the sun turned by its
 /// installation angle; each intermediate turned so that its point meeting the sun's `ψ`
 /// faces the sun; each planet at the kinematics' orientation (its frame is the sun's).
-/// Arm `k` stands where arm I stands at `theta + k·120°`.
+/// Arm set `k` stands where arm I stands at `theta + k·360°/arms`.
 pub fn train_layout(kin: &Kinematics, toothed: &ToothedPair, theta: f64) -> Vec<PlacedGear> {
     let sun_angle = kin.spec().sun_angle();
     let mut layout = vec![PlacedGear {
@@ -256,8 +256,8 @@ pub fn train_layout(kin: &Kinematics, toothed: &ToothedPair, theta: f64) -> Vec<
         centre_mm: Vec2::ZERO,
         angle_deg: sun_angle.to_degrees(),
     }];
-    for k in 0..3 {
-        let st = kin.state_at(theta + TAU * k as f64 / 3.0);
+    for k in 0..kin.arms() {
+        let st = kin.state_at(theta + kin.arm_lag(k));
         let towards_sun = (-st.o2.y).atan2(-st.o2.x);
         let psi = towards_sun + PI - sun_angle;
         let chi = toothed.track.driven_angle(psi);

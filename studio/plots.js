@@ -4,7 +4,7 @@
 const NS = 'http://www.w3.org/2000/svg';
 export const COLOURS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf', '#7f7f7f'];
 export const SECTION_COLOURS = { removal: '#1f77b4', conveying: '#2ca02c', planting: '#d62728', return: '#9467bd' };
-export const ARM_COLOURS = ['#c0392b', '#2471a3', '#1e8449'];
+export const ARM_COLOURS = ['#c0392b', '#2471a3', '#1e8449', '#8e44ad'];
 
 /** An SVG element with attributes, appended to `parent` when given. */
 export function el(tag, attrs = {}, parent = null) {

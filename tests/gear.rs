@@ -419,4 +419,3 @@ fn gear_report_ranges_are_the_curve_extremes() {
         .fold(f64::INFINITY, f64::min);
     assert!(sampled_min > report.rho_min_mm);
 }
-

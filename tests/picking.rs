@@ -39,7 +39,7 @@ fn the_default_design_picks_where_a_machine_can() {
         c.planet_behind_mm > 100.0 && c.housing_behind_mm > 40.0,
         "{c:?}"
     );
-    assert!(c.other_arms_behind_mm > 0.0 && c.second_entry_behind_mm.unwrap() > 0.0);
+    assert!(c.other_arms_behind_mm.unwrap() > 0.0 && c.second_entry_behind_mm.unwrap() > 0.0);
     assert!(ev.check.failures().is_none());
     // The tip is outside the gearbox: farther from the carrier axis than the housing.
     let kin = eval.kinematics.as_ref().unwrap();

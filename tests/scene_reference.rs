@@ -62,6 +62,7 @@ fn scenes() -> Vec<noncirc_core::Scene> {
             "tolerances.tray_normal_deg={sigma=0.2}",
         ],
         &["tolerances.samples=32"],
+        &["train.arms=2", "train.picks_per_minute=180"],
     ];
     for edit in edits {
         let edit: Vec<String> = edit.iter().map(|s| s.to_string()).collect();

@@ -122,15 +122,15 @@ where
 {
     let mut shapes: Vec<Outline> = Vec::new();
     let mut arms = Vec::new();
-    for (k, &colour) in ARM_COLOURS.iter().enumerate() {
-        let st = kin.state_at(theta - k as f64 * TAU / 3.0);
+    for (k, &colour) in ARM_COLOURS.iter().enumerate().take(kin.arms()) {
+        let st = kin.state_at(theta - kin.arm_lag(k));
         arms.push(([st.o3, st.tip], colour));
     }
     match teeth {
-        // Toothed gears where they stand (arm k at θ − k·120°, as the arms above).
+        // Toothed gears where they stand (arm k at θ − k·360°/arms, as the arms above).
         Some(toothed) => {
-            for (k, colour) in ARM_COLOURS.into_iter().enumerate() {
-                let layout = crate::teeth::train_layout(kin, toothed, theta - TAU * k as f64 / 3.0);
+            for (k, colour) in ARM_COLOURS.into_iter().enumerate().take(kin.arms()) {
+                let layout = crate::teeth::train_layout(kin, toothed, theta - kin.arm_lag(k));
                 if k == 0 {
                     shapes.push((
                         place(
@@ -165,23 +165,22 @@ where
                 SUN_COLOUR,
                 Gear::Sun,
             ));
-            for (k, &colour) in ARM_COLOURS.iter().enumerate() {
-                let st = kin.state_at(theta - k as f64 * TAU / 3.0);
+            for (k, &colour) in ARM_COLOURS.iter().enumerate().take(kin.arms()) {
+                let st = kin.state_at(theta - kin.arm_lag(k));
                 shapes.push((place(&inter, st.o2, st.theta2), colour, Gear::Intermediate));
                 shapes.push((place(&sun, st.o3, st.theta3), colour, Gear::Planet));
             }
         }
     }
-    let labels = [
-        "sun (fixed)",
-        "intermediates: dashed",
-        "planets: solid",
-        "arm set I",
-        "arm set II",
-        "arm set III",
-    ];
+    let arm_labels: Vec<String> = (0..kin.arms())
+        .map(|k| format!("arm set {}", ARM_NAMES[k]))
+        .collect();
+    let labels: Vec<&str> = ["sun (fixed)", "intermediates: dashed", "planets: solid"]
+        .into_iter()
+        .chain(arm_labels.iter().map(String::as_str))
+        .collect();
     let place = if legend {
-        legend_place(labels, 12, area.dim_in_pixel())
+        legend_place(labels.iter().copied(), 12, area.dim_in_pixel())
     } else {
         LegendPlace { right: 0, below: 0 }
     };
@@ -223,7 +222,7 @@ where
             (labels[1].into(), Swatch::Dashed(grey, 2)),
             (labels[2].into(), Swatch::Line(grey, 2)),
         ];
-        for (k, colour) in ARM_COLOURS.into_iter().enumerate() {
+        for (k, colour) in ARM_COLOURS.into_iter().enumerate().take(kin.arms()) {
             entries.push((labels[3 + k].into(), Swatch::Line(colour.into(), 5)));
         }
         draw_legend(area, chart.plotting_area(), &entries, 12, place)?;

@@ -21,11 +21,11 @@ impl Figure for GroundFigure<'_> {
         root.fill(&WHITE).map_err(err)?;
         // As the seedling-push objective moves the machine.
         let sign = travel_sign(kin, agro, ev);
-        let advance = advance_per_rad(agro);
+        let advance = advance_per_rad(kin.arms(), agro);
         let n = kin.len();
         let turns = 2usize;
         let mut curves = Vec::new();
-        for k in 0..3 {
+        for k in 0..kin.arms() {
             let pts: Vec<Vec2> = (0..=turns * n)
                 .map(|j| {
                     let theta = TAU * j as f64 / n as f64;
@@ -82,9 +82,9 @@ impl Figure for GroundFigure<'_> {
             let pts: Vec<(f64, f64)> = pts.iter().map(|&p| p.into()).collect();
             fine_line(&mut chart, &pts, ARM_COLOURS[k].into(), 2)?;
         }
-        // Seedlings at each planting: arm k plants at θp + k·120° (+ whole turns).
-        for k in 0..3 * turns {
-            let theta = ev.planting.carrier_rad + k as f64 * TAU / 3.0;
+        // Seedlings at each planting: arm k plants at θp + k·360°/arms (+ whole turns).
+        for k in 0..kin.arms() * turns {
+            let theta = ev.planting.carrier_rad + k as f64 * TAU / kin.arms() as f64;
             if theta > turns as f64 * TAU {
                 continue;
             }
@@ -100,10 +100,10 @@ impl Figure for GroundFigure<'_> {
                 ))
                 .map_err(err)?;
         }
-        let mut entries: Entries = (0..3)
+        let mut entries: Entries = (0..kin.arms())
             .map(|k| {
                 (
-                    labels[k].to_string(),
+                    format!("arm {}", ARM_NAMES[k]),
                     Swatch::Line(ARM_COLOURS[k].into(), 2),
                 )
             })

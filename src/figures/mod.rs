@@ -23,6 +23,7 @@ mod lines;
 mod moving_box;
 mod objectives;
 mod robustness;
+mod speeds;
 mod teeth;
 mod trajectory;
 
@@ -33,6 +34,7 @@ pub use lines::LinesFigure;
 pub use moving_box::BoxFigure;
 pub use objectives::ObjectivesFigure;
 pub use robustness::{MarginsFigure, SensitivityFigure};
+pub use speeds::{ComparedDesign, SpeedComparisonFigure};
 pub use teeth::{teeth_figures, TeethFigure};
 pub use trajectory::TrajectoryFigure;
 
@@ -632,11 +634,16 @@ fn equal_ranges(
     )
 }
 
-const ARM_COLOURS: [RGBColor; 3] = [
+/// One colour per arm set (up to `TrainSpec::MAX_ARMS`).
+const ARM_COLOURS: [RGBColor; 4] = [
     RGBColor(200, 30, 30),
     RGBColor(30, 110, 200),
     RGBColor(40, 150, 60),
+    RGBColor(150, 80, 170),
 ];
+
+/// Roman numerals of the arms: I, II, III, IV.
+const ARM_NAMES: [&str; 4] = ["I", "II", "III", "IV"];
 
 /// Colours of the trajectory's sections, in `Section::ALL` order.
 const SECTION_COLOURS: [RGBColor; 4] = [

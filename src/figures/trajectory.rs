@@ -56,8 +56,8 @@ impl Figure for TrajectoryFigure<'_> {
                 )
             })
             .collect();
-        let arm_labels: Vec<String> = (0..3)
-            .map(|k| format!("arm {} at θ = 0°, 24°, …, 96°", ["I", "II", "III"][k]))
+        let arm_labels: Vec<String> = (0..kin.arms())
+            .map(|k| format!("arm {} at θ = 0°, 24°, …, 96°", ARM_NAMES[k]))
             .collect();
         let event_labels: Vec<String> = [("picking", &ev.picking), ("planting", &ev.planting)]
             .iter()
@@ -69,11 +69,11 @@ impl Figure for TrajectoryFigure<'_> {
                 )
             })
             .collect();
-        // The arms at the poses drawn: all three at five carrier angles 24° apart.
-        let poses: Vec<(usize, Vec2, Vec2)> = (0..3)
+        // The arms at the poses drawn: every arm at five carrier angles 24° apart.
+        let poses: Vec<(usize, Vec2, Vec2)> = (0..kin.arms())
             .flat_map(|k| {
                 (0..5).map(move |step| {
-                    let theta = step as f64 * TAU / 15.0 - k as f64 * TAU / 3.0;
+                    let theta = step as f64 * TAU / 15.0 - kin.arm_lag(k);
                     let st = kin.state_at(theta);
                     (k, st.o3, st.tip)
                 })
@@ -82,7 +82,10 @@ impl Figure for TrajectoryFigure<'_> {
         let (margin, x_label, y_label) = (12u32, 40u32, 60u32);
         let area = root
             .titled(
-                "Tip trajectory relative to the machine (three arms)",
+                &format!(
+                    "Tip trajectory relative to the machine ({})",
+                    ["one arm", "two arms", "three arms", "four arms"][kin.arms() - 1]
+                ),
                 (FONT, 22),
             )
             .map_err(err)?;

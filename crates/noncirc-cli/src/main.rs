@@ -236,6 +236,11 @@ enum Command {
     /// the scene's search box (Saltelli sampling, Jansen estimators, bootstrap intervals).
     /// docs/robustness.md
     Sensitivity(SensitivityArgs),
+    /// Two arms against three: for each arm count, the least picking tip speed relative to
+    /// the seedling of a design meeting every objective at one picking rate (a search per
+    /// seed), and the paper's design with each arm count. With no scene: `paper-search`.
+    /// docs/replication.md
+    Compare(CompareArgs),
     /// List the built-in scenes; with --reference, every field of a scene (docs/scenes.md).
     Scenes(ScenesArgs),
     /// List every measure (`sweep --measure`, goals `min:NAME`/`max:NAME`) with its unit.
@@ -243,6 +248,33 @@ enum Command {
     /// Serve the design studio (build it first: `bash studio/build.sh`) on 127.0.0.1 and
     /// print its address. docs/studio.md
     Studio(StudioArgs),
+}
+
+#[derive(clap::Args)]
+struct CompareArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Arm counts to compare (comma-separated, each 1 to 4).
+    #[arg(long, value_delimiter = ',', default_values_t = [2, 3])]
+    arms: Vec<usize>,
+    /// Search seeds: one search per arm count and seed.
+    #[arg(long, value_delimiter = ',', default_values_t = [1, 2, 3, 4, 5])]
+    seeds: Vec<u64>,
+    /// The picking rate every train runs at (the paper's rig: 180).
+    #[arg(long, default_value_t = 180.0)]
+    picks_per_minute: f64,
+    /// The speed compared and minimised by each search, a measure in m/s (`noncirc
+    /// measures`): the mean speed while the tip is inside the tray, or
+    /// `picking_tip_speed_m_s`, the speed at the picking instant (a cusp can bring it to 0).
+    #[arg(long, default_value = noncirc::compare::DEFAULT_MEASURE)]
+    measure: String,
+    /// Each search's evaluation budget: at 200 000 the least speeds over seeds agree to a
+    /// few per cent on `paper-search` (at its own 60 000 they spread by half).
+    #[arg(long, default_value_t = 200_000)]
+    budget: u64,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
 }
 
 #[derive(clap::Args)]
@@ -620,6 +652,53 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
             match args.scene.format {
                 Format::Json => out(&json(&rows)?)?,
                 Format::Table => out(&noncirc::report::sweep_table(&args.param, &rows))?,
+            }
+        }
+        Command::Compare(args) => {
+            let source = args.scene.input.scene.as_deref().or(Some("paper-search"));
+            let scene = load_scene_with(source, &args.scene.input.set)?;
+            let paper = load_scene_with(Some("paper"), &[])?;
+            let options = noncirc::compare::CompareOptions {
+                arms: args.arms.clone(),
+                seeds: args.seeds.clone(),
+                picks_per_minute: args.picks_per_minute,
+                measure: noncirc::core::Measure::parse(&args.measure)?,
+                budget: Some(args.budget),
+                threads: noncirc::search::threads_or_all(args.threads)?,
+            };
+            let c = noncirc::compare::compare(&scene, &paper, &options, &mut |r| {
+                eprintln!(
+                    "{} arms, seed {}: {} in {:.1} s",
+                    r.arms,
+                    r.seed,
+                    (r.speeds.compared_m_s)
+                        .filter(|_| r.speeds.feasible)
+                        .map_or("no feasible design".into(), |v| format!("{v:.4} m/s")),
+                    r.seconds
+                );
+            })?;
+            if let Some(dir) = &args.scene.plot {
+                let figures = args.scene.figures()?;
+                let mut designs = Vec::new();
+                for &arms in &args.arms {
+                    if let Some(best) = noncirc::compare::best_scene(&scene, &c, arms)? {
+                        let (_, eval) = EvaluationReport::from_scene(&best)?;
+                        designs.push((best, eval));
+                    }
+                }
+                let files = noncirc::plots::comparison_outputs(
+                    &designs,
+                    c.picks_per_minute,
+                    dir,
+                    &figures,
+                )?;
+                for f in files {
+                    eprintln!("wrote {}", f.display());
+                }
+            }
+            match args.scene.format {
+                Format::Json => out(&json(&c)?)?,
+                Format::Table => out(&noncirc::compare::comparison_table(&c))?,
             }
         }
         Command::Robustness(args) => {

@@ -280,3 +280,53 @@ fn robustness_and_sensitivity_report_and_name_what_they_refuse() {
         assert!(err.contains(named), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn compare_reports_both_arm_counts_and_names_what_it_refuses() {
+    let run = |args: &[&str]| noncirc().args(args).output().unwrap();
+    let dir = temp("compare");
+    let plot = dir.to_str().unwrap();
+    let ok = run(&[
+        "compare", "--seeds", "1", "--budget", "20000", "--format", "json", "--plot", plot,
+    ]);
+    assert_eq!(
+        ok.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&ok.stdout).unwrap();
+    assert_eq!(v["measure"], "in_tray_speed_m_s");
+    assert_eq!(v["arms"].as_array().unwrap().len(), 2);
+    assert_eq!(v["reductions"][0]["arms"], 3);
+    for file in [
+        "speed_comparison.png",
+        "arms_2/best.toml",
+        "arms_3/trajectory.png",
+    ] {
+        assert!(dir.join(file).is_file(), "{file}");
+    }
+    // The scene written for two arms is the design the table reports, with its arm count.
+    let best = dir.join("arms_2/best.toml");
+    let eval = run(&["evaluate", best.to_str().unwrap(), "--format", "json"]);
+    let e: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
+    assert_eq!(e["events"]["arms"].as_array().unwrap().len(), 2);
+    for (args, named) in [
+        (&["compare", "--arms", "2,5"][..], "train.arms = 5"),
+        (
+            &["compare", "--measure", "loop_height_mm"][..],
+            "loop_height_mm",
+        ),
+        (&["compare", "--measure", "nope"][..], "nope"),
+        (
+            &["compare", "--picks-per-minute", "0"][..],
+            "picks per minute = 0",
+        ),
+        (&["compare", "--seeds", ""][..], "seed"),
+    ] {
+        let out = run(args);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(named), "{args:?}: {err}");
+    }
+}

@@ -97,6 +97,11 @@ pub struct Anatomy {
     pub picking_to_planting_height_mm: f64,
     /// Tip speed in the ground frame at planting, with the machine's advance (m/s).
     pub planting_ground_speed_m_s: f64,
+    /// Mean tip speed relative to the (machine-fixed) seedling while the tip is inside the
+    /// tray (m/s): its path from entering the tray to leaving it over the time it takes.
+    /// Unlike the speed at the picking instant, which a cusp there can bring to zero, it
+    /// cannot fall below two tray depths per window.
+    pub in_tray_speed_m_s: f64,
 }
 
 impl Anatomy {
@@ -144,9 +149,16 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
         measure_section(kin, &speeds, Section::ALL[i], t0, t1)
     });
     let removal: &SectionMeasures = &sections[0];
+    let [w0, w1] = ev.picking_window_rad;
+    // A tray the tip does not reach has an empty window: the speed at picking itself.
+    let in_tray = if w1 > w0 {
+        path_length(kin, &speeds, w0, w1) / (w1 - w0)
+    } else {
+        kin.state_at(tp).tip_d1.hypot()
+    };
     let planted = kin.state_at(tl);
     let ground_velocity = Vec2::new(
-        travel_sign(kin, agro, ev) * planted.tip_d1.x + advance_per_rad(agro),
+        travel_sign(kin, agro, ev) * planted.tip_d1.x + advance_per_rad(kin.arms(), agro),
         planted.tip_d1.y,
     );
     Anatomy {
@@ -157,14 +169,34 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
         return_height_mm: sections[3].y_max_mm,
         picking_to_planting_height_mm: ev.picking.tip_mm.y - ev.planting.tip_mm.y,
         planting_ground_speed_m_s: ground_velocity.hypot() * kin.carrier_speed() / 1000.0,
+        in_tray_speed_m_s: in_tray * kin.carrier_speed() / 1000.0,
         sections,
     }
 }
 
-/// The measures of one section `[t0, t1]` (rad, unwrapped): the path length by the
+/// The tip's path length over carrier angles `[t0, t1]` (rad, unwrapped; mm): the
 /// trapezoid rule of the tip speed `speeds` (mm/rad at the nodes) on the nodes inside plus
-/// the two partial cells, the extremes of x and y at the nodes inside (refined by the
-/// parabola through the neighbours) and at the ends.
+/// the two partial cells.
+fn path_length(kin: &Kinematics, speeds: &[f64], t0: f64, t1: f64) -> f64 {
+    let h = TAU / kin.len() as f64;
+    let at = |k: i64| k.rem_euclid(kin.len() as i64) as usize;
+    let speed = |t: f64| kin.state_at(t).tip_d1.hypot();
+    // Nodes strictly inside (t0, t1).
+    let (first, last) = ((t0 / h).floor() as i64 + 1, (t1 / h).ceil() as i64 - 1);
+    if first > last {
+        return 0.5 * (speed(t0) + speed(t1)) * (t1 - t0);
+    }
+    let mut length = 0.5 * (speed(t0) + speeds[at(first)]) * (first as f64 * h - t0)
+        + 0.5 * (speed(t1) + speeds[at(last)]) * (t1 - last as f64 * h);
+    for k in first..last {
+        length += 0.5 * (speeds[at(k)] + speeds[at(k + 1)]) * h;
+    }
+    length
+}
+
+/// The measures of one section `[t0, t1]` (rad, unwrapped): the path length
+/// ([`path_length`]), the extremes of x and y at the nodes inside (refined by the parabola
+/// through the neighbours) and at the ends.
 fn measure_section(
     kin: &Kinematics,
     speeds: &[f64],
@@ -176,21 +208,13 @@ fn measure_section(
     let h = TAU / n as f64;
     let tips = kin.tips();
     let at = |k: i64| k.rem_euclid(n as i64) as usize;
-    let (a, b) = (kin.state_at(t0), kin.state_at(t1));
-    let speed = |s: &crate::planetary::ArmState| s.tip_d1.hypot();
+    let (a, b) = (kin.state_at(t0).tip, kin.state_at(t1).tip);
     // Nodes strictly inside (t0, t1).
     let (first, last) = ((t0 / h).floor() as i64 + 1, (t1 / h).ceil() as i64 - 1);
-    let mut length = 0.0;
-    let mut extent = [a.tip.x.min(b.tip.x), a.tip.x.max(b.tip.x)];
-    let mut heights = [a.tip.y.min(b.tip.y), a.tip.y.max(b.tip.y)];
-    if first > last {
-        length = 0.5 * (speed(&a) + speed(&b)) * (t1 - t0);
-    } else {
-        length += 0.5 * (speed(&a) + speeds[at(first)]) * (first as f64 * h - t0);
-        length += 0.5 * (speed(&b) + speeds[at(last)]) * (t1 - last as f64 * h);
-        for k in first..last {
-            length += 0.5 * (speeds[at(k)] + speeds[at(k + 1)]) * h;
-        }
+    let length = path_length(kin, speeds, t0, t1);
+    let mut extent = [a.x.min(b.x), a.x.max(b.x)];
+    let mut heights = [a.y.min(b.y), a.y.max(b.y)];
+    if first <= last {
         for k in first..=last {
             let (m, c, p) = (tips[at(k - 1)], tips[at(k)], tips[at(k + 1)]);
             for ([m, c, p], range) in [

@@ -49,9 +49,9 @@ pub struct PickingCheck {
     pub pusher_into_tray_mm: f64,
     /// `S · (arm direction · n)`, the same for the arm line `O3 → D` (mm).
     pub arm_into_tray_mm: f64,
-    /// How far arms II and III (capsules of the arm half-width) stay behind the tray
-    /// surface at the picking instant (mm).
-    pub other_arms_behind_mm: f64,
+    /// How far the other arms (capsules of the arm half-width; II and III of three) stay
+    /// behind the tray surface at the picking instant (mm); `None` for a one-arm train.
+    pub other_arms_behind_mm: Option<f64>,
     /// How far the next candidate extreme along `n` (another branch of the trajectory)
     /// stays behind the tray surface (mm); `None` when the trajectory has one extreme.
     pub second_entry_behind_mm: Option<f64>,
@@ -71,11 +71,10 @@ impl PickingCheck {
             ),
             ("pusher points into the tray", self.pusher_into_tray_mm),
             ("arm points into the tray", self.arm_into_tray_mm),
-            (
-                "arms II and III behind the tray surface",
-                self.other_arms_behind_mm,
-            ),
         ];
+        if let Some(d) = self.other_arms_behind_mm {
+            out.push(("the other arms behind the tray surface", d));
+        }
         if let Some(r) = self.reach_mm {
             out.push(("tip within the tray depth", r));
         }
@@ -295,11 +294,10 @@ fn picking_check(
     let s = kin.spec().arm_length_mm;
     let tip_depth = dot(picked.tip) - surface;
     let arm = picked.tip - picked.o3;
-    // Arms II and III lag arm I by 120° and 240°: their states are arm I's at θ − 120°, θ − 240°.
-    let other_arms_behind = [1.0, 2.0]
-        .iter()
+    // Arm k lags arm I by k·360°/arms: its state is arm I's at θ − k·360°/arms.
+    let other_arms_behind = (1..kin.arms())
         .map(|k| {
-            let other = kin.state_at(picked.theta - k * TAU / 3.0);
+            let other = kin.state_at(picked.theta - kin.arm_lag(k));
             surface - dot(other.o3).max(dot(other.tip)) - agro.arm_half_width_mm
         })
         .fold(f64::INFINITY, f64::min);
@@ -313,7 +311,7 @@ fn picking_check(
         housing_behind_mm: surface - housing_radius(kin, agro),
         pusher_into_tray_mm: s * dot(unit(picked.pusher_angle)),
         arm_into_tray_mm: dot(arm),
-        other_arms_behind_mm: other_arms_behind,
+        other_arms_behind_mm: (kin.arms() > 1).then_some(other_arms_behind),
         second_entry_behind_mm: runner_up.map(|r| surface - r),
     }
 }

@@ -37,6 +37,7 @@ pub enum Scalar {
     PlantingCarrier,
     PickingWindow,
     PickingTipSpeed,
+    InTraySpeed,
     PlantingGroundSpeed,
     PickingBranchGap,
     PlantingBranchGap,
@@ -50,11 +51,12 @@ pub enum Scalar {
 }
 
 impl Scalar {
-    const ALL: [Scalar; 14] = [
+    const ALL: [Scalar; 15] = [
         Scalar::PickingCarrier,
         Scalar::PlantingCarrier,
         Scalar::PickingWindow,
         Scalar::PickingTipSpeed,
+        Scalar::InTraySpeed,
         Scalar::PlantingGroundSpeed,
         Scalar::PickingBranchGap,
         Scalar::PlantingBranchGap,
@@ -81,6 +83,10 @@ impl Scalar {
             Scalar::PickingTipSpeed => (
                 "picking_tip_speed_m_s",
                 "tip speed relative to the seedling at picking",
+            ),
+            Scalar::InTraySpeed => (
+                "in_tray_speed_m_s",
+                "mean tip speed relative to the seedling while inside the tray",
             ),
             Scalar::PlantingGroundSpeed => (
                 "planting_ground_speed_m_s",
@@ -165,7 +171,9 @@ impl Measure {
             Measure::Objective(k) => k.unit(),
             Measure::Section(_, SectionQuantity::Span) => "deg",
             Measure::Section(..) => "mm",
-            Measure::Scalar(Scalar::PickingTipSpeed | Scalar::PlantingGroundSpeed) => "m/s",
+            Measure::Scalar(
+                Scalar::PickingTipSpeed | Scalar::InTraySpeed | Scalar::PlantingGroundSpeed,
+            ) => "m/s",
             Measure::Scalar(
                 Scalar::PickingCarrier | Scalar::PlantingCarrier | Scalar::PickingWindow,
             ) => "deg",
@@ -212,6 +220,7 @@ impl Measure {
             Measure::Section(..)
                 | Measure::Scalar(
                     Scalar::PlantingGroundSpeed
+                        | Scalar::InTraySpeed
                         | Scalar::ReturnHeight
                         | Scalar::LoopWidth
                         | Scalar::LoopHeight
@@ -250,6 +259,7 @@ impl Measure {
                     ev.map(|e| e.picking.tip_mm.y - e.planting.tip_mm.y)
                 }
                 Scalar::PlantingGroundSpeed => anatomy.map(|a| a.planting_ground_speed_m_s),
+                Scalar::InTraySpeed => anatomy.map(|a| a.in_tray_speed_m_s),
                 Scalar::ReturnHeight => anatomy.map(|a| a.return_height_mm),
                 Scalar::LoopWidth => anatomy.map(|a| a.loop_width_mm),
                 Scalar::LoopHeight => anatomy.map(|a| a.loop_height_mm),

@@ -375,7 +375,10 @@ impl Segment {
 
 /// Objective 1: least clearance between arm capsules and against the other planets' gear
 /// envelopes (circles of the sun's largest radius) over the cycle (mm). By the train's
-/// three-fold symmetry, arm I against arm II and planets II, III covers every pair.
+/// symmetry (arm k is arm I a k-th of a turn later), arm I against every other planet and
+/// against the arms at lags 1 … arms/2 covers every pair: the pair at lag m is the pair at
+/// lag arms − m seen from the other arm. A one-arm train has no pair (the scene refuses
+/// this objective there); it reads +∞.
 pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     let n = kin.len();
     let (tips, centres) = (kin.tips(), kin.planet_centres());
@@ -384,23 +387,20 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     // Every arm segment O3→D has length S.
     let s = kin.spec().arm_length_mm;
     let arm = |j: usize| Segment::with_inv_len2(centres[j], tips[j], 1.0 / (s * s));
-    // Arm I (`seg`) against the planets at nodes k2, k3, and against arm II (`other`).
-    let planets = |seg: &Segment, k2: usize, k3: usize| {
-        seg.distance_sq(centres[k2])
-            .min(seg.distance_sq(centres[k3]))
-            .sqrt()
-            - rmax
-            - w
-    };
+    let planet_lags = 1..kin.arms();
+    let arm_lags = 1..=kin.arms() / 2;
+    // Arm I (`seg`) against a planet centre, and against another arm.
+    let planet = |seg: &Segment, c: Vec2| seg.distance_sq(c).sqrt() - rmax - w;
     let arms = |seg: &Segment, other: &Segment| seg.distance_sq_to(other).sqrt() - 2.0 * w;
     let clearance = |j: usize| {
-        let (k2, k3) = (kin.arm_node(1, j), kin.arm_node(2, j));
         let seg = arm(j);
-        arms(&seg, &arm(k2)).min(planets(&seg, k2, k3))
+        let others = (arm_lags.clone()).map(|m| arms(&seg, &arm(kin.arm_node(m, j))));
+        let planets = (planet_lags.clone()).map(|m| planet(&seg, centres[kin.arm_node(m, j)]));
+        others.chain(planets).fold(f64::INFINITY, f64::min)
     };
     // Every point of an arm lies within S/2 of its midpoint m, so arm I is at least
     // |m − c| − S/2 from a planet centre c, and at least |m − m₂| − S, then
-    // dist(m, arm II) − S/2, from arm II. Where such a bound cannot beat the least
+    // dist(m, arm II) − S/2, from another arm. Where such a bound cannot beat the least
     // clearance so far, the exact distance is skipped: squared distances only, no root.
     // The margin covers rounding in |O3D| = S.
     let half = 0.5 * s * (1.0 + 1e-12);
@@ -409,26 +409,32 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     // The least clearance node; a NaN (numerical breakdown) loses to any number.
     let (mut j, mut least) = (0, clearance(0));
     for k in 1..n {
-        let (k2, k3) = (kin.arm_node(1, k), kin.arm_node(2, k));
         let seg = arm(k);
         let m = seg.midpoint();
         let planet_reach = least + rmax + w + half;
-        let planets_far = beyond(dist_sq(m, centres[k2]), planet_reach)
-            && beyond(dist_sq(m, centres[k3]), planet_reach);
-        let arm_2 = arm(k2);
-        let arms_far = beyond(dist_sq(m, arm_2.midpoint()), least + 2.0 * w + 2.0 * half)
-            || beyond(arm_2.distance_sq(m), least + 2.0 * w + half);
         // A part whose bound holds is at least `least`: leaving it out cannot change
         // whether, or to what, the least clearance moves.
-        let c = match (planets_far, arms_far) {
-            (true, true) => continue,
-            (true, false) => arms(&seg, &arm_2),
-            (false, true) => planets(&seg, k2, k3),
-            (false, false) => arms(&seg, &arm_2).min(planets(&seg, k2, k3)),
-        };
-        if c < least || least.is_nan() {
+        let mut c = f64::INFINITY;
+        for lag in arm_lags.clone() {
+            let other = arm(kin.arm_node(lag, k));
+            let far = beyond(dist_sq(m, other.midpoint()), least + 2.0 * w + 2.0 * half)
+                || beyond(other.distance_sq(m), least + 2.0 * w + half);
+            if !far {
+                c = c.min(arms(&seg, &other));
+            }
+        }
+        for lag in planet_lags.clone() {
+            let centre = centres[kin.arm_node(lag, k)];
+            if !beyond(dist_sq(m, centre), planet_reach) {
+                c = c.min(planet(&seg, centre));
+            }
+        }
+        if c < least || (least.is_nan() && c.is_finite()) {
             (j, least) = (k, c);
         }
+    }
+    if !least.is_finite() {
+        return least;
     }
     let wrap = |j: usize| if j >= n { j - n } else { j };
     parabola_vertex(clearance(wrap(j + n - 1)), least, clearance(wrap(j + 1)))
@@ -449,9 +455,10 @@ pub fn travel_sign(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     }
 }
 
-/// The machine's advance per radian of carrier (mm/rad): three plant spacings per turn.
-pub fn advance_per_rad(agro: &Agronomy) -> f64 {
-    3.0 * agro.plant_spacing_mm / TAU
+/// The machine's advance per radian of carrier (mm/rad): one plant spacing per arm, so
+/// `arms` spacings per turn.
+pub fn advance_per_rad(arms: usize, agro: &Agronomy) -> f64 {
+    arms as f64 * agro.plant_spacing_mm / TAU
 }
 
 /// Objective 5: worst forward excursion of the tip past the planted seedling in the ground
@@ -460,7 +467,7 @@ pub fn advance_per_rad(agro: &Agronomy) -> f64 {
 pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     let n = kin.len();
     let h = TAU / n as f64;
-    let advance = advance_per_rad(agro);
+    let advance = advance_per_rad(kin.arms(), agro);
     let tp = ev.planting.carrier_rad;
     let forward = travel_sign(kin, agro, ev);
     let top = ev.planting.tip_mm.y + agro.seedling_height_mm;
@@ -593,46 +600,72 @@ mod tests {
     }
 
     #[test]
-    fn pruned_interference_equals_the_full_scan() {
-        // Every node's exact clearance, no pruning, the same parabola refinement.
+    fn pruned_interference_equals_the_full_scan_of_every_pair() {
+        // Every node, every pair of arms (a, b) and every arm against every other planet,
+        // no pruning and no symmetry: its least value over the nodes is the pruned scan's
+        // least node, and the objective refines it with the same parabola.
         let full_scan = |kin: &Kinematics, agro: &Agronomy| {
             let (n, s) = (kin.len(), kin.spec().arm_length_mm);
             let (tips, centres) = (kin.tips(), kin.planet_centres());
             let arm = |j: usize| Segment::with_inv_len2(centres[j], tips[j], 1.0 / (s * s));
             let w = agro.arm_half_width_mm;
-            let clearance = |j: usize| {
-                let (k2, k3) = (kin.arm_node(1, j), kin.arm_node(2, j));
-                let planets = arm(j)
-                    .distance_sq(centres[k2])
-                    .min(arm(j).distance_sq(centres[k3]));
-                let arms = arm(j).distance_sq_to(&arm(k2));
-                (arms.sqrt() - 2.0 * w).min(planets.sqrt() - kin.radius_range().1 - w)
+            let rmax = kin.radius_range().1;
+            // Arm a at node j against arm b's capsule, and against planet b.
+            let capsules = |j: usize, a: usize, b: usize| {
+                let seg = arm(kin.arm_node(a, j));
+                seg.distance_sq_to(&arm(kin.arm_node(b, j))).sqrt() - 2.0 * w
             };
-            let values: Vec<f64> = (0..n).map(clearance).collect();
+            let planet = |j: usize, a: usize, b: usize| {
+                let seg = arm(kin.arm_node(a, j));
+                seg.distance_sq(centres[kin.arm_node(b, j)]).sqrt() - rmax - w
+            };
+            let pair = |j: usize, a: usize, b: usize| capsules(j, a, b).min(planet(j, a, b));
+            let arms = kin.arms();
+            let every_pair = (0..n)
+                .flat_map(|j| (0..arms).flat_map(move |a| (0..arms).map(move |b| (j, a, b))))
+                .filter(|&(_, a, b)| a != b)
+                .map(|(j, a, b)| pair(j, a, b))
+                .fold(f64::INFINITY, f64::min);
+            // Arm I against the arms at lags 1 … arms/2 and every other planet, node by
+            // node, refined as the objective refines its least node.
+            let values: Vec<f64> = (0..n)
+                .map(|j| {
+                    let near = (1..=arms / 2).map(|b| capsules(j, 0, b));
+                    let planets = (1..arms).map(|b| planet(j, 0, b));
+                    near.chain(planets).fold(f64::INFINITY, f64::min)
+                })
+                .collect();
             let j = (0..n).fold(0, |b, j| if values[j] < values[b] { j } else { b });
-            parabola_vertex(values[(j + n - 1) % n], values[j], values[(j + 1) % n])
+            let refined = parabola_vertex(values[(j + n - 1) % n], values[j], values[(j + 1) % n]);
+            (every_pair, values[j], refined)
         };
         let curve = crate::CurveSpec::paper().build().unwrap();
         let agro = Agronomy::default();
         let mut checked = 0;
-        for beta0 in [-60.0, -29.0, 0.0, 40.0, 120.0] {
-            for gamma0 in [-80.0, -53.0, -20.0, 60.0] {
-                for width in [2.0, 12.0, 40.0] {
-                    let spec = crate::TrainSpec {
-                        beta0_deg: beta0,
-                        gamma0_deg: gamma0,
-                        ..Default::default()
-                    };
-                    let agro = Agronomy {
-                        arm_half_width_mm: width,
-                        ..agro
-                    };
-                    let kin =
-                        Kinematics::solve(&curve, &spec, &crate::Resolution::DEFAULT).unwrap();
-                    let (fast, full) =
-                        (interference_clearance(&kin, &agro), full_scan(&kin, &agro));
-                    assert_eq!(fast, full, "β0 {beta0}, γ0 {gamma0}, w {width}");
-                    checked += usize::from(full < 0.0);
+        for arms in [2, 3, 4] {
+            for beta0 in [-60.0, -29.0, 0.0, 40.0, 120.0] {
+                for gamma0 in [-80.0, -53.0, -20.0, 60.0] {
+                    for width in [2.0, 12.0, 40.0] {
+                        let spec = crate::TrainSpec {
+                            beta0_deg: beta0,
+                            gamma0_deg: gamma0,
+                            arms,
+                            ..Default::default()
+                        };
+                        let agro = Agronomy {
+                            arm_half_width_mm: width,
+                            ..agro
+                        };
+                        let kin =
+                            Kinematics::solve(&curve, &spec, &crate::Resolution::DEFAULT).unwrap();
+                        let value = interference_clearance(&kin, &agro);
+                        let (every_pair, least_node, refined) = full_scan(&kin, &agro);
+                        let at = format!("{arms} arms, β0 {beta0}, γ0 {gamma0}, w {width}");
+                        // Arm I's lags cover every pair, and the pruning changes nothing.
+                        assert!((every_pair - least_node).abs() < 1e-9, "{at}");
+                        assert_eq!(value, refined, "{at}");
+                        checked += usize::from(least_node < 0.0);
+                    }
                 }
             }
         }

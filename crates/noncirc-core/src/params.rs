@@ -103,6 +103,8 @@ const SCALARS: &[(&str, Get, Set)] = &[
     real!("train.pusher_offset_mm", train.pusher_offset_mm),
     real!("train.gamma0_deg", train.gamma0_deg),
     real!("train.carrier_speed_rpm", train.carrier_speed_rpm),
+    integer!("train.arms", usize, train.arms),
+    optional!("train.picks_per_minute", train.picks_per_minute),
     real!("agronomy.tray_normal_deg", agronomy.tray_normal_deg),
     real!("agronomy.tray_depth_mm", agronomy.tray_depth_mm),
     optional!("agronomy.tray_distance_mm", agronomy.tray_distance_mm),

@@ -74,8 +74,19 @@ pub struct TrainSpec {
     pub pusher_side: PusherSide,
     /// How the sun's control angles sit in the ground frame.
     pub sun_frame: SunFrame,
-    /// Carrier speed (r/min): 60 gives the paper's 180 picks per minute.
+    /// Carrier speed (r/min): 60 gives the paper's 180 picks per minute. Not used when
+    /// `picks_per_minute` is set.
     pub carrier_speed_rpm: f64,
+    /// Arm sets on the carrier, evenly spaced (1 to 4): each a planet, an intermediate
+    /// and an arm. The paper's mechanism has three; the classic rotary one two. Left out
+    /// of a written scene while it is 3.
+    #[serde(skip_serializing_if = "TrainSpec::is_three")]
+    pub arms: usize,
+    /// The picking rate (picks per minute): when set, the carrier turns at
+    /// `picks_per_minute / arms` r/min, so trains with other arm counts compare at the
+    /// same rate. Left out of a written scene while unset.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub picks_per_minute: Option<f64>,
 }
 
 impl Default for TrainSpec {
@@ -90,11 +101,33 @@ impl Default for TrainSpec {
             pusher_side: PusherSide::Left,
             sun_frame: SunFrame::Installed,
             carrier_speed_rpm: 60.0,
+            arms: 3,
+            picks_per_minute: None,
         }
     }
 }
 
 impl TrainSpec {
+    /// Most arm sets on a carrier.
+    pub const MAX_ARMS: usize = 4;
+
+    fn is_three(arms: &usize) -> bool {
+        *arms == 3
+    }
+
+    /// The carrier's speed (r/min): from the picking rate when it is set.
+    pub fn carrier_rpm(&self) -> f64 {
+        match self.picks_per_minute {
+            Some(rate) => rate / self.arms as f64,
+            None => self.carrier_speed_rpm,
+        }
+    }
+
+    /// Picks per minute: one per arm per carrier turn.
+    pub fn picking_rate(&self) -> f64 {
+        self.carrier_rpm() * self.arms as f64
+    }
+
     /// The sun's own-frame parameter at the contact when the carrier angle is 0 (rad):
     /// the contact then sits at `psi(θ) = psi_start + σθ`.
     pub fn psi_start(&self) -> f64 {
@@ -120,6 +153,23 @@ impl TrainSpec {
         positive("train.arm_length_mm", self.arm_length_mm)?;
         length("train.arm_length_mm", self.arm_length_mm)?;
         positive("train.carrier_speed_rpm", self.carrier_speed_rpm)?;
+        if !(1..=Self::MAX_ARMS).contains(&self.arms) {
+            return Err(Error::OutOfRange {
+                name: "train.arms".into(),
+                value: self.arms as f64,
+                expected: format!("1 to {} arm sets", Self::MAX_ARMS),
+            });
+        }
+        if let Some(rate) = self.picks_per_minute {
+            positive("train.picks_per_minute", rate)?;
+            if rate > 1e6 {
+                return Err(Error::OutOfRange {
+                    name: "train.picks_per_minute".into(),
+                    value: rate,
+                    expected: "at most 1e6 picks per minute".into(),
+                });
+            }
+        }
         // Speeds beyond this overflow what is derived from them (tip speeds in m/s).
         if self.carrier_speed_rpm > 1e6 {
             return Err(Error::OutOfRange {
@@ -218,7 +268,8 @@ impl SolvedPair {
 }
 
 /// The sampled motion of arm I over one carrier turn, plus what is needed to evaluate it at
-/// any carrier angle. Arms II and III follow at `θ − 120°` and `θ − 240°`.
+/// any carrier angle. Arm k (of n) follows at `θ − k·360°/n`: with three, II and III at
+/// `θ − 120°` and `θ − 240°`.
 #[derive(Debug, Clone)]
 pub struct Kinematics {
     /// The gears, shared with every reassembly of them.
@@ -269,6 +320,18 @@ impl Kinematics {
         integrator: &mut SpectralIntegrator,
     ) -> Result<Self> {
         spec.validate()?;
+        let n = resolution.samples_per_turn;
+        if !n.is_multiple_of(spec.arms) {
+            return Err(Error::OutOfRange {
+                name: "resolution.samples_per_turn".into(),
+                value: n as f64,
+                expected: format!(
+                    "a multiple of train.arms = {} (each arm a whole number of samples behind \
+                     the last)",
+                    spec.arms
+                ),
+            });
+        }
         let grid = SampleGrid {
             start: spec.psi_start(),
             sense: spec.rotation,
@@ -508,10 +571,21 @@ impl Kinematics {
         &self.theta3
     }
 
-    /// Node index of arm `k` (0, 1, 2) at node `j` of the carrier: arm k lags arm I by k·120°.
+    /// Arm sets on the carrier.
+    pub fn arms(&self) -> usize {
+        self.spec.arms
+    }
+
+    /// Carrier angle by which arm `k` lags arm I (rad): `k·2π/arms`.
+    pub fn arm_lag(&self, k: usize) -> f64 {
+        TAU * (k % self.arms()) as f64 / self.arms() as f64
+    }
+
+    /// Node index of arm `k` (0 … arms − 1) at node `j` of the carrier: arm k lags arm I
+    /// by k·360°/arms (the samples per turn are a multiple of the arm count).
     pub fn arm_node(&self, k: usize, j: usize) -> usize {
         let n = self.len();
-        let lag = (k % 3) * n / 3;
+        let lag = (k % self.arms()) * n / self.arms();
         // No integer division on the usual path (`j < n`): this runs at every node.
         let j = if j < n { j } else { j % n };
         if j >= lag {
@@ -594,6 +668,6 @@ impl Kinematics {
 
     /// Carrier angular speed (rad/s).
     pub fn carrier_speed(&self) -> f64 {
-        self.spec.carrier_speed_rpm * TAU / 60.0
+        self.spec.carrier_rpm() * TAU / 60.0
     }
 }

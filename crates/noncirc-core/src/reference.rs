@@ -426,8 +426,29 @@ pub const FIELDS: &[Field] = &[
         symbol: "n",
         unit: "r/min",
         range: "above 0, at most 1e6",
-        meaning: "Carrier speed: 60 gives the paper's 180 picks per minute.",
+        meaning: "Carrier speed: 60 gives the paper's 180 picks per minute. Not used when \
+                  `train.picks_per_minute` is set.",
         refused: &["train.carrier_speed_rpm=0", "train.carrier_speed_rpm=2e6"],
+    },
+    Field {
+        key: "train.arms",
+        symbol: "",
+        unit: "",
+        range: "1 to 4, dividing `resolution.samples_per_turn`; `interference` needs 2 or more",
+        meaning: "Arm sets on the carrier, evenly spaced (arm k a k-th of a turn behind arm \
+                  I): a planet, an intermediate and an arm each. The paper's mechanism has \
+                  three, the classic rotary transplanting mechanism two.",
+        refused: &["train.arms=0", "train.arms=5", "train.arms=1"],
+    },
+    Field {
+        key: "train.picks_per_minute",
+        symbol: "",
+        unit: "1/min",
+        range: "unset, or above 0, at most 1e6",
+        meaning: "The picking rate: when set, the carrier turns at picks_per_minute / arms \
+                  r/min, so that trains with other arm counts compare at the same rate \
+                  (the paper's rig: 180).",
+        refused: &["train.picks_per_minute=0", "train.picks_per_minute=-180"],
     },
     Field {
         key: "agronomy.tray_normal_deg",

@@ -200,6 +200,24 @@ impl Scene {
             self.train.validate()?;
             self.agronomy.validate()?;
         }
+        if mechanism {
+            let arms = self.train.arms;
+            if !self.resolution.samples_per_turn.is_multiple_of(arms) {
+                return Err(Error::OutOfRange {
+                    name: "resolution.samples_per_turn".into(),
+                    value: self.resolution.samples_per_turn as f64,
+                    expected: format!("a multiple of train.arms = {arms}"),
+                });
+            }
+            if arms == 1 && self.objectives.contains(&ObjectiveKind::Interference) {
+                return Err(Error::BadList {
+                    list: "objectives",
+                    problem: "'interference' needs two arms or more: a one-arm train \
+                              (train.arms = 1) has no other arm or planet to strike"
+                        .into(),
+                });
+            }
+        }
         if mechanism && self.objectives.is_empty() {
             return Err(Error::BadList {
                 list: "objectives",
@@ -253,6 +271,14 @@ impl Scene {
             });
         }
         self.search.screening.validate()?;
+        let arms = self.train.arms;
+        if !self.search.screening.samples_per_turn.is_multiple_of(arms) {
+            return Err(Error::OutOfRange {
+                name: "search.screening.samples_per_turn".into(),
+                value: self.search.screening.samples_per_turn as f64,
+                expected: format!("a multiple of train.arms = {arms}"),
+            });
+        }
         if self.search.confirm_with_teeth && self.gear.module.teeth.is_none() {
             return Err(Error::Missing {
                 name: "gear.module.teeth".into(),

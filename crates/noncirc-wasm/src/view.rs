@@ -103,8 +103,8 @@ struct ArmSet {
     arm: Line,
 }
 
-/// The mechanism at one carrier angle: the sun and the three arm sets (arm k where arm I
-/// stands 120°·k of carrier earlier), pitch curves or, when cut, teeth.
+/// The mechanism at one carrier angle: the sun and the arm sets (arm k where arm I stands
+/// k·360°/arms of carrier earlier), pitch curves or, when cut, teeth.
 #[derive(Serialize)]
 pub struct Frame {
     carrier_deg: f64,
@@ -135,9 +135,9 @@ impl Frame {
             ),
         };
         let sun_angle = kin.spec().sun_angle();
-        let arms = (0..3)
+        let arms = (0..kin.arms())
             .map(|k| {
-                let at = theta - TAU * k as f64 / 3.0;
+                let at = theta - kin.arm_lag(k);
                 let st = kin.state_at(at);
                 let (intermediate, planet) = match teeth {
                     Some(run) => {

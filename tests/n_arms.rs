@@ -1,0 +1,219 @@
+//! The n-arm planetary train: the same gears and arm with 1 to 4 arm sets, at a fixed
+//! picking rate, trace the same path at a carrier speed inversely proportional to the arm
+//! count; the arms stand a 1/n turn apart; the scene refuses what an arm count cannot do.
+
+use noncirc::core::{Evaluator, Kinematics, ObjectiveKind, Scene};
+use noncirc::scene_file::{apply_overrides, load_scene};
+use std::f64::consts::{PI, TAU};
+
+fn with_arms(arms: usize) -> Scene {
+    let mut scene = load_scene(None).unwrap();
+    scene.train.arms = arms;
+    scene.train.picks_per_minute = Some(180.0);
+    if arms == 1 {
+        scene
+            .objectives
+            .retain(|&k| k != ObjectiveKind::Interference);
+    }
+    scene
+}
+
+#[test]
+fn at_a_fixed_picking_rate_the_tip_speed_goes_as_one_over_the_arm_count() {
+    let three = Evaluator::new().evaluate(&with_arms(3)).unwrap();
+    let reference = three.events.unwrap().picking_tip_speed_m_s * 3.0;
+    for arms in 1..=4 {
+        let scene = with_arms(arms);
+        assert_eq!(scene.train.carrier_rpm(), 180.0 / arms as f64);
+        let eval = Evaluator::new().evaluate(&scene).unwrap();
+        let kin = eval.kinematics.as_ref().unwrap();
+        // The same gears and arm: the same path, to the bit.
+        assert_eq!(kin.tips(), three.kinematics.as_ref().unwrap().tips());
+        let speed = eval.events.unwrap().picking_tip_speed_m_s;
+        assert!(
+            (speed * arms as f64 - reference).abs() < 1e-12 * reference,
+            "{arms} arms: {speed} m/s"
+        );
+    }
+    // The paper's claim in its simplest form: at 180 picks a minute, two arms on the same
+    // path meet the seedling 1.5 times as fast as three (a third slower for three).
+    let two = Evaluator::new().evaluate(&with_arms(2)).unwrap();
+    let ratio =
+        three.events.unwrap().picking_tip_speed_m_s / two.events.unwrap().picking_tip_speed_m_s;
+    assert!((ratio - 2.0 / 3.0).abs() < 1e-12);
+}
+
+#[test]
+fn two_arms_stand_half_a_turn_apart_and_every_arm_picks_in_turn() {
+    for arms in [2, 4] {
+        let scene = with_arms(arms);
+        let kin = Kinematics::solve(
+            &scene.gear.curve.build().unwrap(),
+            &scene.train,
+            &scene.resolution,
+        )
+        .unwrap();
+        assert_eq!(kin.arm_lag(1), TAU / arms as f64);
+        let n = kin.len();
+        for j in (0..n).step_by(7) {
+            for k in 1..arms {
+                let theta = TAU * j as f64 / n as f64;
+                let at_node = kin.tips()[kin.arm_node(k, j)];
+                let lagging = kin.state_at(theta - kin.arm_lag(k)).tip;
+                assert!(
+                    (at_node - lagging).hypot() < 1e-9,
+                    "{arms} arms, arm {k}, node {j}"
+                );
+            }
+        }
+        if arms == 2 {
+            assert_eq!(kin.arm_lag(1), PI);
+            assert_eq!(kin.arm_node(1, 0), n / 2);
+        }
+        let (report, _) = noncirc::report::EvaluationReport::from_scene(&scene).unwrap();
+        let events = report.events.unwrap();
+        assert_eq!(events.arms.len(), arms);
+        for (k, arm) in events.arms.iter().enumerate() {
+            let expected = (events.picking_carrier_deg + 360.0 * k as f64 / arms as f64) % 360.0;
+            assert!(
+                (arm.picking_carrier_deg - expected).abs() < 1e-9,
+                "{arms}: {k}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_machine_advances_one_plant_spacing_per_arm_and_turn() {
+    let agro = noncirc::core::Agronomy::default();
+    for arms in 1..=4 {
+        let per_turn = noncirc::core::advance_per_rad(arms, &agro) * TAU;
+        assert!((per_turn - arms as f64 * agro.plant_spacing_mm).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn arm_counts_the_train_cannot_have_are_refused_by_name() {
+    let base = load_scene(None).unwrap();
+    for (set, named) in [
+        ("train.arms=5", "train.arms = 5"),
+        ("train.arms=0", "train.arms = 0"),
+        ("train.arms=1", "'interference' needs two arms"),
+        ("train.picks_per_minute=0", "train.picks_per_minute = 0"),
+    ] {
+        let err = apply_overrides(base.clone(), &[set.to_string()]).unwrap_err();
+        assert!(err.to_string().contains(named), "{set}: {err}");
+    }
+    // Four arms need a whole number of samples between arms.
+    let err = apply_overrides(
+        base.clone(),
+        &[
+            "train.arms=4".into(),
+            "resolution.samples_per_turn=90".into(),
+        ],
+    )
+    .unwrap_err();
+    assert!(
+        err.to_string().contains("resolution.samples_per_turn"),
+        "{err}"
+    );
+    // The picking rate sets the carrier speed, whatever carrier_speed_rpm says.
+    let scene = apply_overrides(
+        base,
+        &["train.arms=2".into(), "train.picks_per_minute=180".into()],
+    )
+    .unwrap();
+    assert_eq!(scene.train.carrier_rpm(), 90.0);
+    assert_eq!(scene.train.picking_rate(), 180.0);
+}
+
+#[test]
+fn the_two_arm_scene_meets_every_objective_with_its_arms_half_a_turn_apart() {
+    let scene = load_scene(Some("two-arm")).unwrap();
+    assert_eq!(scene.train.arms, 2);
+    assert_eq!(scene.train.carrier_rpm(), 90.0);
+    let eval = Evaluator::new().evaluate(&scene).unwrap();
+    assert_eq!(eval.total_violation(), 0.0, "{:?}", eval.objectives);
+    assert_eq!(eval.objectives.len(), ObjectiveKind::ALL.len());
+    let kin = eval.kinematics.as_ref().unwrap();
+    assert_eq!(kin.arm_lag(1), PI);
+    // Arm II at node j is arm I half a turn of nodes earlier.
+    let n = kin.len();
+    for j in 0..n {
+        assert_eq!(kin.arm_node(1, j), (j + n / 2) % n);
+    }
+    let (report, _) = noncirc::report::EvaluationReport::from_scene(&scene).unwrap();
+    let arms = report.events.unwrap().arms;
+    assert_eq!(arms.len(), 2);
+    let apart = (arms[1].picking_carrier_deg - arms[0].picking_carrier_deg).rem_euclid(360.0);
+    assert!((apart - 180.0).abs() < 1e-9, "{apart}");
+}
+
+#[test]
+fn the_comparison_splits_each_reduction_into_carrier_and_shape() {
+    use noncirc::compare::{compare, CompareOptions, DEFAULT_MEASURE};
+    let search = load_scene(Some("paper-search")).unwrap();
+    let paper = load_scene(Some("paper")).unwrap();
+    let options = CompareOptions {
+        arms: vec![2, 3],
+        seeds: vec![1, 2],
+        picks_per_minute: 180.0,
+        measure: noncirc::core::Measure::parse(DEFAULT_MEASURE).unwrap(),
+        budget: Some(20_000),
+        threads: 2,
+    };
+    let mut heard = 0;
+    let c = compare(&search, &paper, &options, &mut |_| heard += 1).unwrap();
+    assert_eq!(heard, 4);
+    assert_eq!(c.searches.len(), 4);
+    for r in &c.searches {
+        // Each row is its design evaluated afresh: the speed is the carrier's times the
+        // path's rate per radian, and the best scene reproduces it.
+        let v = r.speeds.compared_m_s.unwrap();
+        let omega = 180.0 / r.arms as f64 * TAU / 60.0;
+        assert!((v - r.speeds.compared_mm_per_rad.unwrap() * omega / 1000.0).abs() < 1e-12);
+        assert_eq!(r.speeds.compared_m_s, r.speeds.in_tray_speed_m_s);
+        assert!(r.speeds.feasible, "{r:?}");
+    }
+    let red = &c.reductions[0];
+    assert_eq!((red.arms, red.against, red.paired_seeds), (3, 2, 2));
+    // The paper's design has the same path with either arm count: the carrier alone.
+    assert!((red.paper_design_pct.unwrap() - 100.0 / 3.0).abs() < 1e-9);
+    assert_eq!(red.carrier_factor, 2.0 / 3.0);
+    let product = red.carrier_factor * red.shape_factor.unwrap();
+    assert!((1.0 - product - red.of_medians_pct.unwrap() / 100.0).abs() < 1e-12);
+    // The best two-arm scene is the design its row reports.
+    let best = noncirc::compare::best_scene(&search, &c, 2)
+        .unwrap()
+        .unwrap();
+    let again = noncirc::compare::speeds(&best, options.measure).unwrap();
+    let least = (c.arms[0].min_m_s).unwrap();
+    assert_eq!(again.compared_m_s, Some(least));
+    // A measure that is not a speed, or an arm count twice, is refused by name.
+    for (bad, named) in [
+        (
+            CompareOptions {
+                measure: noncirc::core::Measure::parse("loop_height_mm").unwrap(),
+                ..options.clone()
+            },
+            "loop_height_mm",
+        ),
+        (
+            CompareOptions {
+                arms: vec![3, 3],
+                ..options.clone()
+            },
+            "[3, 3]",
+        ),
+        (
+            CompareOptions {
+                picks_per_minute: f64::NAN,
+                ..options.clone()
+            },
+            "NaN",
+        ),
+    ] {
+        let e = compare(&search, &paper, &bad, &mut |_| {}).unwrap_err();
+        assert!(e.to_string().contains(named), "{e}");
+    }
+}
