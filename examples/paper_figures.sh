@@ -3,7 +3,7 @@
 # them: the three-arm paper's design (Yin et al. 2021: its trajectory, gear train and
 # objectives, and the parameter response of its Figure 5), the moving-box paper's Figures 3
 # and 11 (Zhou et al. 2018), a search from the paper's space, an NSGA-II front, the margins
-# under the tolerances, the Sobol indices and the animation. CI runs it (tests/run_all.sh) into a temporary folder.
+# under the tolerances, the Sobol indices, two arms against three and the animation. CI runs it (tests/run_all.sh) into a temporary folder.
 #
 #   bash examples/paper_figures.sh [OUT_DIR] [FORMATS] [DPI]
 #
@@ -62,5 +62,11 @@ plot robust robustness "$TMP/tip-results/best.toml" --samples 10000 --seed 2 \
 keep robust/robustness_margins robustness_margins
 plot sensitivity sensitivity paper
 keep sensitivity/sensitivity sensitivity
+# Two arms against three (docs/replication.md): each arm count's slowest pass through the
+# tray over ten seeds at 180 picks per minute, and the two-arm scene's trajectory.
+plot compare compare --seeds 1,2,3,4,5,6,7,8,9,10
+keep compare/speed_comparison speed_comparison
+plot two_arm evaluate two-arm
+keep two_arm/trajectory two_arm_trajectory
 "$NONCIRC" animate paper --out "$OUT/mechanism.gif" 2>/dev/null
 echo "wrote the figures of docs/figures.md into $OUT ($FORMATS)"

@@ -15,8 +15,11 @@ const TRAIN = [
   ['train.pusher_offset_mm', 'H1', 'mm', 'pusher offset'],
   ['train.gamma0_deg', 'γ0', 'deg', 'initial planet-carrier angle'],
 ];
-/** Agronomic inputs and the carrier speed: path, label, unit. */
+/** Agronomic inputs, the arm sets and the carrier speed (not used while a picking rate is
+ * set): path, label, unit. */
 const AGRONOMY = [
+  ['train.arms', 'arm sets', ''],
+  ['train.picks_per_minute', 'picking rate', '1/min'],
   ['train.carrier_speed_rpm', 'carrier speed', 'rpm'],
   ['agronomy.tray_normal_deg', 'tray normal', 'deg'],
   ['agronomy.tray_depth_mm', 'tray depth', 'mm'],

@@ -217,3 +217,31 @@ fn the_comparison_splits_each_reduction_into_carrier_and_shape() {
         assert!(e.to_string().contains(named), "{e}");
     }
 }
+
+#[test]
+fn a_transplanters_box_moves_one_pot_per_pick_whatever_the_arm_count() {
+    let base = load_scene(Some("transplanter")).unwrap();
+    let err = apply_overrides(base.clone(), &["train.arms=2".into()]).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("moving_box.input_turns_per_carrier_turn = 3"),
+        "{err}"
+    );
+    // With two arms and two box turns a carrier turn, the box's window is the picking
+    // window times two: two thirds of the three-arm train's on the same path.
+    let two = apply_overrides(
+        base.clone(),
+        &[
+            "train.arms=2".into(),
+            "moving_box.input_turns_per_carrier_turn=2".into(),
+        ],
+    )
+    .unwrap();
+    let box_window = |scene: &Scene| {
+        let eval = Evaluator::new().evaluate(scene).unwrap();
+        let [w0, w1] = eval.events.unwrap().picking_window_rad;
+        (w1 - w0) * scene.moving_box.input_turns_per_carrier_turn
+    };
+    let (w2, w3) = (box_window(&two), box_window(&base));
+    assert!((w2 / w3 - 2.0 / 3.0).abs() < 1e-12, "{w2} {w3}");
+}

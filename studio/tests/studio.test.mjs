@@ -301,6 +301,24 @@ test('a stopped search\'s checkpoint resumes in the CLI to the uninterrupted run
   assert.equal(inPage.stopped_early, false);
 });
 
+test('the two-arm scene draws two arm sets half a turn apart, as the CLI reports them', async () => {
+  const scene = await pageScene();
+  await page.selectOption('#builtin', 'two-arm');
+  await page.waitForFunction(() => window.studio.state.out.report.events.arms.length === 2);
+  const expected = cliJson('evaluate', join(repo, 'scenes/two-arm.toml'));
+  assertClose(await pageReport(), expected, 1e-12);
+  const [first, second] = expected.events.arms;
+  assert.equal((second.picking_carrier_deg - first.picking_carrier_deg + 360) % 360, 180);
+  const frame = await page.evaluate(() => JSON.parse(window.studio.state.design.frame(0)));
+  assert.equal(frame.arms.length, 2);
+  assert.equal(await page.locator('input[data-path="train.arms"]').inputValue(), '2');
+  assert.equal(await page.locator('input[data-path="train.picks_per_minute"]').inputValue(), '180');
+  await page.click('#undo');
+  assert.equal(await pageScene(), scene);
+  const three = await page.evaluate(() => JSON.parse(window.studio.state.design.frame(0)));
+  assert.equal(three.arms.length, 3);
+});
+
 test('a screenshot of the page is saved, and nothing went wrong in the console', async () => {
   await page.screenshot({ path: join(results, 'studio.png'), fullPage: true });
   assert.deepEqual(problems, []);

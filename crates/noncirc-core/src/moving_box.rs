@@ -40,7 +40,7 @@ pub struct BoxSpec {
     pub groove_friction_angle_deg: f64,
     pub slide_friction_angle_deg: f64,
     /// Transplanter coupling: box input turns per carrier turn (one pot per pick: 3 for
-    /// the three-arm mechanism).
+    /// the three-arm mechanism; a transplanter scene requires `train.arms`).
     pub input_turns_per_carrier_turn: f64,
 }
 

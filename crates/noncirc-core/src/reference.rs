@@ -724,10 +724,13 @@ pub const FIELDS: &[Field] = &[
         key: "moving_box.input_turns_per_carrier_turn",
         symbol: "",
         unit: "",
-        range: "above 0, at most 1e3",
+        range: "above 0, at most 1e3; in a transplanter scene, `train.arms`",
         meaning: "Transplanter coupling: box input turns per carrier turn (one pot per \
-                  pick: 3 for the three-arm mechanism).",
-        refused: &["moving_box.input_turns_per_carrier_turn=0"],
+                  pick: 3 for the three-arm mechanism, `train.arms` for any).",
+        refused: &[
+            "moving_box.input_turns_per_carrier_turn=0",
+            "moving_box.input_turns_per_carrier_turn=2",
+        ],
     },
     Field {
         key: "search.free",

@@ -209,6 +209,18 @@ impl Scene {
                     expected: format!("a multiple of train.arms = {arms}"),
                 });
             }
+            // The box moves one pot per pick, and the train picks once per arm a turn.
+            let turns = self.moving_box.input_turns_per_carrier_turn;
+            if self.kind == SceneKind::Transplanter && turns != arms as f64 {
+                return Err(Error::OutOfRange {
+                    name: "moving_box.input_turns_per_carrier_turn".into(),
+                    value: turns,
+                    expected: format!(
+                        "train.arms = {arms}: the box moves one pot per pick, and the train \
+                         picks {arms} times a carrier turn"
+                    ),
+                });
+            }
             if arms == 1 && self.objectives.contains(&ObjectiveKind::Interference) {
                 return Err(Error::BadList {
                     list: "objectives",
