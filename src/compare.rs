@@ -11,7 +11,9 @@
 //! each reduction splits into a carrier factor (the arm counts' ratio, at one picking rate)
 //! and a shape factor (the paths').
 
-use noncirc_core::{anatomy, Evaluator, Goal, Measure, ObjectiveKind, Scene};
+use noncirc_core::{
+    anatomy, quantile, Evaluation, Evaluator, Goal, Measure, ObjectiveKind, Scene, SceneKind,
+};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
@@ -41,8 +43,11 @@ pub struct CompareOptions {
 /// A design's speeds relative to the seedling (m/s) at its arm count's carrier speed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Speeds {
-    /// Whether it meets every objective at the scene's resolution.
+    /// Whether it meets every objective at the scene's resolution and no gears of
+    /// different arm sets overlap (`gear_overlap_mm`, not an objective).
     pub feasible: bool,
+    /// The deepest overlap of different arm sets' gears (mm; 0: clear).
+    pub gear_overlap_mm: Option<f64>,
     /// At the picking instant (`picking_tip_speed_m_s`).
     pub picking_tip_speed_m_s: Option<f64>,
     /// Mean while the tip is inside the tray (`in_tray_speed_m_s`).
@@ -63,6 +68,9 @@ pub struct SearchRow {
     pub seconds: f64,
     /// The design's free parameters.
     pub design: BTreeMap<String, f64>,
+    /// The design's scene (not serialised: `design` holds what differs).
+    #[serde(skip)]
+    pub scene: Option<Scene>,
 }
 
 /// An arm count's feasible searches, and the paper's design with that arm count.
@@ -78,8 +86,8 @@ pub struct ArmSummary {
     /// The median per radian of carrier (mm/rad).
     pub median_mm_per_rad: Option<f64>,
     /// The paper's design with this arm count at the same picking rate (its objectives are
-    /// not required; `None` where it cannot be evaluated).
-    pub paper_design: Option<Speeds>,
+    /// not required).
+    pub paper_design: Speeds,
 }
 
 /// An arm count against the first one.
@@ -113,28 +121,30 @@ pub struct Comparison {
     pub reductions: Vec<Reduction>,
 }
 
-/// The median of `v` (sorted copy; `None` when empty).
+/// The median of `v` (`None` when empty).
 fn median(v: &[f64]) -> Option<f64> {
-    let mut v = v.to_vec();
-    v.sort_by(f64::total_cmp);
-    match v.len() {
-        0 => None,
-        n if n % 2 == 1 => Some(v[n / 2]),
-        n => Some(0.5 * (v[n / 2 - 1] + v[n / 2])),
-    }
+    (!v.is_empty()).then(|| quantile(v, 0.5))
+}
+
+/// `b/a`, where `a` is a positive number (a speed of zero has no ratio).
+fn ratio(a: f64, b: f64) -> Option<f64> {
+    (a > 0.0 && a.is_finite() && b.is_finite()).then(|| b / a)
 }
 
 /// `1 − b/a` in per cent.
-fn reduction_pct(a: f64, b: f64) -> f64 {
-    100.0 * (1.0 - b / a)
+fn reduction_pct(a: f64, b: f64) -> Option<f64> {
+    ratio(a, b).map(|r| 100.0 * (1.0 - r))
 }
 
 /// `scene` with `arms` arm sets at `rate` picks per minute (a one-arm train has no
-/// interference objective).
+/// interference objective; a transplanter's box moves one pot per pick).
 pub fn with_arms(scene: &Scene, arms: usize, rate: f64) -> Scene {
     let mut s = scene.clone();
     s.train.arms = arms;
     s.train.picks_per_minute = Some(rate);
+    if s.kind == SceneKind::Transplanter {
+        s.moving_box.input_turns_per_carrier_turn = arms as f64;
+    }
     if arms == 1 {
         s.objectives.retain(|&k| k != ObjectiveKind::Interference);
     }
@@ -143,31 +153,42 @@ pub fn with_arms(scene: &Scene, arms: usize, rate: f64) -> Scene {
 
 /// The speeds of `scene`'s design, `measure` among them.
 pub fn speeds(scene: &Scene, measure: Measure) -> Result<Speeds> {
-    let eval = Evaluator::new().evaluate(scene)?;
+    Ok(speeds_of(
+        scene,
+        &Evaluator::new().evaluate(scene)?,
+        measure,
+    ))
+}
+
+/// The speeds of `scene`'s design from its evaluation `eval`.
+fn speeds_of(scene: &Scene, eval: &Evaluation, measure: Measure) -> Speeds {
     let anatomy = match (&eval.kinematics, &eval.events) {
         (Some(kin), Some(ev)) => Some(anatomy(kin, &scene.agronomy, ev)),
         _ => None,
     };
-    let value = |m: &str| Measure::parse(m).ok()?.value(&eval, anatomy.as_ref());
-    let compared = measure.value(&eval, anatomy.as_ref());
+    let value = |m: &str| Measure::parse(m).ok()?.value(eval, anatomy.as_ref());
+    let compared = measure.value(eval, anatomy.as_ref());
     let omega = scene.train.carrier_rpm() * TAU / 60.0;
-    Ok(Speeds {
-        feasible: eval.total_violation() == 0.0,
+    let gear_overlap_mm = value("gear_overlap_mm");
+    Speeds {
+        feasible: eval.total_violation() == 0.0 && gear_overlap_mm == Some(0.0),
+        gear_overlap_mm,
         picking_tip_speed_m_s: value("picking_tip_speed_m_s"),
         in_tray_speed_m_s: value("in_tray_speed_m_s"),
         compared_m_s: compared,
         compared_mm_per_rad: compared.map(|v| v * 1000.0 / omega),
-    })
+    }
 }
 
 /// The values of `scene`'s free parameters, by name.
 fn free_values(scene: &Scene) -> Result<BTreeMap<String, f64>> {
     (scene.search.free.iter())
-        .filter_map(|f| match noncirc_core::Param::parse(&f.name, scene) {
-            Ok(p) => Some(Ok((f.name.clone(), p.get(scene)?))),
-            Err(e) => Some(Err(e.into())),
+        .filter_map(|f| {
+            let param = noncirc_core::Param::parse(&f.name, scene);
+            (param.map(|p| Some((f.name.clone(), p.get(scene)?)))).transpose()
         })
-        .collect()
+        .collect::<std::result::Result<_, _>>()
+        .map_err(Error::from)
 }
 
 /// Checks the options, naming the bad one.
@@ -190,13 +211,22 @@ fn validate(options: &CompareOptions) -> Result<()> {
             options.measure.unit()
         )));
     }
-    let mut seen = options.arms.clone();
-    seen.sort_unstable();
-    seen.dedup();
-    if seen.len() < options.arms.len() {
+    let mut arms = options.arms.clone();
+    arms.sort_unstable();
+    arms.dedup();
+    if arms.len() < options.arms.len() {
         return Err(Error::Input(format!(
             "compare arms {:?}: each arm count once",
             options.arms
+        )));
+    }
+    let mut seeds = options.seeds.clone();
+    seeds.sort_unstable();
+    seeds.dedup();
+    if seeds.len() < options.seeds.len() {
+        return Err(Error::Input(format!(
+            "compare seeds {:?}: each seed once (a seed repeats its search)",
+            options.seeds
         )));
     }
     Ok(())
@@ -237,25 +267,30 @@ pub fn compare(
             scene.search.seed = seed;
             let outcome =
                 crate::search::run(&scene, &RunOptions::new(Some(options.threads))?, &mut [])?;
-            let best = outcome.confirmed.best.as_ref().map(|(s, _)| s);
+            let best = outcome.confirmed.best;
             let row = SearchRow {
                 arms,
                 seed,
                 carrier_rpm: scene.train.carrier_rpm(),
-                // A best design that cannot be evaluated (a search too short to find one
-                // that closes) has no speeds.
-                speeds: (best.and_then(|s| speeds(s, measure).ok())).unwrap_or(Speeds {
-                    feasible: false,
-                    picking_tip_speed_m_s: None,
-                    in_tray_speed_m_s: None,
-                    compared_m_s: None,
-                    compared_mm_per_rad: None,
-                }),
+                // The confirmed evaluation; a best design that could not be evaluated (a
+                // search too short to find one that closes) has no speeds.
+                speeds: match &best {
+                    Some((s, Some(eval))) => speeds_of(s, eval, measure),
+                    _ => Speeds {
+                        feasible: false,
+                        gear_overlap_mm: None,
+                        picking_tip_speed_m_s: None,
+                        in_tray_speed_m_s: None,
+                        compared_m_s: None,
+                        compared_mm_per_rad: None,
+                    },
+                },
                 seconds: outcome.seconds,
-                design: match best {
-                    Some(s) => free_values(s)?,
+                design: match &best {
+                    Some((s, _)) => free_values(s)?,
                     None => Default::default(),
                 },
+                scene: best.map(|(s, _)| s),
             };
             progress(&row);
             searches.push(row);
@@ -279,7 +314,7 @@ pub fn compare(
                 min_m_s: v.iter().copied().reduce(f64::min),
                 max_m_s: v.iter().copied().reduce(f64::max),
                 median_mm_per_rad: median(&per_rad),
-                paper_design: speeds(&with_arms(paper, arms, rate), measure).ok(),
+                paper_design: speeds(&with_arms(paper, arms, rate), measure)?,
             })
         })
         .collect::<Result<_>>()?;
@@ -293,22 +328,22 @@ pub fn compare(
                             .find(|r| r.seed == seed)
                             .and_then(|r| r.speeds.compared_m_s)
                     };
-                    Some(reduction_pct(at(first.arms)?, at(b.arms)?))
+                    reduction_pct(at(first.arms)?, at(b.arms)?)
                 })
                 .collect();
             let both = |f: fn(&ArmSummary) -> Option<f64>| Some((f(first)?, f(b)?));
-            let paper = |s: &ArmSummary| s.paper_design.and_then(|p| p.compared_m_s);
+            let paper = |s: &ArmSummary| s.paper_design.compared_m_s;
             Reduction {
                 arms: b.arms,
                 against: first.arms,
-                of_medians_pct: both(|s| s.median_m_s).map(|(x, y)| reduction_pct(x, y)),
+                of_medians_pct: both(|s| s.median_m_s).and_then(|(x, y)| reduction_pct(x, y)),
                 paired_seeds: paired.len(),
                 paired_median_pct: median(&paired),
                 paired_min_pct: paired.iter().copied().reduce(f64::min),
                 paired_max_pct: paired.iter().copied().reduce(f64::max),
                 carrier_factor: first.arms as f64 / b.arms as f64,
-                shape_factor: both(|s| s.median_mm_per_rad).map(|(x, y)| y / x),
-                paper_design_pct: both(paper).map(|(x, y)| reduction_pct(x, y)),
+                shape_factor: both(|s| s.median_mm_per_rad).and_then(|(x, y)| ratio(x, y)),
+                paper_design_pct: both(paper).and_then(|(x, y)| reduction_pct(x, y)),
             }
         })
         .collect();
@@ -375,7 +410,7 @@ pub fn comparison_table(c: &Comparison) -> String {
             fmt(a.min_m_s, 4),
             fmt(a.max_m_s, 4),
             fmt(a.median_mm_per_rad, 1),
-            fmt(a.paper_design.and_then(|p| p.compared_m_s), 4)
+            fmt(a.paper_design.compared_m_s, 4)
         );
     }
     for r in &c.reductions {
@@ -400,18 +435,15 @@ pub fn comparison_table(c: &Comparison) -> String {
     t
 }
 
-/// The scene of the least-speed feasible design found for `arms` arm sets, if any.
-pub fn best_scene(search_scene: &Scene, c: &Comparison, arms: usize) -> Result<Option<Scene>> {
+/// The scene of the least-speed feasible design found for `arms` arm sets, if any, named
+/// after its search scene, arm count and seed.
+pub fn best_scene(c: &Comparison, arms: usize) -> Option<Scene> {
     let best = (c.searches.iter())
         .filter(|r| r.arms == arms && r.speeds.feasible)
         .filter_map(|r| Some((r.speeds.compared_m_s?, r)))
         .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, r)| r);
-    let Some(best) = best else { return Ok(None) };
-    let mut scene = with_arms(search_scene, arms, c.picks_per_minute);
-    for (name, &value) in &best.design {
-        noncirc_core::Param::parse(name, &scene)?.set(&mut scene, value);
-    }
-    scene.name = format!("{}-arms-{arms}-seed-{}", search_scene.name, best.seed);
-    Ok(Some(scene))
+        .map(|(_, r)| r)?;
+    let mut scene = best.scene.clone()?;
+    scene.name = format!("{}-arms-{arms}-seed-{}", scene.name, best.seed);
+    Some(scene)
 }

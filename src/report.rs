@@ -193,7 +193,7 @@ impl EventsRow {
     fn new(e: &Events, arms: usize) -> Self {
         let lag = 360.0 / arms as f64;
         let arm = |k: usize| ArmEvents {
-            arm: ["I", "II", "III", "IV"][k],
+            arm: noncirc_core::ARM_NAMES[k],
             picking_carrier_deg: (e.picking.carrier_rad.to_degrees() + lag * k as f64)
                 .rem_euclid(360.0),
             planting_carrier_deg: (e.planting.carrier_rad.to_degrees() + lag * k as f64)
@@ -244,8 +244,9 @@ pub fn measure_rows(eval: &Evaluation, anatomy: Option<&Anatomy>) -> Vec<Measure
         .collect()
 }
 
-/// The trajectory-shape measures the evaluate table prints (JSON has every measure).
-const SHAPE: [&str; 7] = [
+/// The trajectory-shape measures, the pass through the tray and the gearbox, as the
+/// evaluate table prints them (JSON has every measure).
+const SHAPE: [&str; 9] = [
     "loop_width_mm",
     "loop_height_mm",
     "picking_height_mm",
@@ -253,6 +254,8 @@ const SHAPE: [&str; 7] = [
     "return_height_mm",
     "picking_to_planting_height_mm",
     "planting_ground_speed_m_s",
+    "in_tray_speed_m_s",
+    "gear_overlap_mm",
 ];
 
 /// Everything `noncirc evaluate` reports, for any scene kind.

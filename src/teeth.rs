@@ -247,7 +247,7 @@ impl TeethRun {
 /// Every gear of the planetary train at carrier angle `theta` (rad): the sun turned by its
 /// installation angle; each intermediate turned so that its point meeting the sun's `ψ`
 /// faces the sun; each planet at the kinematics' orientation (its frame is the sun's).
-/// Arm set `k` stands where arm I stands at `theta + k·360°/arms`.
+/// Arm set `k` stands where arm I stood at `theta − k·360°/arms`, as everywhere else.
 pub fn train_layout(kin: &Kinematics, toothed: &ToothedPair, theta: f64) -> Vec<PlacedGear> {
     let sun_angle = kin.spec().sun_angle();
     let mut layout = vec![PlacedGear {
@@ -257,7 +257,7 @@ pub fn train_layout(kin: &Kinematics, toothed: &ToothedPair, theta: f64) -> Vec<
         angle_deg: sun_angle.to_degrees(),
     }];
     for k in 0..kin.arms() {
-        let st = kin.state_at(theta + kin.arm_lag(k));
+        let st = kin.state_at(theta - kin.arm_lag(k));
         let towards_sun = (-st.o2.y).atan2(-st.o2.x);
         let psi = towards_sun + PI - sun_angle;
         let chi = toothed.track.driven_angle(psi);

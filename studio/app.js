@@ -232,6 +232,13 @@ function refreshFields(except) {
     const slider = input.parentElement.querySelector('input[type=range]');
     if (slider) slider.value = text;
   }
+  // The carrier speed follows the picking rate while one is set.
+  const rpm = document.querySelector('input[data-path="train.carrier_speed_rpm"]');
+  const rate = document.querySelector('input[data-path="train.picks_per_minute"]');
+  if (rpm && rate) {
+    rpm.disabled = rate.value !== '';
+    rpm.title = rpm.disabled ? 'set by the picking rate: picks per minute / arm sets' : '';
+  }
   const kind = $('curve-kind');
   const current = state.design.curveKind();
   if (![...kind.options].some((o) => o.value === current)) kind.add(new Option(current, current));

@@ -1,7 +1,8 @@
 """A straightforward vectorised NumPy implementation of noncirc's three-arm model.
 
 It computes the same quantities as the Rust core for a batch of designs (12-point
-spline sun, installed sun frame, clockwise carrier, pusher on the left), vectorised over
+spline sun, installed sun frame, clockwise carrier, pusher on the left, three arms:
+`train.arms = 3`, the paper's train), vectorised over
 the designs with NumPy arrays, as a Python developer would write it:
 
 - the periodic cubic spline by a batched dense solve;

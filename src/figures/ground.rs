@@ -36,8 +36,10 @@ impl Figure for GroundFigure<'_> {
             curves.push(pts);
         }
         let ground = ev.y_min_mm + agro.planting_depth_mm;
-        let labels = ["arm I", "arm II", "arm III", "ground", "planted seedling"];
-        let (margin, x_label, y_label) = (12u32, 40u32, 55u32);
+        let labels: Vec<String> = (0..kin.arms())
+            .map(|k| format!("arm {}", ARM_NAMES[k]))
+            .chain(["ground".into(), "planted seedling".into()])
+            .collect();
         let area = root
             .titled(
                 &format!(
@@ -49,8 +51,7 @@ impl Figure for GroundFigure<'_> {
             )
             .map_err(err)?;
         let (w, h) = area.dim_in_pixel();
-        let place = legend_place(labels, 13, (w, h));
-        let (plot_w, plot_h) = place.plot_size((w, h), margin, (x_label, y_label));
+        let place = legend_place(labels.iter().map(String::as_str), 13, (w, h));
         let all = curves.iter().flatten().copied().chain([
             Vec2::new(curves[0][0].x, ground),
             Vec2::new(
@@ -58,20 +59,8 @@ impl Figure for GroundFigure<'_> {
                 ev.planting.tip_mm.y + agro.seedling_height_mm,
             ),
         ]);
-        let ((x0, x1), (y0, y1)) = equal_ranges(all, plot_w as f64, plot_h as f64, 20.0);
-        let mut chart = chart_on(&area, margin, place, (x_label, y_label))
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_label_formatter(&tick)
-            .x_labels((plot_w / 70).max(3) as usize)
-            .y_label_formatter(&tick)
-            .x_desc("x over the ground (mm)")
-            .y_desc("y (mm)")
-            .label_style((FONT, 14))
-            .draw()
-            .map_err(err)?;
+        let mut chart = equal_scale_chart(&area, place, 55, all, 20.0, "x over the ground (mm)")?;
+        let Range { start: x0, end: x1 } = chart.x_range();
         chart
             .draw_series(LineSeries::new(
                 [(x0, ground), (x1, ground)],
@@ -100,19 +89,15 @@ impl Figure for GroundFigure<'_> {
                 ))
                 .map_err(err)?;
         }
-        let mut entries: Entries = (0..kin.arms())
-            .map(|k| {
-                (
-                    format!("arm {}", ARM_NAMES[k]),
-                    Swatch::Line(ARM_COLOURS[k].into(), 2),
-                )
-            })
+        let arms = kin.arms();
+        let mut entries: Entries = (0..arms)
+            .map(|k| (labels[k].clone(), Swatch::Line(ARM_COLOURS[k].into(), 2)))
             .collect();
         entries.push((
-            labels[3].into(),
+            labels[arms].clone(),
             Swatch::Line(RGBColor(120, 80, 40).into(), 2),
         ));
-        entries.push((labels[4].into(), Swatch::Tick(GREEN.into(), 4)));
+        entries.push((labels[arms + 1].clone(), Swatch::Tick(GREEN.into(), 4)));
         draw_legend(&area, chart.plotting_area(), &entries, 13, place)?;
         Ok(())
     }

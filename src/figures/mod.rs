@@ -3,13 +3,14 @@
 
 use noncirc_core::{
     advance_per_rad, anatomy, box_curves, travel_sign, unit, BoxReport, BoxSpec, Evaluation,
-    Events, Kinematics, ObjectiveValue, Scene, Section, ToothedPair, Vec2,
+    Events, Kinematics, ObjectiveValue, Scene, Section, ToothedPair, Vec2, ARM_NAMES,
 };
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::f64::consts::TAU;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -634,6 +635,56 @@ fn equal_ranges(
     )
 }
 
+/// The arm count in words: "one arm", "two arms", … (1 to `TrainSpec::MAX_ARMS`).
+fn arm_count(arms: usize) -> &'static str {
+    ["one arm", "two arms", "three arms", "four arms"][arms - 1]
+}
+
+/// Tip positions over a carrier span (degrees, end may exceed 360°), one point per degree
+/// plus both ends, so section boundaries meet exactly.
+fn tip_points(kin: &Kinematics, span_deg: [f64; 2]) -> Vec<(f64, f64)> {
+    let steps = (span_deg[1] - span_deg[0]).abs().ceil().max(1.0) as usize;
+    (0..=steps)
+        .map(|i| {
+            let deg = span_deg[0] + (span_deg[1] - span_deg[0]) * i as f64 / steps as f64;
+            kin.state_at(deg.to_radians()).tip.into()
+        })
+        .collect()
+}
+
+/// A chart of the plane (mm) on `area`, equal scales in x and y, holding `points` with
+/// `pad` mm to spare, the room for its legend at `place`, `y_label` px for the y axis's
+/// labels: the frame of the trajectory figures.
+fn equal_scale_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    place: LegendPlace,
+    y_label: u32,
+    points: impl Iterator<Item = Vec2>,
+    pad: f64,
+    x_desc: &str,
+) -> Result<FloatChart<'a, DB>>
+where
+    DB::ErrorType: 'static,
+{
+    let (margin, x_label) = (12u32, 40u32);
+    let (plot_w, plot_h) = place.plot_size(area.dim_in_pixel(), margin, (x_label, y_label));
+    let ((x0, x1), (y0, y1)) = equal_ranges(points, plot_w as f64, plot_h as f64, pad);
+    let mut chart = chart_on(area, margin, place, (x_label, y_label))
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_label_formatter(&tick)
+        .x_labels((plot_w / 70).max(3) as usize)
+        .y_label_formatter(&tick)
+        .x_desc(x_desc)
+        .y_desc("y (mm)")
+        .label_style((FONT, 14))
+        .draw()
+        .map_err(err)?;
+    Ok(chart)
+}
+
 /// One colour per arm set (up to `TrainSpec::MAX_ARMS`).
 const ARM_COLOURS: [RGBColor; 4] = [
     RGBColor(200, 30, 30),
@@ -641,9 +692,6 @@ const ARM_COLOURS: [RGBColor; 4] = [
     RGBColor(40, 150, 60),
     RGBColor(150, 80, 170),
 ];
-
-/// Roman numerals of the arms: I, II, III, IV.
-const ARM_NAMES: [&str; 4] = ["I", "II", "III", "IV"];
 
 /// Colours of the trajectory's sections, in `Section::ALL` order.
 const SECTION_COLOURS: [RGBColor; 4] = [

@@ -18,20 +18,13 @@ pub struct SpeedComparisonFigure<'a> {
     pub picks_per_minute: f64,
 }
 
+/// The picking window (degrees of carrier).
+fn window_deg(ev: &Events) -> [f64; 2] {
+    ev.picking_window_rad.map(f64::to_degrees)
+}
+
 /// Legend text size (px).
 const LEGEND_FONT: u32 = 13;
-
-/// Tip positions over carrier angles `[t0, t1]` (rad), about one a degree plus both ends.
-fn path(kin: &Kinematics, t0: f64, t1: f64) -> Vec<(f64, f64)> {
-    let steps = (t1 - t0).to_degrees().abs().ceil().max(1.0) as usize;
-    (0..=steps)
-        .map(|i| {
-            kin.state_at(t0 + (t1 - t0) * i as f64 / steps as f64)
-                .tip
-                .into()
-        })
-        .collect()
-}
 
 impl Figure for SpeedComparisonFigure<'_> {
     fn size(&self) -> (u32, u32) {
@@ -50,8 +43,8 @@ impl Figure for SpeedComparisonFigure<'_> {
             };
             let a = anatomy(kin, &d.scene.agronomy, ev);
             let label = format!(
-                "{} arms, {:.0} r/min: {:.3} m/s in the tray ({:.0}° of carrier), {:.3} m/s at picking",
-                kin.arms(),
+                "{}, {:.0} r/min: {:.3} m/s in the tray ({:.0}° of carrier), {:.3} m/s at picking",
+                arm_count(kin.arms()),
                 d.scene.train.carrier_rpm(),
                 a.in_tray_speed_m_s,
                 (ev.picking_window_rad[1] - ev.picking_window_rad[0]).to_degrees(),
@@ -90,8 +83,7 @@ impl Figure for SpeedComparisonFigure<'_> {
             .collect();
         let passes: Vec<Vec2> = (drawn.iter())
             .flat_map(|(_, kin, ev, _, _)| {
-                let [w0, w1] = ev.picking_window_rad;
-                path(kin, w0, w1.max(w0))
+                tip_points(kin, window_deg(ev))
                     .into_iter()
                     .map(|(x, y)| Vec2::new(x, y))
             })
@@ -108,9 +100,7 @@ impl Figure for SpeedComparisonFigure<'_> {
                 false,
             ),
         ] {
-            let (margin, x_label, y_label) = (12u32, 40u32, 60u32);
             let panel = panel.titled(caption, (FONT, 16)).map_err(err)?;
-            let (pw, ph) = panel.dim_in_pixel();
             // The zoom keeps the room below for the legend empty, so that both panels share
             // a height.
             let here = if legend {
@@ -121,33 +111,29 @@ impl Figure for SpeedComparisonFigure<'_> {
                     below: place.below,
                 }
             };
-            let (plot_w, plot_h) = here.plot_size((pw, ph), margin, (x_label, y_label));
-            let ((x0, x1), (y0, y1)) =
-                equal_ranges(points.iter().copied(), plot_w as f64, plot_h as f64, pad);
-            let mut chart = chart_on(&panel, margin, here, (x_label, y_label))
-                .build_cartesian_2d(x0..x1, y0..y1)
-                .map_err(err)?;
-            chart
-                .configure_mesh()
-                .x_label_formatter(&tick)
-                .x_labels((plot_w / 70).max(3) as usize)
-                .y_label_formatter(&tick)
-                .x_desc("x (mm)")
-                .y_desc("y (mm)")
-                .label_style((FONT, 14))
-                .draw()
-                .map_err(err)?;
+            let mut chart =
+                equal_scale_chart(&panel, here, 60, points.iter().copied(), pad, "x (mm)")?;
+            let (Range { start: x0, end: x1 }, Range { start: y0, end: y1 }) =
+                (chart.x_range(), chart.y_range());
             for (i, kin, ev, agro, _) in &drawn {
                 let colour = ARM_COLOURS[*i % ARM_COLOURS.len()];
-                // The tray surface: the picking point lies the tray depth inside it.
                 let n = unit(agro.tray_normal_deg.to_radians());
-                let s = ev.picking.tip_mm - n * agro.tray_depth_mm;
+                let s = ev.tray_surface_point(n);
                 let t = n.turn_90();
                 let surface = [(s - t * surface_half).into(), (s + t * surface_half).into()];
                 fine_line(&mut chart, &surface, grey.mix(0.8), 2)?;
-                fine_line(&mut chart, &path(kin, 0.0, TAU), colour.mix(0.6), 2)?;
-                let [w0, w1] = ev.picking_window_rad;
-                fine_line(&mut chart, &path(kin, w0, w1.max(w0)), colour.into(), 5)?;
+                fine_line(
+                    &mut chart,
+                    &tip_points(kin, [0.0, 360.0]),
+                    colour.mix(0.6),
+                    2,
+                )?;
+                fine_line(
+                    &mut chart,
+                    &tip_points(kin, window_deg(ev)),
+                    colour.into(),
+                    5,
+                )?;
                 let Vec2 { x, y } = ev.picking.tip_mm;
                 chart
                     .draw_series(std::iter::once(Circle::new((x, y), 5, BLACK.filled())))

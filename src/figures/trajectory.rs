@@ -2,19 +2,6 @@
 
 use super::*;
 
-/// Tip positions over a carrier span (degrees, end may exceed 360°), one point per degree
-/// plus both ends, so section boundaries meet exactly.
-fn section_points(kin: &Kinematics, span_deg: [f64; 2]) -> Vec<(f64, f64)> {
-    let steps = (span_deg[1] - span_deg[0]).abs().ceil().max(1.0) as usize;
-    (0..=steps)
-        .map(|i| {
-            let deg = span_deg[0] + (span_deg[1] - span_deg[0]) * i as f64 / steps as f64;
-            let tip = kin.state_at(deg.to_radians()).tip;
-            tip.into()
-        })
-        .collect()
-}
-
 /// Figure: the trajectory relative to the machine with arm poses, events, tray and ground.
 pub struct TrajectoryFigure<'a> {
     pub kin: &'a Kinematics,
@@ -79,12 +66,11 @@ impl Figure for TrajectoryFigure<'_> {
                 })
             })
             .collect();
-        let (margin, x_label, y_label) = (12u32, 40u32, 60u32);
         let area = root
             .titled(
                 &format!(
                     "Tip trajectory relative to the machine ({})",
-                    ["one arm", "two arms", "three arms", "four arms"][kin.arms() - 1]
+                    arm_count(kin.arms())
                 ),
                 (FONT, 22),
             )
@@ -100,25 +86,13 @@ impl Figure for TrajectoryFigure<'_> {
             LEGEND_FONT,
             (w, h),
         );
-        let (plot_w, plot_h) = place.plot_size((w, h), margin, (x_label, y_label));
         // Equal scale in x and y, everything drawn inside: the path, the arms, the carrier.
         let drawn = (kin.tips().iter().copied())
             .chain(poses.iter().flat_map(|&(_, o3, tip)| [o3, tip]))
             .chain([Vec2::ZERO]);
-        let ((x0, x1), (y0, y1)) = equal_ranges(drawn, plot_w as f64, plot_h as f64, 15.0);
-        let mut chart = chart_on(&area, margin, place, (x_label, y_label))
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_label_formatter(&tick)
-            .x_labels((plot_w / 70).max(3) as usize)
-            .y_label_formatter(&tick)
-            .x_desc("x (mm)")
-            .y_desc("y (mm)")
-            .label_style((FONT, 14))
-            .draw()
-            .map_err(err)?;
+        let mut chart = equal_scale_chart(&area, place, 60, drawn, 15.0, "x (mm)")?;
+        let (Range { start: x0, end: x1 }, Range { start: y0, end: y1 }) =
+            (chart.x_range(), chart.y_range());
         let clip = |points: &[(f64, f64)]| clipped_runs(points, (x0, x1), (y0, y1));
         let mut entries: Entries = Vec::new();
         // Ground and tray lines.
@@ -132,7 +106,7 @@ impl Figure for TrajectoryFigure<'_> {
             .map_err(err)?;
         entries.push((ground_label, Swatch::Line(brown.into(), 2)));
         let n = unit(agro.tray_normal_deg.to_radians());
-        let s = ev.picking.tip_mm - n * agro.tray_depth_mm;
+        let s = ev.tray_surface_point(n);
         let t = n.turn_90();
         let grey = RGBColor(90, 90, 90);
         for run in clip(&[(s - t * 120.0).into(), (s + t * 120.0).into()]) {
@@ -159,7 +133,7 @@ impl Figure for TrajectoryFigure<'_> {
             .zip(SECTION_COLOURS)
             .zip(section_labels)
         {
-            let points = section_points(kin, anatomy.section(section).carrier_deg);
+            let points = tip_points(kin, anatomy.section(section).carrier_deg);
             fine_line(&mut chart, &points, colour.into(), 3)?;
             entries.push((label, Swatch::Line(colour.into(), 3)));
         }

@@ -313,10 +313,12 @@ test('the two-arm scene draws two arm sets half a turn apart, as the CLI reports
   assert.equal(frame.arms.length, 2);
   assert.equal(await page.locator('input[data-path="train.arms"]').inputValue(), '2');
   assert.equal(await page.locator('input[data-path="train.picks_per_minute"]').inputValue(), '180');
+  assert.ok(await page.locator('input[data-path="train.carrier_speed_rpm"]').isDisabled(), 'the rate sets the carrier speed');
   await page.click('#undo');
   assert.equal(await pageScene(), scene);
   const three = await page.evaluate(() => JSON.parse(window.studio.state.design.frame(0)));
   assert.equal(three.arms.length, 3);
+  assert.ok(!(await page.locator('input[data-path="train.carrier_speed_rpm"]').isDisabled()));
 });
 
 test('a screenshot of the page is saved, and nothing went wrong in the console', async () => {

@@ -681,7 +681,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
                 let figures = args.scene.figures()?;
                 let mut designs = Vec::new();
                 for &arms in &args.arms {
-                    if let Some(best) = noncirc::compare::best_scene(&scene, &c, arms)? {
+                    if let Some(best) = noncirc::compare::best_scene(&c, arms) {
                         let (_, eval) = EvaluationReport::from_scene(&best)?;
                         designs.push((best, eval));
                     }

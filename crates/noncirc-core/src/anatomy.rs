@@ -99,8 +99,9 @@ pub struct Anatomy {
     pub planting_ground_speed_m_s: f64,
     /// Mean tip speed relative to the (machine-fixed) seedling while the tip is inside the
     /// tray (m/s): its path from entering the tray to leaving it over the time it takes.
-    /// Unlike the speed at the picking instant, which a cusp there can bring to zero, it
-    /// cannot fall below two tray depths per window.
+    /// Unlike the speed at the picking instant, which a cusp there can bring to zero, the
+    /// path it averages goes in to the picking depth and out again. A tip that never
+    /// enters the tray has no window: then it is the speed at the picking instant.
     pub in_tray_speed_m_s: f64,
 }
 
@@ -150,11 +151,12 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
     });
     let removal: &SectionMeasures = &sections[0];
     let [w0, w1] = ev.picking_window_rad;
-    // A tray the tip does not reach has an empty window: the speed at picking itself.
-    let in_tray = if w1 > w0 {
-        path_length(kin, &speeds, w0, w1) / (w1 - w0)
-    } else {
+    // A tray the tip does not reach has an empty window: the speed at picking itself. A
+    // NaN window stays NaN.
+    let in_tray = if w1 == w0 {
         kin.state_at(tp).tip_d1.hypot()
+    } else {
+        path_length(kin, &speeds, w0, w1) / (w1 - w0)
     };
     let planted = kin.state_at(tl);
     let ground_velocity = Vec2::new(

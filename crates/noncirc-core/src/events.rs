@@ -124,6 +124,15 @@ pub struct Events {
     pub planting_branch_gap_mm: Option<f64>,
 }
 
+impl Events {
+    /// The point of the tray surface nearest the picking point (mm): the picking point
+    /// moved back along the tray's inward unit normal `n` onto the surface.
+    pub fn tray_surface_point(&self, n: Vec2) -> Vec2 {
+        let tip = self.picking.tip_mm;
+        tip - n * (tip.dot(n) - self.check.tray_surface_mm)
+    }
+}
+
 /// Arm attitude (deg): the pusher direction's dip below the horizontal, in [−90°, 90°].
 pub fn attitude_deg(pusher_angle: f64) -> f64 {
     (-pusher_angle.sin()).clamp(-1.0, 1.0).asin().to_degrees()

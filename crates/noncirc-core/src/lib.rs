@@ -12,6 +12,7 @@ mod error;
 mod evaluation;
 mod events;
 mod gear;
+mod gearbox;
 mod measures;
 mod moving_box;
 mod objectives;
@@ -36,7 +37,7 @@ pub use curve::{
 pub use moving_box::BoxSpec;
 pub use objectives::{Agronomy, Bounds, ObjectiveKind};
 pub use params::Param;
-pub use planetary::{PusherSide, Rotation, SunFrame, TrainSpec};
+pub use planetary::{PusherSide, Rotation, SunFrame, TrainSpec, ARM_NAMES};
 pub use reference::{field, symbol, Field, FIELDS};
 pub use resolution::Resolution;
 pub use scene::{FreeParam, GearSpec, Scene, SceneKind, SearchSpec};
@@ -48,6 +49,7 @@ pub use events::{attitude_deg, events, housing_radius, Event, Events, PickingChe
 pub use gear::{
     solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, SampleGrid,
 };
+pub use gearbox::gear_sets_overlap;
 pub use measures::{nearest, Measure};
 pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
 pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue, Travel};

@@ -38,6 +38,7 @@ pub enum Scalar {
     PickingWindow,
     PickingTipSpeed,
     InTraySpeed,
+    GearOverlap,
     PlantingGroundSpeed,
     PickingBranchGap,
     PlantingBranchGap,
@@ -51,12 +52,13 @@ pub enum Scalar {
 }
 
 impl Scalar {
-    const ALL: [Scalar; 15] = [
+    const ALL: [Scalar; 16] = [
         Scalar::PickingCarrier,
         Scalar::PlantingCarrier,
         Scalar::PickingWindow,
         Scalar::PickingTipSpeed,
         Scalar::InTraySpeed,
+        Scalar::GearOverlap,
         Scalar::PlantingGroundSpeed,
         Scalar::PickingBranchGap,
         Scalar::PlantingBranchGap,
@@ -87,6 +89,10 @@ impl Scalar {
             Scalar::InTraySpeed => (
                 "in_tray_speed_m_s",
                 "mean tip speed relative to the seedling while inside the tray",
+            ),
+            Scalar::GearOverlap => (
+                "gear_overlap_mm",
+                "deepest overlap of the pitch curves of different arm sets' gears (0: clear)",
             ),
             Scalar::PlantingGroundSpeed => (
                 "planting_ground_speed_m_s",
@@ -260,6 +266,8 @@ impl Measure {
                 }
                 Scalar::PlantingGroundSpeed => anatomy.map(|a| a.planting_ground_speed_m_s),
                 Scalar::InTraySpeed => anatomy.map(|a| a.in_tray_speed_m_s),
+                Scalar::GearOverlap => (eval.kinematics.as_ref())
+                    .map(|k| crate::gearbox::gear_sets_overlap(k).unwrap_or(0.0)),
                 Scalar::ReturnHeight => anatomy.map(|a| a.return_height_mm),
                 Scalar::LoopWidth => anatomy.map(|a| a.loop_width_mm),
                 Scalar::LoopHeight => anatomy.map(|a| a.loop_height_mm),

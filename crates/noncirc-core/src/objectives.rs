@@ -373,13 +373,17 @@ impl Segment {
     }
 }
 
-/// Objective 1: least clearance between arm capsules and against the other planets' gear
-/// envelopes (circles of the sun's largest radius) over the cycle (mm). By the train's
-/// symmetry (arm k is arm I a k-th of a turn later), arm I against every other planet and
-/// against the arms at lags 1 … arms/2 covers every pair: the pair at lag m is the pair at
-/// lag arms − m seen from the other arm. A one-arm train has no pair (the scene refuses
-/// this objective there); it reads +∞.
+/// Objective 1: least clearance between arm capsules and against the other planets' gear envelopes
+/// (circles of the sun's largest radius) over the cycle (mm). By the train's symmetry
+/// (arm k is arm I a k-th of a turn later), arm I against every other planet and against
+/// the arms at lags 1 … arms/2 covers every pair: the pair at lag m is the pair at lag
+/// arms − m seen from the other arm. A one-arm train has no pair (the scene refuses the
+/// objective there); it reads +∞. The gears of different arm sets are the measure
+/// `gear_overlap_mm` ([`crate::gear_sets_overlap`]).
 pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
+    if kin.arms() < 2 {
+        return f64::INFINITY;
+    }
     let n = kin.len();
     let (tips, centres) = (kin.tips(), kin.planet_centres());
     let rmax = kin.radius_range().1;
@@ -396,7 +400,8 @@ pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
         let seg = arm(j);
         let others = (arm_lags.clone()).map(|m| arms(&seg, &arm(kin.arm_node(m, j))));
         let planets = (planet_lags.clone()).map(|m| planet(&seg, centres[kin.arm_node(m, j)]));
-        others.chain(planets).fold(f64::INFINITY, f64::min)
+        // The least part; NaN only when every part is NaN (`f64::min` drops a NaN).
+        others.chain(planets).fold(f64::NAN, f64::min)
     };
     // Every point of an arm lies within S/2 of its midpoint m, so arm I is at least
     // |m − c| − S/2 from a planet centre c, and at least |m − m₂| − S, then

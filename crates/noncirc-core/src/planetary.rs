@@ -107,6 +107,9 @@ impl Default for TrainSpec {
     }
 }
 
+/// The arms' names, in order: arm k lags arm I by k·360°/arms.
+pub const ARM_NAMES: [&str; TrainSpec::MAX_ARMS] = ["I", "II", "III", "IV"];
+
 impl TrainSpec {
     /// Most arm sets on a carrier.
     pub const MAX_ARMS: usize = 4;
@@ -659,6 +662,17 @@ impl Kinematics {
             tip_d2,
             pusher_angle: self.pusher_angle(theta3),
         }
+    }
+
+    /// Arm I's intermediate at node `j`: its centre `O2` (mm) and orientation `theta2`
+    /// (rad), as [`Kinematics::state_at`] gives them at the node, from the node's values.
+    pub fn intermediate_at(&self, j: usize) -> (Vec2, f64) {
+        let phi_h = self.phi0 + self.sigma * self.theta(j);
+        let big_phi = self.gears.pair.phi2_nodes()[j];
+        (
+            unit(phi_h) * self.carrier_a,
+            phi_h + std::f64::consts::PI + self.sigma * big_phi,
+        )
     }
 
     /// Pusher-axis direction (rad) for planet orientation `theta3`.

@@ -93,7 +93,7 @@ pub const FIELDS: &[Field] = &[
         key: "resolution.samples_per_turn",
         symbol: "",
         unit: "",
-        range: "a multiple of 6 from 12 to 786432",
+        range: "a multiple of 6 from 12 to 786432, and of `train.arms` in a mechanism scene",
         meaning: "Uniform samples of the pitch curve per turn, also the carrier-angle \
                   samples per cycle (docs/accuracy.md).",
         refused: &[

@@ -9,7 +9,8 @@ use serde::{Deserialize, Serialize};
 #[serde(default, deny_unknown_fields)]
 pub struct Resolution {
     /// Uniform samples of the pitch curve per turn, which are also the carrier-angle samples
-    /// per cycle. A multiple of 6, at least 12. Default 120 (docs/accuracy.md).
+    /// per cycle. A multiple of 6, at least 12, and of `train.arms` in a mechanism scene
+    /// (12 for four arms). Default 120 (docs/accuracy.md).
     pub samples_per_turn: usize,
     /// Largest accepted relative uncertainty of the centre distance, estimated from the
     /// half grid; above it the closure is reported as under-resolved. Default 1e-5

@@ -75,7 +75,7 @@ impl View {
         view.picking_mm = Some(events.picking.tip_mm.into());
         view.planting_mm = Some(events.planting.tip_mm.into());
         let n = unit(agro.tray_normal_deg.to_radians());
-        let surface = events.picking.tip_mm - n * agro.tray_depth_mm;
+        let surface = events.tray_surface_point(n);
         let along = n.turn_90() * 120.0;
         view.tray = Some(vec![(surface - along).into(), (surface + along).into()]);
         view.ground_y_mm = Some(events.y_min_mm + agro.planting_depth_mm);
