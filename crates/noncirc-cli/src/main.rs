@@ -236,10 +236,11 @@ enum Command {
     /// the scene's search box (Saltelli sampling, Jansen estimators, bootstrap intervals).
     /// docs/robustness.md
     Sensitivity(SensitivityArgs),
-    /// Two arms against three: for each arm count, the least picking tip speed relative to
-    /// the seedling of a design meeting every objective at one picking rate (a search per
-    /// seed), and the paper's design with each arm count. With no scene: `paper-search`.
-    /// docs/replication.md
+    /// Two arms against three: for each arm count, the least speed of the tip relative to
+    /// the seedling while it picks (the mean over its pass through the tray, unless
+    /// --measure says otherwise) of a design meeting every objective with a clear gearbox,
+    /// at one picking rate (a search per seed); and the paper's design with each arm count.
+    /// With no scene: `paper-search`. docs/replication.md
     Compare(CompareArgs),
     /// List the built-in scenes; with --reference, every field of a scene (docs/scenes.md).
     Scenes(ScenesArgs),
