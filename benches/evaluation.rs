@@ -1,13 +1,16 @@
 //! Evaluation throughput: one full three-arm evaluation at the fast and default levels,
 //! populations on 1 and 2 threads, a gear-only scene against a full one, the moving box,
-//! and the cost curve over samples per turn.
+//! the cost curve over samples per turn, and Python's default `evaluate_batch` call
+//! against the same batch with no measures and with the gearbox's overlap.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use noncirc::batch::BatchRows;
+use noncirc::core::Measure;
 use noncirc::core::SceneProblem;
 use noncirc::core::{BatchEvaluator, Rng};
 use noncirc::core::{Evaluator, Resolution};
 use noncirc::scene_file::load_scene;
-use noncirc::search::ParallelEvaluator;
+use noncirc::search::{thread_pool, ParallelEvaluator};
 use std::hint::black_box;
 
 fn single(c: &mut Criterion) {
@@ -69,5 +72,36 @@ fn population(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, single, population);
+/// The rows Python's `evaluate_batch(scene, x)` evaluates, with its default measures,
+/// none (`measures=[]`) and the default ones plus `gear_overlap_mm`.
+fn python_batch(c: &mut Criterion) {
+    let scene = load_scene(Some("paper-search")).unwrap();
+    let problem = SceneProblem::new(&scene).unwrap();
+    let resolution = scene.resolution;
+    let mut rng = Rng::new(7);
+    let rows: Vec<Vec<f64>> = (0..1024)
+        .map(|_| problem.decode(&rng.point(problem.dim())))
+        .collect();
+    let default = Measure::batch_default();
+    let mut with_gearbox = default.clone();
+    with_gearbox.push(Measure::parse("gear_overlap_mm").unwrap());
+    let mut group = c.benchmark_group("python_evaluate_batch");
+    group.throughput(Throughput::Elements(rows.len() as u64));
+    for threads in [1usize, 2] {
+        let pool = (threads > 1).then(|| thread_pool(threads).unwrap());
+        for (name, measures) in [
+            ("default", &default[..]),
+            ("no_measures", &[][..]),
+            ("with_gear_overlap", &with_gearbox[..]),
+        ] {
+            let batch = BatchRows::new(&problem, &resolution, measures);
+            group.bench_with_input(BenchmarkId::new(name, threads), &rows, |b, rows| {
+                b.iter(|| batch.run(pool.as_ref(), black_box(rows)))
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, single, population, python_batch);
 criterion_main!(benches);

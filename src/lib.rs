@@ -5,6 +5,7 @@
 //! (arguments, progress bar, signals) lives in `noncirc-cli`.
 
 pub mod accuracy;
+pub mod batch;
 pub mod cad;
 pub mod compare;
 pub mod export;

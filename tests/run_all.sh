@@ -3,25 +3,49 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-echo "== cargo fmt --check"
+# Each stage's wall time, printed as it ends and as a table when the command ends (CI's
+# limit is 90 minutes on a shared 2-core machine: this shows where they go).
+STAGE="" STAGE_START=$SECONDS TIMES=""
+stage() {
+  end_stage
+  STAGE=$1 STAGE_START=$SECONDS
+  echo "== $1"
+}
+end_stage() {
+  if [ -n "$STAGE" ]; then
+    local took=$((SECONDS - STAGE_START))
+    echo "-- ${took} s: $STAGE"
+    TIMES+=$(printf '%6d s  %s' "$took" "$STAGE")$'\n'
+  fi
+  STAGE=""
+}
+report_times() {
+  local status=$?
+  end_stage
+  echo "== stage times (total ${SECONDS} s, exit ${status})"
+  printf '%s' "$TIMES"
+}
+trap report_times EXIT
+
+stage "cargo fmt --check"
 cargo fmt --all -- --check
-echo "== cargo clippy --all-targets -- -D warnings"
+stage "cargo clippy --all-targets -- -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
-echo "== the core builds for the browser: the design studio's WebAssembly module"
+stage "the core builds for the browser: the design studio's WebAssembly module"
 bash studio/build.sh
 cargo clippy --target wasm32-unknown-unknown -p noncirc-wasm -- -D warnings
-echo "== the library builds without figures; the Python extension without the CLI's crates"
+stage "the library builds without figures; the Python extension without the CLI's crates"
 cargo check -p noncirc --no-default-features --all-targets
 if cargo tree -p noncirc-py -e normal | grep -E "^[^a-z]*(clap|indicatif|ctrlc|plotters) "; then
   echo "the Python extension must not depend on the crates above" >&2
   exit 1
 fi
-echo "== cargo test"
+stage "cargo test"
 cargo test --release          # default members: core, library, CLI (maturin builds the extension)
 # Benches compile and run once as tests (no timing).
 cargo test --release --benches
 
-echo "== fuzz targets (scene files, checkpoints): 20 000 fixed-seed runs each from the corpus"
+stage "fuzz targets (scene files, checkpoints): 20 000 fixed-seed runs each from the corpus"
 # cargo-fuzz needs nightly Rust; both are installed here if missing. The runs are
 # deterministic (-seed, -runs); new inputs go to a temporary directory, not the corpus.
 if command -v rustup >/dev/null; then
@@ -37,7 +61,7 @@ if command -v rustup >/dev/null; then
 fi
 
 if [ -f python/pyproject.toml ]; then
-  echo "== Python package (maturin + pytest)"
+  stage "Python package (maturin + pytest)"
   VENV=.venv
   [ -x "$VENV/bin/python" ] || python3 -m venv "$VENV"
   "$VENV/bin/python" -m pip install --quiet --upgrade pip
@@ -46,14 +70,14 @@ if [ -f python/pyproject.toml ]; then
   cargo build --release --quiet -p noncirc-cli # the teeth peers' tests run the CLI
   "$VENV/bin/python" -m pytest python/tests -q
 
-  echo "== examples/: the papers' figures (as PNG and PDF) and a multi-objective study"
+  stage "examples/: the papers' figures (as PNG and PDF) and a multi-objective study"
   EXAMPLES_OUT=$(mktemp -d)
   bash examples/paper_figures.sh "$EXAMPLES_OUT" png,pdf
   "$VENV/bin/python" examples/multi_objective.py --seeds 2 --out "$EXAMPLES_OUT/front.csv"
   rm -rf "$EXAMPLES_OUT"
 fi
 
-echo "== the design studio in a browser (Playwright driving Debian's chromium; docs/studio.md)"
+stage "the design studio in a browser (Playwright driving Debian's chromium; docs/studio.md)"
 # .ci/run installs chromium and Node.js; elsewhere set CHROMIUM to a Chromium binary.
 CHROMIUM=${CHROMIUM:-/usr/bin/chromium}
 if [ ! -x "$CHROMIUM" ]; then

@@ -3,7 +3,7 @@ own `noncirc.evaluate`, `evaluate_batch` and `optimise` (noncirc/api.py) wrap th
 the typed results of noncirc/results.py."""
 
 import os
-from typing import Any, Callable, Optional
+from typing import Any, Callable, Optional, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -83,12 +83,13 @@ def evaluate_batch(
     samples_per_turn: Optional[int] = None,
     closure_rel_tol: Optional[float] = None,
     threads: Optional[int] = None,
-    measures: Optional[list[str]] = None,
+    measures: Union[None, str, list[str]] = None,
+    progress: Optional[Callable[[dict[str, Any]], Any]] = None,
 ) -> dict[str, Any]:
     """An (n, d) batch in parallel, GIL released: values, violations, cv, goals, valid,
-    errors and the measures (all but the objectives by default, `[]` for none). `x` is
-    anything `np.asarray(x, dtype=float64)` accepts; another shape is an error naming
-    it."""
+    errors and the measures (those read at no cost by default, "all", a list, `[]` for
+    none). `x` is anything `np.asarray(x, dtype=float64)` accepts; another shape is an
+    error naming it. `progress(info)` after every piece of rows (evaluations, total)."""
 
 def optimise(
     scene: Optional[Scene] = None,

@@ -41,15 +41,12 @@ def _chunk(scene: Scene, x: np.ndarray, kwargs: dict) -> Batch:
 CHUNKS_PER_THREAD = 4
 
 
-def chunk_size(
-    scene: Scene, x: np.ndarray, min_chunk_seconds: float = 0.1, threads: int = 1, **kwargs: Any
-) -> int:
-    """Rows per task: `CHUNKS_PER_THREAD` chunks per worker thread (`threads` in all), but
-    none holding less than `min_chunk_seconds` of work. The time per design is the fastest
-    of three runs of up to 256 rows after a warm-up, so one slow run does not multiply the
+def seconds_per_design(scene: Scene, x: np.ndarray, **kwargs: Any) -> float:
+    """The time one design of `x` takes on one thread of this machine (s): the fastest of
+    three runs of up to 256 rows after a warm-up, so one slow run does not multiply the
     number of tasks (timing 16 designs once gave 175 to 3 847 chunks for the same input)."""
     if len(x) == 0:
-        return 1
+        return 0.0
     evaluate_batch(scene, x[:16], threads=1, **kwargs)
     probe = x[:256]
     per_design = math.inf
@@ -57,6 +54,28 @@ def chunk_size(
         start = time.perf_counter()
         evaluate_batch(scene, probe, threads=1, **kwargs)
         per_design = min(per_design, (time.perf_counter() - start) / len(probe))
+    return per_design
+
+
+def chunk_size(
+    scene: Scene,
+    x: np.ndarray,
+    min_chunk_seconds: float = 0.1,
+    threads: int = 1,
+    per_design: Optional[float] = None,
+    **kwargs: Any,
+) -> int:
+    """Rows per task: `CHUNKS_PER_THREAD` chunks per worker thread (`threads` in all), but
+    none holding less than `min_chunk_seconds` of work, at `per_design` seconds a design
+    (by default `seconds_per_design` measures it)."""
+    if len(x) == 0:
+        return 1
+    if per_design is None:
+        per_design = seconds_per_design(scene, x, **kwargs)
+    if not (math.isfinite(per_design) and per_design >= 0):
+        raise ValueError(f"per_design must be a finite time in seconds ≥ 0, got {per_design}")
+    if not (math.isfinite(min_chunk_seconds) and min_chunk_seconds > 0):
+        raise ValueError(f"min_chunk_seconds must be a finite time in seconds > 0, got {min_chunk_seconds}")
     by_time = max(1, math.floor(len(x) * per_design / min_chunk_seconds))
     chunks = min(CHUNKS_PER_THREAD * max(threads, 1), by_time)
     return math.ceil(len(x) / chunks)

@@ -6,7 +6,7 @@ import pytest
 distributed = pytest.importorskip("distributed")
 
 from noncirc import NoncircError, Scene, evaluate_batch, optimise  # noqa: E402
-from noncirc.dask import chunk_size, evaluate_batch_distributed, islands  # noqa: E402
+from noncirc.dask import chunk_size, evaluate_batch_distributed, islands, seconds_per_design  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -25,13 +25,31 @@ def batch(n):
 
 
 def test_chunks_are_a_few_per_thread_and_hold_a_tenth_of_a_second():
+    # The rule, at an injected time per design (the machine's speed is not under test).
     scene, x = batch(200_000)
-    # 200 000 designs are seconds of work: four chunks per thread.
-    assert chunk_size(scene, x, 0.1, threads=2) == 25_000
-    # 2 000 designs are about 40 ms: one chunk, not dozens of tiny ones.
-    assert chunk_size(scene, x[:2000], 0.1, threads=2) == 2000
-    # The same input gives the same chunks (timing noise no longer multiplies them).
-    assert len({chunk_size(scene, x, 0.1, threads=2) for _ in range(5)}) == 1
+    # 200 000 designs at 20 µs are 4 s of work: four chunks per thread.
+    assert chunk_size(scene, x, 0.1, threads=2, per_design=20e-6) == 25_000
+    # 2 000 designs at 20 µs are 40 ms: one chunk, not dozens of tiny ones.
+    assert chunk_size(scene, x[:2000], 0.1, threads=2, per_design=20e-6) == 2000
+    # 20 000 designs at 20 µs are 0.4 s: four chunks of at least 0.1 s, not eight.
+    assert chunk_size(scene, x[:20_000], 0.1, threads=2, per_design=20e-6) == 5000
+    # Ten times slower designs: the thread count caps the chunks.
+    assert chunk_size(scene, x[:20_000], 0.1, threads=2, per_design=200e-6) == 2500
+    assert chunk_size(scene, x[:0], 0.1, threads=2, per_design=20e-6) == 1
+    with pytest.raises(ValueError, match="per_design"):
+        chunk_size(scene, x, 0.1, threads=2, per_design=float("nan"))
+    with pytest.raises(ValueError, match="min_chunk_seconds"):
+        chunk_size(scene, x, 0.0, threads=2, per_design=20e-6)
+
+
+def test_the_measured_time_per_design_gives_a_chunk_within_the_rule():
+    # Whatever the load: a positive, finite time, and a chunk between a quarter of a
+    # thread's share and the whole batch.
+    scene, x = batch(20_000)
+    per_design = seconds_per_design(scene, x)
+    assert 0 < per_design < 1
+    size = chunk_size(scene, x, 0.1, threads=2)
+    assert 20_000 // 8 <= size <= 20_000
 
 
 def test_distributed_batch_equals_the_local_one(client):

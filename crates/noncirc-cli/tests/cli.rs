@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 fn noncirc() -> Command {
     Command::new(env!("CARGO_BIN_EXE_noncirc"))
@@ -66,7 +66,6 @@ fn sigterm_stops_a_search_with_its_results_and_exit_130() {
         .spawn()
         .unwrap();
     std::thread::sleep(Duration::from_millis(1500));
-    let sent = Instant::now();
     let pid = child.id().to_string();
     assert!(Command::new("kill")
         .args(["-TERM", &pid])
@@ -74,12 +73,17 @@ fn sigterm_stops_a_search_with_its_results_and_exit_130() {
         .unwrap()
         .success());
     let output = child.wait_with_output().unwrap();
-    let waited = sent.elapsed();
     assert_eq!(output.status.code(), Some(130), "{output:?}");
-    // It stops after the current generation: well within a second.
-    assert!(waited < Duration::from_secs(5), "{waited:?}");
     assert!(String::from_utf8_lossy(&output.stdout).contains("evaluations"));
-    assert!(out.join("best.toml").exists() && out.join("summary.json").exists());
+    assert!(out.join("best.toml").exists());
+    // It stopped on the signal, not at the budget's end (counted, not timed).
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["stopped_early"], true, "{summary}");
+    assert!(
+        summary["evaluations"].as_u64().unwrap() < 100_000_000,
+        "{summary}"
+    );
     // The checkpoint resumes.
     let resumed = noncirc()
         .args(["optimise", "--quiet", "--budget", "1", "--resume"])

@@ -50,7 +50,7 @@ pub use gear::{
     solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, SampleGrid,
 };
 pub use gearbox::gear_sets_overlap;
-pub use measures::{nearest, Measure};
+pub use measures::{nearest, Measure, MeasureCost};
 pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
 pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue, Travel};
 pub use planetary::{ArmState, Kinematics};

@@ -132,6 +132,18 @@ impl Scalar {
     }
 }
 
+/// What a measure costs beyond the evaluation that it is read from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeasureCost {
+    /// Read from the evaluation's objectives, events or box: nothing more.
+    Read,
+    /// Needs the trajectory's sections: about one more evaluation's time.
+    Anatomy,
+    /// Places every gear's pitch curve at every node to check the gearbox
+    /// ([`crate::gear_sets_overlap`]): several evaluations' time.
+    Gearbox,
+}
+
 /// A named measure.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Measure {
@@ -219,19 +231,34 @@ impl Measure {
         })
     }
 
+    /// What the value costs beyond the evaluation itself.
+    pub fn cost(self) -> MeasureCost {
+        match self {
+            Measure::Section(..)
+            | Measure::Scalar(
+                Scalar::PlantingGroundSpeed
+                | Scalar::InTraySpeed
+                | Scalar::ReturnHeight
+                | Scalar::LoopWidth
+                | Scalar::LoopHeight,
+            ) => MeasureCost::Anatomy,
+            Measure::Scalar(Scalar::GearOverlap) => MeasureCost::Gearbox,
+            _ => MeasureCost::Read,
+        }
+    }
+
     /// Whether the value needs the trajectory's sections ([`Evaluation::anatomy`]).
     pub fn needs_anatomy(self) -> bool {
-        matches!(
-            self,
-            Measure::Section(..)
-                | Measure::Scalar(
-                    Scalar::PlantingGroundSpeed
-                        | Scalar::InTraySpeed
-                        | Scalar::ReturnHeight
-                        | Scalar::LoopWidth
-                        | Scalar::LoopHeight
-                )
-        )
+        self.cost() == MeasureCost::Anatomy
+    }
+
+    /// The measures a batch returns by default: every one besides the objectives that is
+    /// read from the evaluation at no cost (the events' carrier angles, picking window,
+    /// tip speed, branch gaps and heights, the box's travel).
+    pub fn batch_default() -> Vec<Measure> {
+        (Measure::all().into_iter())
+            .filter(|m| !matches!(m, Measure::Objective(_)) && m.cost() == MeasureCost::Read)
+            .collect()
     }
 
     /// The value for an evaluation (and its anatomy when [`Measure::needs_anatomy`]);

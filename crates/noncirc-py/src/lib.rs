@@ -4,6 +4,7 @@
 //! subclass, e.g. `FileNotFoundError`); heavy work runs with the GIL released, and a
 //! search stopped by Ctrl-C raises `KeyboardInterrupt`.
 
+use noncirc::batch::BatchRows;
 use noncirc::core::Algorithm;
 use noncirc::core::Measure;
 use noncirc::core::SceneProblem;
@@ -561,15 +562,17 @@ fn pool(threads: Option<usize>) -> PyResult<Option<Arc<rayon::ThreadPool>>> {
     Ok(Some(p))
 }
 
-/// Evaluates an `(n, d)` float64 array of designs (columns: `scene.free_parameters()`), in
-/// parallel with the GIL released. Returns arrays: `values`, `violations`,
-/// `normalised_violations` (n, k), `cv` (n,), `goals` (n, g), `valid` (n,) and `errors`.
 /// Rows of a batch evaluated between two checks for Ctrl-C: about 0.1 s on one core at
 /// the default resolution (18 µs a design).
 const ROWS_PER_SIGNAL_CHECK: usize = 4096;
 
+/// Evaluates an `(n, d)` float64 array of designs (columns: `scene.free_parameters()`), in
+/// parallel with the GIL released. Returns arrays: `values`, `violations`,
+/// `normalised_violations` (n, k), `cv` (n,), `goals` (n, g), `valid` (n,) and `errors`.
+/// `progress(info)` is called after every piece of rows (info: evaluations, total).
 #[pyfunction]
-#[pyo3(signature = (scene, x, *, samples_per_turn = None, closure_rel_tol = None, threads = None, measures = None))]
+#[pyo3(signature = (scene, x, *, samples_per_turn = None, closure_rel_tol = None, threads = None, measures = None, progress = None))]
+#[allow(clippy::too_many_arguments)]
 fn evaluate_batch<'py>(
     py: Python<'py>,
     scene: &Scene,
@@ -578,18 +581,18 @@ fn evaluate_batch<'py>(
     closure_rel_tol: Option<f64>,
     threads: Option<usize>,
     measures: Option<&Bound<'py, PyAny>>,
+    progress: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let problem = SceneProblem::new(&scene.inner).map_err(core_err)?;
-    // The measures to return besides the objectives. By default the events' (carrier
-    // angles, picking window, tip speed, branch gaps, heights); "all" adds the
-    // trajectory's sections and loop, which double a design's time; a list names them;
-    // an empty list returns none.
+    // The measures to return besides the objectives. By default those read from the
+    // evaluation at no cost (the events' carrier angles, picking window, tip speed, branch
+    // gaps, heights); "all" adds the trajectory's sections and loop (about double a
+    // design's time) and the gearbox's overlap (several times it); a list names them; an
+    // empty list returns none.
     let besides_objectives =
         || (Measure::all().into_iter()).filter(|m| !matches!(m, Measure::Objective(_)));
     let measures: Vec<Measure> = match measures {
-        None => besides_objectives()
-            .filter(|m| !m.needs_anatomy())
-            .collect(),
+        None => Measure::batch_default(),
         Some(m) if m.extract::<String>().is_ok_and(|s| s == "all") => {
             besides_objectives().collect()
         }
@@ -610,7 +613,6 @@ fn evaluate_batch<'py>(
                 .map_err(core_err)?
         }
     };
-    let needs_anatomy = measures.iter().any(|m| m.needs_anatomy());
     let d = problem.dim();
     // Anything `np.asarray(x, dtype=float64)` accepts: ints, float32, lists, any order.
     let converted = py
@@ -659,46 +661,20 @@ fn evaluate_batch<'py>(
     let pool = pool(threads)?;
     let k = scene.inner.objectives.len();
     let g = problem.goals();
-    // Reduce each evaluation to its numbers at once: a batch keeps no trajectories alive.
-    let evaluate_row = |(ev, scratch): &mut (Evaluator, noncirc::core::Scene), x: &Vec<f64>| {
-        let (fitness, outcome) = problem.fitness_at_values(x, ev, scratch, &res);
-        let outcome = outcome
-            .map(|eval| {
-                let anatomy = if needs_anatomy {
-                    eval.anatomy(&scratch.agronomy)
-                } else {
-                    None
-                };
-                let values: Vec<Option<f64>> = (measures.iter())
-                    .map(|m| m.value(&eval, anatomy.as_ref()))
-                    .collect();
-                (eval.objectives, values)
-            })
-            .map_err(|e| e.to_string());
-        (fitness, outcome)
-    };
+    let batch = BatchRows::new(&problem, &res, &measures);
     // In pieces, with a check for Ctrl-C between two: a large batch answers it within a
-    // piece's time (about 0.1 s on one core) instead of at its end.
+    // piece's time (about 0.1 s on one core) instead of at its end. `progress` hears of
+    // each piece after that check, so no piece is reported after an interrupt.
     let mut results = Vec::with_capacity(rows.len());
     for piece in rows.chunks(ROWS_PER_SIGNAL_CHECK) {
-        results.extend(py.allow_threads(|| match &pool {
-            // One thread: run in the caller's thread, so that concurrent callers overlap.
-            None => {
-                let mut state = (Evaluator::planned(&res), problem.base().clone());
-                piece
-                    .iter()
-                    .map(|x| evaluate_row(&mut state, x))
-                    .collect::<Vec<_>>()
-            }
-            Some(pool) => noncirc::search::map_batch(
-                pool,
-                &Evaluator::planned(&res),
-                problem.base(),
-                piece,
-                evaluate_row,
-            ),
-        }));
+        results.extend(py.allow_threads(|| batch.run(pool.as_deref(), piece)));
         py.check_signals()?;
+        if let Some(progress) = progress {
+            let info = PyDict::new(py);
+            info.set_item("evaluations", results.len())?;
+            info.set_item("total", rows.len())?;
+            progress.call1((info,))?;
+        }
     }
     let n = rows.len();
     let mut values = Array2::from_elem((n, k), f64::NAN);
