@@ -13,53 +13,15 @@
 //! Sections overlap only on degenerate designs (a removal zone that reaches the soil);
 //! the later section is then cut where the earlier one ends.
 
+use crate::agronomy::Agronomy;
 use crate::angle::unit;
 use crate::curve::{parabola_vertex, TAU};
 use crate::events::{span_where, Events};
-use crate::objectives::{advance_per_rad, travel_sign, Agronomy};
+use crate::measure::Section;
+use crate::objectives::{advance_per_rad, travel_sign};
 use crate::planetary::Kinematics;
 use crate::vec2::Vec2;
 use serde::Serialize;
-
-/// The four sections, in the order of motion.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Section {
-    Removal,
-    Conveying,
-    Planting,
-    Return,
-}
-
-impl Section {
-    /// All four, in the order of motion.
-    pub const ALL: [Section; 4] = [
-        Section::Removal,
-        Section::Conveying,
-        Section::Planting,
-        Section::Return,
-    ];
-
-    /// Stable snake-case name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Section::Removal => "removal",
-            Section::Conveying => "conveying",
-            Section::Planting => "planting",
-            Section::Return => "return",
-        }
-    }
-
-    /// What a person reads.
-    pub fn label(self) -> &'static str {
-        match self {
-            Section::Removal => "seedling removal",
-            Section::Conveying => "conveying",
-            Section::Planting => "planting",
-            Section::Return => "return",
-        }
-    }
-}
 
 /// One section's measures.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

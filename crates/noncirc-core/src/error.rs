@@ -89,6 +89,24 @@ pub enum Error {
     Infeasible(String),
 }
 
+/// The optimiser's errors as the core's variants of the same names and messages.
+impl From<noncirc_search::Error> for Error {
+    fn from(e: noncirc_search::Error) -> Self {
+        match e {
+            noncirc_search::Error::UnknownName {
+                what,
+                name,
+                nearest,
+            } => Error::UnknownName {
+                what,
+                name,
+                nearest,
+            },
+            noncirc_search::Error::Checkpoint(problem) => Error::Checkpoint(problem),
+        }
+    }
+}
+
 /// Displays a number readably: scientific notation when very large or very small.
 /// A scene path with the papers' symbol where they name one: `train.arm_length_mm (S)`.
 struct Named<'a>(&'a str);
@@ -190,5 +208,25 @@ pub fn positive(name: &str, value: f64) -> Result<f64> {
             value,
             expected: "> 0".into(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_optimisers_errors_keep_their_messages() {
+        let errors = [
+            noncirc_search::Error::UnknownName {
+                what: "algorithm",
+                name: "dee".into(),
+                nearest: vec!["de".into(), "guided".into()],
+            },
+            noncirc_search::Error::Checkpoint("damaged".into()),
+        ];
+        for e in errors {
+            assert_eq!(Error::from(e.clone()).to_string(), e.to_string());
+        }
     }
 }

@@ -1,6 +1,7 @@
 //! Staged evaluation: pitch curve → closure → kinematics → each objective (and the moving
 //! box apart). A scene runs only the stages its outputs need; counters prove it.
 
+use crate::agronomy::Agronomy;
 use crate::anatomy::{anatomy, Anatomy};
 use crate::curve::PitchCurve;
 use crate::error::{Error, Result};
@@ -8,7 +9,8 @@ use crate::events::{events, Events};
 use crate::gear::ModuleReading;
 use crate::gear::{GearPair, ModuleReport};
 use crate::moving_box::{evaluate_box_with, BoxReport};
-use crate::objectives::{objective_value, Agronomy, ObjectiveKind, ObjectiveValue};
+use crate::objective_kind::ObjectiveKind;
+use crate::objectives::{objective_value, ObjectiveValue};
 use crate::planetary::Kinematics;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;

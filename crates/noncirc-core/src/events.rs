@@ -11,9 +11,9 @@
 //! moves the extreme to another branch, the runner-up branch is by then nearly as deep,
 //! so the design fails the check before and after the switch instead of jumping silently.
 
+use crate::agronomy::Agronomy;
 use crate::angle::unit;
 use crate::curve::{parabola_vertex, TAU};
-use crate::objectives::Agronomy;
 use crate::planetary::{ArmState, Kinematics};
 use crate::vec2::Vec2;
 use serde::Serialize;

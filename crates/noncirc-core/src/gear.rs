@@ -2,7 +2,6 @@
 
 use crate::curve::{parabola_vertex, PitchCurve, Polar, TAU};
 use crate::error::{positive, Error, Result};
-use crate::planetary::Rotation;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use crate::vec2::Vec2;
@@ -315,6 +314,26 @@ pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
         }
     }
     (convex, concave)
+}
+
+/// Sense in which the carrier turns, seen in the frame with `y` up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Rotation {
+    /// `phiH = phi0 - θ` (paper eq. 4).
+    Clockwise,
+    /// `phiH = phi0 + θ`.
+    Counterclockwise,
+}
+
+impl Rotation {
+    /// `σ`: −1 clockwise, +1 counter-clockwise.
+    pub fn sign(self) -> f64 {
+        match self {
+            Rotation::Clockwise => -1.0,
+            Rotation::Counterclockwise => 1.0,
+        }
+    }
 }
 
 /// Where a gear pair samples its driver: `psi_j = start ± j·2π/N` (+ counter-clockwise). The gear command

@@ -2,57 +2,79 @@
 //!
 //! Units: millimetres and radians inside; degrees only where a person reads or writes.
 //! Every public item has one path, at the crate root: the modules are private, the list
-//! below is the API.
+//! below is the API. The problem-independent optimiser is the crate noncirc-search, whose
+//! items are re-exported here.
 
-mod accuracy;
-mod anatomy;
+// The modules, in one-way layers: each module may use its own layer and those below
+// (util ← model ← scene ← evaluate ← study), without cycles; scripts/check_layers.py
+// checks it.
+
+// Util: errors, the reference of fields, plane vectors, angles, quadrature, resolution.
 mod angle;
-mod curve;
 mod error;
-mod evaluation;
-mod events;
-mod gear;
-mod gearbox;
-mod measures;
-mod moving_box;
-mod objectives;
-mod params;
-mod planetary;
 mod quadrature;
 mod reference;
 mod resolution;
-mod robustness;
-mod scene;
-mod search;
-mod sensitivity;
-mod teeth;
-mod tolerance;
 mod vec2;
 
+// Model: pitch curves, gear pairs, the train's motion, teeth, the moving box, the gearbox.
+mod curve;
+mod gear;
+mod gearbox;
+mod moving_box;
+mod planetary;
+mod teeth;
+
+// Scene: what is designed and asked, by name.
+mod agronomy;
+mod goal;
+mod measure;
+mod objective_kind;
+mod params;
+mod scene;
+mod tolerance;
+
+// Evaluate: a scene's evaluation, its events, objectives, sections and measures.
+mod accuracy;
+mod anatomy;
+mod evaluation;
+mod events;
+mod measure_value;
+mod objectives;
+
+// Study: tolerances, sensitivity, and the search problem with its checkpoints.
+mod checkpoint;
+mod problem;
+mod robustness;
+mod sensitivity;
+mod serial;
+
 // The scene: what is designed and asked, and at which resolution.
+pub use agronomy::{Agronomy, Travel};
 pub use curve::{
     paper_control_points, CartesianCurve, CartesianKind, CurveSpec, Ellipse, Fourier,
     PeriodicSpline, PitchCurve, Polar,
 };
+pub use goal::{Goal, GoalQuantity, INVALID_CV};
+pub use measure::{Measure, MeasureCost, Section};
 pub use moving_box::BoxSpec;
-pub use objectives::{Agronomy, Bounds, ObjectiveKind};
+pub use objective_kind::{scale, Bounds, ObjectiveKind};
 pub use params::Param;
-pub use planetary::{PusherSide, Rotation, SunFrame, TrainSpec, ARM_NAMES};
+pub use planetary::{PusherSide, SunFrame, TrainSpec, ARM_NAMES};
 pub use reference::{field, symbol, Field, FIELDS};
 pub use resolution::Resolution;
 pub use scene::{FreeParam, GearSpec, Scene, SceneKind, SearchSpec};
 
 // The model: gear pairs, the train's motion, events, sections, measures.
-pub use anatomy::{anatomy, Anatomy, Section, SectionMeasures};
+pub use anatomy::{anatomy, Anatomy, SectionMeasures};
 pub use angle::unit;
 pub use events::{attitude_deg, events, housing_radius, Event, Events, PickingCheck};
 pub use gear::{
-    solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, SampleGrid,
+    solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, Rotation, SampleGrid,
 };
 pub use gearbox::gear_sets_overlap;
-pub use measures::{nearest, Measure, MeasureCost};
 pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
-pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue, Travel};
+pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue};
 pub use planetary::{ArmState, Kinematics};
 pub use teeth::{
     segment_distance, signed_area, Cutter, Frame, GearTeethReport, Member, MeshReport, PairTrack,
@@ -74,10 +96,13 @@ pub use robustness::{
 pub use sensitivity::{saltelli_points, sobol_indices, SobolIndices};
 pub use tolerance::{Spread, Tolerances, ASSEMBLY};
 
-// Search: the problem, the solvers, the executor and its checkpoints.
-pub use search::{
-    das_dennis, execute, non_dominated_fronts, scale, stop_after_generations, Algorithm,
-    BatchEvaluator, Candidate, Checkpoint, Cmaes, Control, DifferentialEvolution, Ending, Fitness,
-    Goal, GoalQuantity, HistoryRow, Migrants, Nsga, Observer, ParameterGuided, Rng, SceneProblem,
-    SearchState, SerialEvaluator, Solver, SolverState, Survival, CHECKPOINT_FORMAT, INVALID_CV,
+// Search: the scene's problem and its checkpoints; the optimiser (solvers, executor)
+// from noncirc-search.
+pub use checkpoint::{Checkpoint, Migrants, FORMAT as CHECKPOINT_FORMAT};
+pub use noncirc_search::{
+    das_dennis, execute, nearest, non_dominated_fronts, stop_after_generations, Algorithm,
+    BatchEvaluator, Candidate, Cmaes, Control, DifferentialEvolution, Ending, Fitness, HistoryRow,
+    Nsga, Observer, ParameterGuided, Rng, SearchState, Solver, SolverState, Survival,
 };
+pub use problem::SceneProblem;
+pub use serial::SerialEvaluator;

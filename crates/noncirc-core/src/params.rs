@@ -4,9 +4,9 @@
 //! accessors so that applying a design vector is a handful of field writes.
 
 use crate::curve::CurveSpec;
-use crate::error::{Error, Result};
-use crate::measures::nearest;
-use crate::scene::Scene;
+use crate::error::{finite, Error, Result};
+use crate::scene::{Scene, SceneKind, SearchSpec};
+use noncirc_search::nearest;
 
 /// Reads a field (`None`: the scene does not have it, e.g. another curve kind, or an
 /// optional field left unset).
@@ -313,6 +313,84 @@ impl Param {
             Access::Scalar(get, _) => get(scene),
             Access::Item(get, _, i) => get(scene).and_then(|v| v.get(i).copied()),
         }
+    }
+}
+
+/// The search settings' check, which parses the free parameters' paths.
+impl Scene {
+    /// The search settings: goals this scene can compute, each once; free parameters that
+    /// exist, each once, with finite ordered bounds a finite width apart. Checked when a
+    /// scene is read and when a search starts (not per design: [`Scene::validate`] is).
+    pub fn validate_search(&self) -> Result<()> {
+        let population = self.search.population;
+        if !(1..=SearchSpec::MAX_POPULATION).contains(&population) {
+            return Err(Error::OutOfRange {
+                name: "search.population".into(),
+                value: population as f64,
+                expected: format!("1 to {}", SearchSpec::MAX_POPULATION),
+            });
+        }
+        if self.search.free.len() > SearchSpec::MAX_FREE {
+            return Err(Error::OutOfRange {
+                name: "search.free (count)".into(),
+                value: self.search.free.len() as f64,
+                expected: format!("at most {}", SearchSpec::MAX_FREE),
+            });
+        }
+        self.search.screening.validate()?;
+        let arms = self.train.arms;
+        if !self.search.screening.samples_per_turn.is_multiple_of(arms) {
+            return Err(Error::OutOfRange {
+                name: "search.screening.samples_per_turn".into(),
+                value: self.search.screening.samples_per_turn as f64,
+                expected: format!("a multiple of train.arms = {arms}"),
+            });
+        }
+        if self.search.confirm_with_teeth && self.gear.module.teeth.is_none() {
+            return Err(Error::Missing {
+                name: "gear.module.teeth".into(),
+                needed_by: "search.confirm_with_teeth cuts that many teeth".into(),
+            });
+        }
+        for (i, goal) in self.search.goals.iter().enumerate() {
+            let name = goal.name();
+            let problem = if self.search.goals[..i].contains(goal) {
+                format!("'{name}' is listed twice")
+            } else if goal.needs_moving_box() && self.kind != SceneKind::Transplanter {
+                format!("'{name}' needs a moving box: only a transplanter scene computes it")
+            } else if goal.is_robust()
+                && !matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter)
+            {
+                format!("'{name}' samples a mechanism's tolerances: a three-arm scene needs it")
+            } else {
+                continue;
+            };
+            return Err(Error::BadList {
+                list: "search.goals",
+                problem,
+            });
+        }
+        for (i, f) in self.search.free.iter().enumerate() {
+            Param::parse(&f.name, self)?;
+            finite(&format!("search.free '{}' lower", f.name), f.lower)?;
+            finite(&format!("search.free '{}' upper", f.name), f.upper)?;
+            let problem = if self.search.free[..i].iter().any(|g| g.name == f.name) {
+                format!("'{}' is listed twice", f.name)
+            } else if !(f.lower < f.upper && (f.upper - f.lower).is_finite()) {
+                format!(
+                    "'{}' has bounds [{}, {}]: the lower must be below the upper, a finite \
+                     width apart",
+                    f.name, f.lower, f.upper
+                )
+            } else {
+                continue;
+            };
+            return Err(Error::BadList {
+                list: "search.free",
+                problem,
+            });
+        }
+        Ok(())
     }
 }
 

@@ -4,32 +4,12 @@
 use crate::angle::unit;
 use crate::curve::{PitchCurve, TAU};
 use crate::error::{finite, length, positive, Error, Result};
-use crate::gear::{GearPair, ModuleReport, ModuleRule, SampleGrid};
+use crate::gear::{GearPair, ModuleReport, ModuleRule, Rotation, SampleGrid};
 use crate::quadrature::{DriftInverse, MonotoneDrift, SpectralIntegrator};
 use crate::resolution::Resolution;
 use crate::vec2::Vec2;
 use serde::{Deserialize, Serialize};
 use std::sync::{Arc, Mutex};
-
-/// Sense in which the carrier turns, seen in the frame with `y` up.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Rotation {
-    /// `phiH = phi0 - θ` (paper eq. 4).
-    Clockwise,
-    /// `phiH = phi0 + θ`.
-    Counterclockwise,
-}
-
-impl Rotation {
-    /// `σ`: −1 clockwise, +1 counter-clockwise.
-    pub fn sign(self) -> f64 {
-        match self {
-            Rotation::Clockwise => -1.0,
-            Rotation::Counterclockwise => 1.0,
-        }
-    }
-}
 
 /// Which of the two lines through the tip at distance `H1` from `O3` is the pusher axis,
 /// seen looking from `O3` along the arm towards the tip.

@@ -12,11 +12,10 @@
 use crate::curve::{CurveSpec, TAU};
 use crate::error::{Error, Result};
 use crate::evaluation::{Evaluation, Evaluator};
-use crate::objectives::ObjectiveKind;
+use crate::objective_kind::{scale, ObjectiveKind};
 use crate::planetary::Kinematics;
 use crate::resolution::Resolution;
 use crate::scene::{Scene, SceneKind};
-use crate::search::scale;
 use crate::tolerance::{Tolerances, ASSEMBLY};
 use serde::Serialize;
 

@@ -1,15 +1,17 @@
 //! Scenes: what is being designed and asked, as plain serialisable data (no I/O here).
 
+use crate::agronomy::Agronomy;
 use crate::curve::CurveSpec;
-use crate::error::{finite, Error, Result};
+use crate::error::{Error, Result};
 use crate::gear::ModuleRule;
+use crate::goal::Goal;
 use crate::moving_box::BoxSpec;
-use crate::objectives::{Agronomy, Bounds, ObjectiveKind};
+use crate::objective_kind::{Bounds, ObjectiveKind};
 use crate::planetary::TrainSpec;
 use crate::resolution::Resolution;
-use crate::search::{Algorithm, Goal};
 use crate::teeth::ToothSpec;
 use crate::tolerance::Tolerances;
+use noncirc_search::Algorithm;
 use serde::{Deserialize, Serialize};
 
 /// A gear pair's specification: the driver's pitch curve and the tooth-cutting rules.
@@ -94,7 +96,7 @@ pub struct SearchSpec {
 
 impl SearchSpec {
     /// Largest population: a generation of 100 000 designs takes about two seconds.
-    pub const MAX_POPULATION: usize = 100_000;
+    pub const MAX_POPULATION: usize = noncirc_search::MAX_POPULATION;
     /// Most free parameters (every number of the largest built-in scene is about 60).
     pub const MAX_FREE: usize = 1_000;
 }
@@ -259,81 +261,6 @@ impl Scene {
                     expected: format!("an objective a {:?} scene can evaluate", self.kind),
                 });
             }
-        }
-        Ok(())
-    }
-
-    /// The search settings: goals this scene can compute, each once; free parameters that
-    /// exist, each once, with finite ordered bounds a finite width apart. Checked when a
-    /// scene is read and when a search starts (not per design: [`Scene::validate`] is).
-    pub fn validate_search(&self) -> Result<()> {
-        let population = self.search.population;
-        if !(1..=SearchSpec::MAX_POPULATION).contains(&population) {
-            return Err(Error::OutOfRange {
-                name: "search.population".into(),
-                value: population as f64,
-                expected: format!("1 to {}", SearchSpec::MAX_POPULATION),
-            });
-        }
-        if self.search.free.len() > SearchSpec::MAX_FREE {
-            return Err(Error::OutOfRange {
-                name: "search.free (count)".into(),
-                value: self.search.free.len() as f64,
-                expected: format!("at most {}", SearchSpec::MAX_FREE),
-            });
-        }
-        self.search.screening.validate()?;
-        let arms = self.train.arms;
-        if !self.search.screening.samples_per_turn.is_multiple_of(arms) {
-            return Err(Error::OutOfRange {
-                name: "search.screening.samples_per_turn".into(),
-                value: self.search.screening.samples_per_turn as f64,
-                expected: format!("a multiple of train.arms = {arms}"),
-            });
-        }
-        if self.search.confirm_with_teeth && self.gear.module.teeth.is_none() {
-            return Err(Error::Missing {
-                name: "gear.module.teeth".into(),
-                needed_by: "search.confirm_with_teeth cuts that many teeth".into(),
-            });
-        }
-        for (i, goal) in self.search.goals.iter().enumerate() {
-            let name = goal.name();
-            let problem = if self.search.goals[..i].contains(goal) {
-                format!("'{name}' is listed twice")
-            } else if goal.needs_moving_box() && self.kind != SceneKind::Transplanter {
-                format!("'{name}' needs a moving box: only a transplanter scene computes it")
-            } else if goal.is_robust()
-                && !matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter)
-            {
-                format!("'{name}' samples a mechanism's tolerances: a three-arm scene needs it")
-            } else {
-                continue;
-            };
-            return Err(Error::BadList {
-                list: "search.goals",
-                problem,
-            });
-        }
-        for (i, f) in self.search.free.iter().enumerate() {
-            crate::params::Param::parse(&f.name, self)?;
-            finite(&format!("search.free '{}' lower", f.name), f.lower)?;
-            finite(&format!("search.free '{}' upper", f.name), f.upper)?;
-            let problem = if self.search.free[..i].iter().any(|g| g.name == f.name) {
-                format!("'{}' is listed twice", f.name)
-            } else if !(f.lower < f.upper && (f.upper - f.lower).is_finite()) {
-                format!(
-                    "'{}' has bounds [{}, {}]: the lower must be below the upper, a finite \
-                     width apart",
-                    f.name, f.lower, f.upper
-                )
-            } else {
-                continue;
-            };
-            return Err(Error::BadList {
-                list: "search.free",
-                problem,
-            });
         }
         Ok(())
     }

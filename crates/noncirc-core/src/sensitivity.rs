@@ -5,7 +5,7 @@
 
 use crate::error::{Error, Result};
 use crate::robustness::sobol;
-use crate::search::Rng;
+use noncirc_search::Rng;
 use serde::Serialize;
 
 /// Most parameters: the Sobol table has 256 dimensions, two per parameter.

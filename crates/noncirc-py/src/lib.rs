@@ -828,7 +828,7 @@ fn optimise<'py>(
         algorithm: algorithm
             .map(Algorithm::parse)
             .transpose()
-            .map_err(core_err)?,
+            .map_err(|e| core_err(e.into()))?,
         budget,
         population,
         seed,

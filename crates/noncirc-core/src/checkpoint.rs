@@ -6,10 +6,10 @@
 //! damaged or hand-edited file is refused with what is wrong instead of panicking, looping
 //! or running a state against another problem.
 
-use super::problem::SceneProblem;
-use super::{state_error, Algorithm, Candidate, SearchState};
-use crate::error::Result;
-use crate::scene::Scene;
+use crate::error::{Error, Result};
+use crate::problem::SceneProblem;
+use crate::scene::{Scene, SearchSpec};
+use noncirc_search::{Algorithm, Candidate, SearchState};
 use serde::{Deserialize, Serialize};
 
 /// The `format` field of every checkpoint.
@@ -86,6 +86,7 @@ impl Checkpoint {
         }
         self.state
             .immigrate(&migrants.candidates, self.dim, self.goals)
+            .map_err(Error::from)
     }
 
     /// The checkpoint as JSON (non-finite numbers of the state are written as strings).
@@ -144,7 +145,7 @@ impl Checkpoint {
                 problem.goals()
             )));
         }
-        self.state.check(self.dim, self.goals)
+        self.state.check(self.dim, self.goals).map_err(Error::from)
     }
 }
 
@@ -156,7 +157,7 @@ impl Checkpoint {
 /// in.
 pub fn problem_hash(scene: &Scene) -> String {
     let mut problem = scene.clone();
-    let defaults = crate::scene::SearchSpec::default();
+    let defaults = SearchSpec::default();
     problem.search.algorithm = defaults.algorithm;
     problem.search.population = defaults.population;
     problem.search.seed = defaults.seed;
@@ -170,4 +171,9 @@ pub fn scene_hash(scene: &Scene) -> String {
         (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
     });
     format!("{hash:016x}")
+}
+
+/// A checkpoint that cannot be resumed: what is wrong with it.
+fn state_error(problem: String) -> Error {
+    Error::Checkpoint(problem)
 }

@@ -1,27 +1,18 @@
 //! A search problem made from a scene: free parameters with bounds, the objectives'
 //! violations as constraints, and goals to minimise.
 
-use super::{Fitness, Goal, GoalQuantity};
 use crate::error::{Error, Result};
 use crate::evaluation::{Evaluation, Evaluator};
-use crate::objectives::{Bounds, ObjectiveKind};
+use crate::goal::{Goal, GoalQuantity, INVALID_CV};
+use crate::objective_kind::{scale, ObjectiveKind};
+use crate::objectives::ObjectiveValue;
 use crate::params::Param;
 use crate::resolution::Resolution;
-use crate::robustness::{least_normalised_margin, radius_count, robust_score, ToleranceSamples};
+use crate::robustness::{
+    least_normalised_margin, radius_count, robust_score, RobustScore, ToleranceSamples,
+};
 use crate::scene::{FreeParam, Scene};
-
-/// Violation for a design the model refuses (invalid curve, under-resolved, …).
-pub const INVALID_CV: f64 = 1e5;
-
-/// The normalising scale of an objective's violation and margin: half the admissible
-/// range for two-sided bounds, else a tenth of the bound (at least one unit).
-pub fn scale(kind: ObjectiveKind, bounds: &Bounds) -> f64 {
-    match kind.bounds(bounds) {
-        (Some(l), Some(u)) => ((u - l) / 2.0).max(1e-9),
-        (Some(b), None) | (None, Some(b)) => (b.abs() * 0.1).max(1.0),
-        (None, None) => 1.0,
-    }
-}
+use noncirc_search::Fitness;
 
 /// The default free parameters around a three-arm design: the control radii (±60 %, at
 /// least 5 mm), `Φ0` ± 60°, `β0` ± 60°, `S` ± 40 %, `H1` ± 40 % (below `S`), `γ0` ± 50°.
@@ -310,5 +301,101 @@ impl SceneProblem {
                 Err(e),
             ),
         }
+    }
+}
+
+/// The goals' values for an evaluation.
+impl Goal {
+    /// A robust goal's minimised value from the design's samples; `None` (a design that
+    /// misses an objective at its nominal dimensions, whose samples are not drawn) scores
+    /// probability 0 and its nominal least margin as the quantile.
+    fn robust_value(self, score: Option<&RobustScore>, nominal_least: f64) -> f64 {
+        let v = match (self, score) {
+            (Goal::Probability, Some(s)) => -s.probability,
+            (Goal::Probability, None) => 0.0,
+            (Goal::MarginQuantile(q), Some(s)) => -s.margin_quantile(q),
+            (Goal::MarginQuantile(_), None) => -nominal_least,
+            _ => f64::NAN,
+        };
+        if v.is_finite() {
+            v
+        } else {
+            INVALID_CV
+        }
+    }
+
+    /// The goal's minimised value for an evaluation of `scene` (a robust goal's is
+    /// [`Goal::robust_value`]); a value that is not finite scores [`INVALID_CV`].
+    fn value(self, eval: &Evaluation, scene: &Scene) -> f64 {
+        let bounds = &scene.bounds;
+        let norm = |o: &ObjectiveValue| o.margin / scale(o.kind, bounds);
+        let v = match self {
+            // The seedling-push margin is 0 whenever it is met: it cannot rank designs.
+            Goal::LeastMargin => -eval
+                .objectives
+                .iter()
+                .filter(|o| o.kind != ObjectiveKind::SeedlingPush)
+                .map(norm)
+                .fold(f64::INFINITY, f64::min),
+            Goal::Margin(k) => -eval.objective(k).map_or(f64::NEG_INFINITY, norm),
+            Goal::PickingTipSpeed => eval
+                .events
+                .as_ref()
+                .map_or(f64::INFINITY, |e| e.picking_tip_speed_m_s),
+            Goal::BoxTravel => eval
+                .moving_box
+                .as_ref()
+                .map_or(f64::INFINITY, |b| b.elliptic_delta_h_mm),
+            Goal::Probability | Goal::MarginQuantile(_) => f64::NAN,
+            Goal::Measure { measure, maximise } => {
+                let anatomy = if measure.needs_anatomy() {
+                    eval.anatomy(&scene.agronomy)
+                } else {
+                    None
+                };
+                let v = measure.value(eval, anatomy.as_ref()).unwrap_or(f64::NAN);
+                if maximise {
+                    -v
+                } else {
+                    v
+                }
+            }
+        };
+        if v.is_finite() {
+            v
+        } else {
+            INVALID_CV
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_goal_physical_value_is_the_objective_or_its_margin_in_its_unit() {
+        use crate::evaluation::Evaluator;
+        let scene = Scene::default();
+        let eval = Evaluator::new()
+            .evaluate_at(&scene, &scene.resolution)
+            .unwrap();
+        let b = &scene.bounds;
+        for &k in &ObjectiveKind::ALL {
+            let o = eval.objective(k).unwrap();
+            let goal = Goal::Margin(k);
+            let physical = goal.physical(goal.value(&eval, &scene), b);
+            let expected = match k.bounds(b) {
+                (Some(_), None) | (None, Some(_)) => o.value,
+                _ => o.margin,
+            };
+            assert!(
+                (physical - expected).abs() < 1e-9 * expected.abs().max(1.0),
+                "{k:?}"
+            );
+        }
+        let least = Goal::LeastMargin.value(&eval, &scene);
+        assert_eq!(Goal::LeastMargin.physical(least, b), -least);
+        assert!(Goal::PickingTipSpeed.physical(INVALID_CV, b).is_nan());
     }
 }

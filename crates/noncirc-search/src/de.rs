@@ -1,9 +1,9 @@
 //! Differential evolution, rand/1/bin with dithered F, feasibility-first selection.
 
-use super::{
-    check_candidate, check_len, evaluate_all, state_error, BatchEvaluator, Candidate, Rng,
-    SolverState,
-};
+use crate::check::{check_candidate, check_len, state_error};
+use crate::fitness::{evaluate_all, BatchEvaluator, Candidate};
+use crate::rng::Rng;
+use crate::solver::SolverState;
 use serde::{Deserialize, Serialize};
 
 #[derive(Debug, Clone, Serialize, Deserialize)]

@@ -1,7 +1,10 @@
 //! CMA-ES (Hansen's (μ/μ_w, λ) with rank-one and rank-μ updates) in the unit cube, ranking
 //! by Deb's feasibility-first rule, with restarts from a random mean when it stalls.
 
-use super::{check_len, evaluate_all, state_error, BatchEvaluator, Candidate, Rng, SolverState};
+use crate::check::{check_len, state_error};
+use crate::fitness::{evaluate_all, BatchEvaluator, Candidate};
+use crate::rng::Rng;
+use crate::solver::{SolverState, MAX_POPULATION};
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
@@ -63,11 +66,10 @@ impl SolverState for Cmaes {
         check_len("cmaes: covariance", self.cov.len(), dim * dim)?;
         check_len("cmaes: step-size path", self.path_sigma.len(), dim)?;
         check_len("cmaes: covariance path", self.path_c.len(), dim)?;
-        if !(4..=crate::scene::SearchSpec::MAX_POPULATION).contains(&self.lambda) {
+        if !(4..=MAX_POPULATION).contains(&self.lambda) {
             return Err(state_error(format!(
                 "cmaes: population {} (from 4 to {})",
-                self.lambda,
-                crate::scene::SearchSpec::MAX_POPULATION
+                self.lambda, MAX_POPULATION
             )));
         }
         if !(self.sigma.is_finite() && self.sigma > 0.0) {
@@ -192,8 +194,8 @@ fn identity(d: usize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::search::test_problem::{sphere, FnProblem};
-    use crate::search::Fitness;
+    use crate::fitness::Fitness;
+    use crate::test_problem::{sphere, FnProblem};
 
     /// A search that keeps improving keeps its distribution: no restart in 60 generations.
     #[test]

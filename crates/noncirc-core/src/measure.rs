@@ -1,12 +1,52 @@
 //! Measures: every named number noncirc reports about a design, with its unit. The
-//! objectives' values, the events, the trajectory's sections (crate::anatomy) and the
+//! objectives' values, the events, the trajectory's sections (the anatomy) and the
 //! moving box's travel. `sweep --measure`, the search goals `min:NAME`/`max:NAME` and
 //! Python read them by name.
 
-use crate::anatomy::{Anatomy, Section};
 use crate::error::{Error, Result};
-use crate::evaluation::Evaluation;
-use crate::objectives::ObjectiveKind;
+use crate::objective_kind::ObjectiveKind;
+use noncirc_search::nearest;
+use serde::Serialize;
+
+/// The four sections, in the order of motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Section {
+    Removal,
+    Conveying,
+    Planting,
+    Return,
+}
+
+impl Section {
+    /// All four, in the order of motion.
+    pub const ALL: [Section; 4] = [
+        Section::Removal,
+        Section::Conveying,
+        Section::Planting,
+        Section::Return,
+    ];
+
+    /// Stable snake-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Section::Removal => "removal",
+            Section::Conveying => "conveying",
+            Section::Planting => "planting",
+            Section::Return => "return",
+        }
+    }
+
+    /// What a person reads.
+    pub fn label(self) -> &'static str {
+        match self {
+            Section::Removal => "seedling removal",
+            Section::Conveying => "conveying",
+            Section::Planting => "planting",
+            Section::Return => "return",
+        }
+    }
+}
 
 /// A quantity measured on each trajectory section.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -247,7 +287,7 @@ impl Measure {
         }
     }
 
-    /// Whether the value needs the trajectory's sections ([`Evaluation::anatomy`]).
+    /// Whether the value needs the trajectory's sections (`Evaluation::anatomy`).
     pub fn needs_anatomy(self) -> bool {
         self.cost() == MeasureCost::Anatomy
     }
@@ -260,71 +300,6 @@ impl Measure {
             .filter(|m| !matches!(m, Measure::Objective(_)) && m.cost() == MeasureCost::Read)
             .collect()
     }
-
-    /// The value for an evaluation (and its anatomy when [`Measure::needs_anatomy`]);
-    /// `None` where the scene does not compute it (no events, no moving box, no
-    /// runner-up extreme).
-    pub fn value(self, eval: &Evaluation, anatomy: Option<&Anatomy>) -> Option<f64> {
-        let ev = eval.events.as_ref();
-        match self {
-            Measure::Objective(k) => eval.objective(k).map(|o| o.value),
-            Measure::Section(s, q) => anatomy.map(|a| {
-                let m = a.section(s);
-                match q {
-                    SectionQuantity::Span => m.span_deg,
-                    SectionQuantity::Length => m.length_mm,
-                    SectionQuantity::YMin => m.y_min_mm,
-                    SectionQuantity::YMax => m.y_max_mm,
-                }
-            }),
-            Measure::Scalar(s) => match s {
-                Scalar::PickingCarrier => ev.map(|e| e.picking.carrier_rad.to_degrees()),
-                Scalar::PlantingCarrier => ev.map(|e| e.planting.carrier_rad.to_degrees()),
-                Scalar::PickingWindow => {
-                    ev.map(|e| (e.picking_window_rad[1] - e.picking_window_rad[0]).to_degrees())
-                }
-                Scalar::PickingTipSpeed => ev.map(|e| e.picking_tip_speed_m_s),
-                Scalar::PickingBranchGap => ev.and_then(|e| e.picking_branch_gap_mm),
-                Scalar::PlantingBranchGap => ev.and_then(|e| e.planting_branch_gap_mm),
-                Scalar::PickingHeight => ev.map(|e| e.picking.tip_mm.y),
-                Scalar::PlantingHeight => ev.map(|e| e.planting.tip_mm.y),
-                Scalar::PickingToPlantingHeight => {
-                    ev.map(|e| e.picking.tip_mm.y - e.planting.tip_mm.y)
-                }
-                Scalar::PlantingGroundSpeed => anatomy.map(|a| a.planting_ground_speed_m_s),
-                Scalar::InTraySpeed => anatomy.map(|a| a.in_tray_speed_m_s),
-                Scalar::GearOverlap => (eval.kinematics.as_ref())
-                    .map(|k| crate::gearbox::gear_sets_overlap(k).unwrap_or(0.0)),
-                Scalar::ReturnHeight => anatomy.map(|a| a.return_height_mm),
-                Scalar::LoopWidth => anatomy.map(|a| a.loop_width_mm),
-                Scalar::LoopHeight => anatomy.map(|a| a.loop_height_mm),
-                Scalar::BoxTravel => eval.moving_box.as_ref().map(|b| b.elliptic_delta_h_mm),
-            },
-        }
-    }
-}
-
-/// Up to three of `names` nearest to `name` by edit distance (for "did you mean").
-pub fn nearest(name: &str, names: &[String]) -> Vec<String> {
-    let distance = |a: &str, b: &str| {
-        let b: Vec<char> = b.chars().collect();
-        let mut row: Vec<usize> = (0..=b.len()).collect();
-        for (i, ca) in a.chars().enumerate() {
-            let mut diagonal = row[0];
-            row[0] = i + 1;
-            for (j, &cb) in b.iter().enumerate() {
-                let next = (diagonal + usize::from(ca != cb))
-                    .min(row[j] + 1)
-                    .min(row[j + 1] + 1);
-                diagonal = row[j + 1];
-                row[j + 1] = next;
-            }
-        }
-        row[b.len()]
-    };
-    let mut ranked: Vec<(usize, &String)> = names.iter().map(|n| (distance(name, n), n)).collect();
-    ranked.sort();
-    ranked.into_iter().take(3).map(|(_, n)| n.clone()).collect()
 }
 
 #[cfg(test)]

@@ -1,6 +1,6 @@
 //! A batch evaluator made from a function of one point, for the solvers' unit tests.
 
-use super::{BatchEvaluator, Fitness};
+use crate::fitness::{BatchEvaluator, Fitness};
 
 /// `dim` parameters, `goals` goals, each point scored by `score`.
 pub(crate) struct FnProblem<F> {

@@ -1,13 +1,14 @@
-//! Search goals: what a search minimises once every objective is met, by name.
+//! Search goals: what a search minimises once every objective is met, by name, and what
+//! each means in physical terms. Their values for an evaluation are the problem's.
 
-use super::problem::{scale, INVALID_CV};
 use crate::error::{Error, Result};
-use crate::evaluation::Evaluation;
-use crate::measures::{nearest, Measure};
-use crate::objectives::{Bounds, ObjectiveKind, ObjectiveValue};
-use crate::robustness::RobustScore;
-use crate::scene::Scene;
+use crate::measure::Measure;
+use crate::objective_kind::{scale, Bounds, ObjectiveKind};
+use noncirc_search::nearest;
 use serde::{Deserialize, Serialize};
+
+/// Violation for a design the model refuses (invalid curve, under-resolved, …).
+pub const INVALID_CV: f64 = 1e5;
 
 /// A goal read in physical terms: the quantity it optimises, its unit and which way.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -208,72 +209,12 @@ impl Goal {
         matches!(self, Goal::Probability | Goal::MarginQuantile(_))
     }
 
-    /// A robust goal's minimised value from the design's samples; `None` (a design that
-    /// misses an objective at its nominal dimensions, whose samples are not drawn) scores
-    /// probability 0 and its nominal least margin as the quantile.
-    pub(crate) fn robust_value(self, score: Option<&RobustScore>, nominal_least: f64) -> f64 {
-        let v = match (self, score) {
-            (Goal::Probability, Some(s)) => -s.probability,
-            (Goal::Probability, None) => 0.0,
-            (Goal::MarginQuantile(q), Some(s)) => -s.margin_quantile(q),
-            (Goal::MarginQuantile(_), None) => -nominal_least,
-            _ => f64::NAN,
-        };
-        if v.is_finite() {
-            v
-        } else {
-            INVALID_CV
-        }
-    }
-
     /// Whether only a scene with a moving box (a transplanter) can compute it.
     pub fn needs_moving_box(self) -> bool {
         match self {
             Goal::BoxTravel => true,
             Goal::Measure { measure, .. } => measure.name() == "box_travel_mm",
             _ => false,
-        }
-    }
-
-    pub(crate) fn value(self, eval: &Evaluation, scene: &Scene) -> f64 {
-        let bounds = &scene.bounds;
-        let norm = |o: &ObjectiveValue| o.margin / scale(o.kind, bounds);
-        let v = match self {
-            // The seedling-push margin is 0 whenever it is met: it cannot rank designs.
-            Goal::LeastMargin => -eval
-                .objectives
-                .iter()
-                .filter(|o| o.kind != ObjectiveKind::SeedlingPush)
-                .map(norm)
-                .fold(f64::INFINITY, f64::min),
-            Goal::Margin(k) => -eval.objective(k).map_or(f64::NEG_INFINITY, norm),
-            Goal::PickingTipSpeed => eval
-                .events
-                .as_ref()
-                .map_or(f64::INFINITY, |e| e.picking_tip_speed_m_s),
-            Goal::BoxTravel => eval
-                .moving_box
-                .as_ref()
-                .map_or(f64::INFINITY, |b| b.elliptic_delta_h_mm),
-            Goal::Probability | Goal::MarginQuantile(_) => f64::NAN,
-            Goal::Measure { measure, maximise } => {
-                let anatomy = if measure.needs_anatomy() {
-                    eval.anatomy(&scene.agronomy)
-                } else {
-                    None
-                };
-                let v = measure.value(eval, anatomy.as_ref()).unwrap_or(f64::NAN);
-                if maximise {
-                    -v
-                } else {
-                    v
-                }
-            }
-        };
-        if v.is_finite() {
-            v
-        } else {
-            INVALID_CV
         }
     }
 }
@@ -353,32 +294,6 @@ mod tests {
             Goal::LeastMargin.quantity(&bounds).label(),
             "least normalised margin, maximised"
         );
-    }
-
-    #[test]
-    fn a_goal_physical_value_is_the_objective_or_its_margin_in_its_unit() {
-        use crate::evaluation::Evaluator;
-        let scene = Scene::default();
-        let eval = Evaluator::new()
-            .evaluate_at(&scene, &scene.resolution)
-            .unwrap();
-        let b = &scene.bounds;
-        for &k in &ObjectiveKind::ALL {
-            let o = eval.objective(k).unwrap();
-            let goal = Goal::Margin(k);
-            let physical = goal.physical(goal.value(&eval, &scene), b);
-            let expected = match k.bounds(b) {
-                (Some(_), None) | (None, Some(_)) => o.value,
-                _ => o.margin,
-            };
-            assert!(
-                (physical - expected).abs() < 1e-9 * expected.abs().max(1.0),
-                "{k:?}"
-            );
-        }
-        let least = Goal::LeastMargin.value(&eval, &scene);
-        assert_eq!(Goal::LeastMargin.physical(least, b), -least);
-        assert!(Goal::PickingTipSpeed.physical(INVALID_CV, b).is_nan());
     }
 
     #[test]

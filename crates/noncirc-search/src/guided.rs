@@ -2,10 +2,10 @@
 //! each parameter's effect by probing it up and down, move the parameters that help most
 //! together (weighted by their gain), adapt each parameter's step, restart when stuck.
 
-use super::{
-    check_candidate, check_len, clamp_unit, evaluate_all, state_error, BatchEvaluator, Candidate,
-    Rng, SolverState,
-};
+use crate::check::{check_candidate, check_len, state_error};
+use crate::fitness::{clamp_unit, evaluate_all, BatchEvaluator, Candidate};
+use crate::rng::Rng;
+use crate::solver::SolverState;
 use serde::{Deserialize, Serialize};
 
 #[derive(Debug, Clone, Serialize, Deserialize)]

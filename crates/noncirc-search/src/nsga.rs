@@ -6,10 +6,10 @@
 //! around a fixed set of reference directions, which keeps the front spread out when more
 //! than three goals compete.
 
-use super::{
-    check_candidate, check_len, evaluate_all, state_error, BatchEvaluator, Candidate, Rng,
-    SolverState,
-};
+use crate::check::{check_candidate, check_len, state_error};
+use crate::fitness::{evaluate_all, BatchEvaluator, Candidate};
+use crate::rng::Rng;
+use crate::solver::SolverState;
 use serde::{Deserialize, Serialize};
 
 /// How the last front that fits into the next population is cut.

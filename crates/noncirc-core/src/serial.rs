@@ -3,9 +3,10 @@
 //! thread computed it, so a search gives the same result with this as with the CLI's
 //! parallel evaluator.
 
-use super::{BatchEvaluator, Fitness, SceneProblem};
 use crate::evaluation::Evaluator;
+use crate::problem::SceneProblem;
 use crate::scene::Scene;
+use noncirc_search::{BatchEvaluator, Fitness};
 
 /// A scene problem's batch evaluator without threads.
 #[derive(Debug, Clone)]

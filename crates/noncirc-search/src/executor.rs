@@ -4,7 +4,8 @@
 //! bar, Ctrl-C and timed checkpoints as observers, Python its signal check and progress
 //! callback. In the spirit of argmin's `Executor` and observers.
 
-use super::{BatchEvaluator, SearchState};
+use crate::fitness::BatchEvaluator;
+use crate::state::SearchState;
 
 /// An observer's answer: go on, or stop cleanly after the generation just finished.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -81,8 +82,8 @@ pub fn stop_after_generations(n: u64) -> impl Observer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::search::test_problem::{sphere, FnProblem};
-    use crate::search::{Algorithm, Fitness};
+    use crate::test_problem::{sphere, FnProblem};
+    use crate::{Algorithm, Fitness};
 
     /// A run stopped and continued equals a run that never stopped.
     #[test]
