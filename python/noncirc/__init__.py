@@ -12,10 +12,12 @@ True
 
 Errors are `NoncircError` (a ValueError), by kind `SceneError`, `ParameterError`,
 `ModelError` and `UnknownNameError`; files that cannot be read raise OSError
-(`FileNotFoundError`), values of the wrong type `TypeError`.
+(`FileNotFoundError`), values of the wrong type `TypeError`; a failure inside noncirc (a
+bug, not bad input) `InternalError` (a RuntimeError).
 """
 
 from ._noncirc import (
+    InternalError,
     ModelError,
     NoncircError,
     ParameterError,
@@ -36,6 +38,7 @@ __all__ = [
     "Design",
     "Evaluation",
     "Goal",
+    "InternalError",
     "ModelError",
     "NoncircError",
     "Objective",

@@ -30,6 +30,10 @@ class UnknownNameError(NoncircError):
     """A scene key, parameter, measure or goal noncirc does not know; the message lists
     the nearest names it does know."""
 
+class InternalError(RuntimeError):
+    """A failure inside noncirc, not in what it was given (a value it cannot serialise, a
+    lock poisoned by an earlier panic): a bug, to be reported with the call that raised it."""
+
 class Scene:
     """A scene: what is designed and asked, and at which resolution. Immutable; pickles."""
 

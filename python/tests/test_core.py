@@ -307,6 +307,16 @@ def test_each_kind_of_bad_input_raises_its_own_noncirc_error(call, kind, message
     assert not any(isinstance(caught.value, getattr(noncirc, o)) for o in others)
 
 
+def test_an_internal_failure_is_no_input_error():
+    import noncirc
+
+    # A bug must not pass for bad input: InternalError is a RuntimeError, outside the
+    # NoncircError (ValueError) family that callers catch to report their own mistakes.
+    assert issubclass(noncirc.InternalError, RuntimeError)
+    assert not issubclass(noncirc.InternalError, ValueError)
+    assert not issubclass(noncirc.InternalError, noncirc.NoncircError)
+
+
 def test_results_are_typed_and_tabulate_with_units():
     import json
 

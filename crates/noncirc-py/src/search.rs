@@ -1,0 +1,207 @@
+//! Searches from Python: `optimise` with its progress callback, Ctrl-C and checkpoints
+//! (an observer of the core's executor), and the island model's migrants.
+
+use crate::errors::{internal, invalid, parameter, Result};
+use crate::scene::Scene;
+use noncirc::core::{Algorithm, Control, Observer, SearchState};
+use noncirc::search::{RunOptions, SearchSettings};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+/// The Python side of a search, an observer of the core's executor: after every
+/// generation it takes the GIL for a moment to check for Ctrl-C and to call the progress
+/// callback. Either stops the search cleanly (the checkpoint, if asked, is written); the
+/// error is raised once the search has stopped.
+struct PythonObserver {
+    progress: Option<PyObject>,
+    error: Option<PyErr>,
+}
+
+impl Observer for PythonObserver {
+    fn poll(&mut self, state: &SearchState, budget: u64) -> Control {
+        Python::with_gil(|py| {
+            // The callback first, so that it sees the state the search stops in.
+            let progress = || -> PyResult<bool> {
+                let Some(callback) = &self.progress else {
+                    return Ok(true);
+                };
+                let info = PyDict::new(py);
+                info.set_item("generation", state.generation)?;
+                info.set_item("evaluations", state.evaluations)?;
+                info.set_item("budget", budget)?;
+                info.set_item("best_violation", state.best.as_ref().map(|b| b.fitness.cv))?;
+                info.set_item("feasible", state.best_confirmed.is_some())?;
+                // Returning False stops the search; None or anything else goes on.
+                let answer = callback.call1(py, (info,))?;
+                let stop =
+                    (answer.bind(py).downcast::<pyo3::types::PyBool>()).is_ok_and(|b| !b.is_true());
+                Ok(!stop)
+            };
+            let outcome = progress().and_then(|go_on| py.check_signals().map(|()| go_on));
+            match outcome {
+                Ok(true) => Control::Continue,
+                Ok(false) => Control::Stop,
+                Err(e) => {
+                    self.error = Some(e);
+                    Control::Stop
+                }
+            }
+        })
+    }
+}
+
+/// Runs a search (GIL released) and returns its summary and confirmed Pareto set.
+/// `progress(info)` is called after every generation (return False to stop); Ctrl-C stops
+/// the search after the current generation and raises `KeyboardInterrupt`. With
+/// `checkpoint`, the state is written there every `checkpoint_every` seconds and at the
+/// end; `resume` continues a checkpoint (its scene and settings; `budget` may be raised).
+#[pyfunction]
+#[pyo3(signature = (scene = None, *, algorithm = None, seed = None, budget = None, population = None, threads = None, screening_samples_per_turn = None, progress = None, checkpoint = None, checkpoint_every = 10.0, resume = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn optimise<'py>(
+    py: Python<'py>,
+    scene: Option<&Scene>,
+    algorithm: Option<&str>,
+    seed: Option<u64>,
+    budget: Option<u64>,
+    population: Option<usize>,
+    threads: Option<usize>,
+    screening_samples_per_turn: Option<usize>,
+    progress: Option<PyObject>,
+    checkpoint: Option<std::path::PathBuf>,
+    checkpoint_every: f64,
+    resume: Option<std::path::PathBuf>,
+) -> Result<Bound<'py, PyDict>> {
+    let settings = SearchSettings {
+        algorithm: algorithm
+            .map(Algorithm::parse)
+            .transpose()
+            .map_err(noncirc::core::Error::from)?,
+        budget,
+        population,
+        seed,
+        screening_samples_per_turn,
+    };
+    let s =
+        match (scene, &resume) {
+            (Some(scene), None) => {
+                let mut s = scene.inner.clone();
+                // The keywords override the scene's search settings, so the summary states
+                // what ran.
+                settings.apply(&mut s)?;
+                s
+            }
+            // The checkpoint holds the scene; this one is not used.
+            (None, Some(_)) if settings.ignored_by_resume().is_empty() => {
+                noncirc::core::Scene::default()
+            }
+            (None, Some(_)) => {
+                return Err(invalid(format!(
+                    "resume continues the checkpoint's own scene and search; {} would be ignored \
+                 (only budget, threads, progress and the checkpoint options apply)",
+                    settings.ignored_by_resume().join(", ")
+                )))
+            }
+            (Some(_), Some(_)) => return Err(invalid(
+                "give a scene or resume=, not both: a resumed search uses the checkpoint's scene",
+            )),
+            (None, None) => return Err(invalid("optimise needs a scene, or resume= a checkpoint")),
+        };
+    let opts = RunOptions {
+        checkpoint,
+        checkpoint_every: noncirc::search::checkpoint_interval(checkpoint_every)?,
+        resume_budget: resume.as_ref().and(budget),
+        resume,
+        ..RunOptions::new(threads)?
+    };
+    let mut observer = PythonObserver {
+        progress,
+        error: None,
+    };
+    let outcome = py.allow_threads(|| noncirc::search::run(&s, &opts, &mut [&mut observer]))?;
+    if let Some(e) = observer.error {
+        return Err(e.into());
+    }
+    let summary = outcome.summary();
+    if !summary.feasible {
+        // Said, not only flagged: a run that found nothing must not pass for a result.
+        let missed = summary.missed();
+        let message = format!(
+            "noncirc.optimise: no design found meets every objective (the best misses {}); \
+             a larger budget, another seed or algorithm='de'|'cmaes' may find one",
+            if missed.is_empty() {
+                "all: the model refused it".to_string()
+            } else {
+                missed.join(", ")
+            }
+        );
+        let message = std::ffi::CString::new(message).map_err(internal)?;
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
+            &message,
+            // The user's call of `noncirc.optimise`, past the package's wrapper.
+            2,
+        )?;
+    }
+    let json = serde_json::to_string(&summary).map_err(internal)?;
+    let out = py
+        .import("json")?
+        .call_method1("loads", (json,))?
+        .downcast_into::<PyDict>()?;
+    let names = outcome.problem.names();
+    out.set_item("parameter_names", &names)?;
+    out.set_item(
+        "goal_names",
+        (outcome.problem.goal_quantities().into_iter())
+            .map(|q| q.name)
+            .collect::<Vec<_>>(),
+    )?;
+    out.set_item(
+        "objective_names",
+        (outcome.problem.base().objectives.iter())
+            .map(|o| o.name())
+            .collect::<Vec<_>>(),
+    )?;
+    let front = PyList::empty(py);
+    for (x, f) in &outcome.confirmed.pareto {
+        let d = PyDict::new(py);
+        let params = PyDict::new(py);
+        for (n, v) in names.iter().zip(x) {
+            params.set_item(*n, *v)?;
+        }
+        d.set_item("parameters", params)?;
+        d.set_item("goals", f.f.clone())?;
+        d.set_item("goal_values", outcome.problem.goal_values(&f.f))?;
+        d.set_item("cv", f.cv)?;
+        front.append(d)?;
+    }
+    out.set_item("pareto", front)?;
+    if let Some((best, _)) = &outcome.confirmed.best {
+        out.set_item(
+            "best_scene",
+            Scene {
+                inner: best.clone(),
+            },
+        )?;
+    }
+    Ok(out)
+}
+
+/// The `count` best members of the search in the checkpoint file `checkpoint`, as JSON
+/// text, to send to another island of the same search (`noncirc.dask.islands`).
+#[pyfunction]
+pub(crate) fn emigrants(checkpoint: std::path::PathBuf, count: usize) -> Result<String> {
+    let migrants = noncirc::search::emigrants(&checkpoint, count)?;
+    serde_json::to_string(&migrants).map_err(internal)
+}
+
+/// Takes `migrants` (the JSON text of `emigrants` from another island of the same search)
+/// into the search in the checkpoint file `checkpoint`, in place of its worst members; a
+/// search resumed from it goes on with them.
+#[pyfunction]
+pub(crate) fn immigrate(checkpoint: std::path::PathBuf, migrants: &str) -> Result<()> {
+    let migrants: noncirc::core::Migrants = serde_json::from_str(migrants)
+        .map_err(|e| parameter(format!("migrants: not the text of emigrants(): {e}")))?;
+    Ok(noncirc::search::immigrate(&checkpoint, &migrants)?)
+}
