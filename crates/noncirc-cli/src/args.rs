@@ -1,0 +1,321 @@
+//! The command line's arguments (clap): one struct per command, and the options they share.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use noncirc::core::Algorithm;
+
+#[derive(Parser)]
+#[command(
+    name = "noncirc",
+    version,
+    about = "Design-space optimiser for rice-transplanting mechanisms driven by non-circular gears"
+)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    pub(crate) command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub(crate) enum Format {
+    Table,
+    Json,
+}
+
+/// The scene a command reads.
+#[derive(clap::Args)]
+pub(crate) struct SceneSource {
+    /// Scene file (TOML or JSON) or built-in scene name (`noncirc scenes`); default: the
+    /// command's own (see its description; the three-arm paper's design for most).
+    pub(crate) scene: Option<String>,
+    /// Override any scene parameter, e.g. `--set resolution.samples_per_turn=720`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub(crate) set: Vec<String>,
+}
+
+/// Options shared by every command that reads a scene and reports on it.
+#[derive(clap::Args)]
+pub(crate) struct SceneArgs {
+    #[command(flatten)]
+    pub(crate) input: SceneSource,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub(crate) format: Format,
+    /// Write figures (SVG and PNG) and CSV exports into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) plot: Option<std::path::PathBuf>,
+    /// Figure formats written by --plot (comma-separated): svg, png, pdf (vector with the
+    /// font embedded, for a paper).
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [FigureFormatArg::Svg, FigureFormatArg::Png])]
+    pub(crate) figure_format: Vec<FigureFormatArg>,
+    /// Figure size WIDTHxHEIGHT in CSS pixels (96 to the inch), e.g. 640x480; default:
+    /// each figure's own. Text keeps its size, so a smaller figure reads larger.
+    #[arg(long, value_name = "WxH")]
+    pub(crate) figure_size: Option<String>,
+    /// Resolution of the PNG figures (dots per inch; 300 for print).
+    #[arg(long, default_value_t = 96)]
+    pub(crate) dpi: u32,
+}
+
+/// A figure format (`--figure-format`).
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub(crate) enum FigureFormatArg {
+    Svg,
+    Png,
+    Pdf,
+}
+
+impl SceneArgs {
+    /// The figure options asked for, checked.
+    pub(crate) fn figures(
+        &self,
+    ) -> Result<noncirc::figures::FigureOptions, Box<dyn std::error::Error>> {
+        use noncirc::figures::FigureFormat;
+        let size_px = match &self.figure_size {
+            None => None,
+            Some(text) => {
+                let parsed = text
+                    .split_once(['x', 'X'])
+                    .and_then(|(w, h)| Some((w.trim().parse().ok()?, h.trim().parse().ok()?)));
+                Some(parsed.ok_or_else(|| {
+                    noncirc::Error::Input(format!(
+                        "--figure-size '{text}': expected WIDTHxHEIGHT in pixels, e.g. 640x480"
+                    ))
+                })?)
+            }
+        };
+        let options = noncirc::figures::FigureOptions {
+            formats: (self.figure_format.iter())
+                .map(|f| match f {
+                    FigureFormatArg::Svg => FigureFormat::Svg,
+                    FigureFormatArg::Png => FigureFormat::Png,
+                    FigureFormatArg::Pdf => FigureFormat::Pdf,
+                })
+                .collect(),
+            size_px,
+            dpi: self.dpi,
+        };
+        options.validate()?;
+        Ok(options)
+    }
+}
+
+#[derive(clap::Args)]
+pub(crate) struct OptimiseArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneArgs,
+    /// Algorithm: guided, de, cmaes, nsga2 or nsga3 (default: the scene's, `de`).
+    #[arg(long)]
+    pub(crate) algorithm: Option<Algorithm>,
+    /// Evaluation budget (default: the scene's).
+    #[arg(long)]
+    pub(crate) budget: Option<u64>,
+    /// Population size (default: the scene's).
+    #[arg(long)]
+    pub(crate) population: Option<usize>,
+    /// Random seed (default: the scene's).
+    #[arg(long)]
+    pub(crate) seed: Option<u64>,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    pub(crate) threads: Option<usize>,
+    /// Write a checkpoint to this file at intervals and at the end.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) checkpoint: Option<std::path::PathBuf>,
+    /// Seconds between checkpoints.
+    #[arg(long, default_value_t = noncirc::search::DEFAULT_CHECKPOINT_EVERY_S)]
+    pub(crate) checkpoint_every: f64,
+    /// Resume from a checkpoint file (its scene and settings are used).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) resume: Option<std::path::PathBuf>,
+    /// Write best.toml, pareto.csv/json, history.csv and summary.json here.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<std::path::PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    pub(crate) quiet: bool,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct GearArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneArgs,
+    /// Export the pitch curves (CSV, SVG, DXF in mm) into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) export: Option<std::path::PathBuf>,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct TeethArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneArgs,
+    /// Export DXF (lines and arcs, mm), SVG and CSV of each gear and of the assembled
+    /// train into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) export: Option<std::path::PathBuf>,
+    /// Carrier angle of the assembled train (degrees).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub(crate) carrier_deg: f64,
+    /// Largest distance of the exported lines and arcs from the computed outline (mm).
+    #[arg(long, default_value_t = 1e-3)]
+    pub(crate) tolerance_mm: f64,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct AnimateArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneSource,
+    /// The GIF to write.
+    #[arg(long, value_name = "FILE.gif")]
+    pub(crate) out: std::path::PathBuf,
+    /// Frames per carrier turn.
+    #[arg(long, default_value_t = 72)]
+    pub(crate) frames: usize,
+    /// Draw the gears' teeth (`noncirc teeth`'s, with the scene's tooth count).
+    #[arg(long)]
+    pub(crate) teeth: bool,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct SweepArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneArgs,
+    /// Parameter path, e.g. `gear.curve.radii_mm[0]` or `train.phi0_deg`.
+    #[arg(long)]
+    pub(crate) param: String,
+    /// First value of the parameter (negative values are values: `--from -60`).
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) from: f64,
+    /// Last value of the parameter.
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) to: f64,
+    #[arg(long, default_value_t = 11)]
+    pub(crate) steps: usize,
+    /// A measure to report beside the objectives (repeatable), e.g. `loop_height_mm`;
+    /// `noncirc measures` lists them.
+    #[arg(long = "measure")]
+    pub(crate) measures: Vec<String>,
+}
+
+#[derive(Subcommand)]
+pub(crate) enum Command {
+    /// Solve a non-circular gear pair: centre distance, perimeter, ratio, largest module.
+    Gear(GearArgs),
+    /// Animate the mechanism turning (GIF).
+    Animate(AnimateArgs),
+    /// Evaluate a three-arm design: trajectory, events and the eight agronomic objectives.
+    Evaluate(SceneArgs),
+    /// The variable-speed moving box: box travel while picking, speeds, forces.
+    /// With no scene: the moving-box paper's setting.
+    Box(SceneArgs),
+    /// Measure each output's error and the time per evaluation over a resolution ladder.
+    Accuracy(SceneArgs),
+    /// Search the scene's design space for designs that meet every objective.
+    /// With no scene: the built-in `paper-search` scene.
+    Optimise(OptimiseArgs),
+    /// The response of every objective to one parameter (three-arm paper §4.2).
+    Sweep(SweepArgs),
+    /// Cut teeth on the scene's gears (every gear of the train), check them over a full
+    /// turn (undercut, tip land, clearance, backlash, contact ratio) and export them for
+    /// manufacturing. The tooth count is `gear.module.teeth` or the module rule's.
+    Teeth(TeethArgs),
+    /// How the design fares once cut and assembled with the scene's tolerances
+    /// (`[tolerances]`): each objective's probability of being met, its margin's
+    /// distribution, a linearised worst case checked at its corner, and branch switches.
+    /// docs/robustness.md
+    Robustness(RobustnessArgs),
+    /// First-order and total Sobol indices of every objective and trajectory measure over
+    /// the scene's search box (Saltelli sampling, Jansen estimators, bootstrap intervals).
+    /// docs/robustness.md
+    Sensitivity(SensitivityArgs),
+    /// Two arms against three: for each arm count, the least speed of the tip relative to
+    /// the seedling while it picks (the mean over its pass through the tray, unless
+    /// --measure says otherwise) of a design meeting every objective with a clear gearbox,
+    /// at one picking rate (a search per seed); and the paper's design with each arm count.
+    /// With no scene: `paper-search`. docs/replication.md
+    Compare(CompareArgs),
+    /// List the built-in scenes; with --reference, every field of a scene (docs/scenes.md).
+    Scenes(ScenesArgs),
+    /// List every measure (`sweep --measure`, goals `min:NAME`/`max:NAME`) with its unit.
+    Measures,
+    /// Serve the design studio (build it first: `bash studio/build.sh`) on 127.0.0.1 and
+    /// print its address. docs/studio.md
+    Studio(StudioArgs),
+}
+
+#[derive(clap::Args)]
+pub(crate) struct CompareArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneArgs,
+    /// Arm counts to compare (comma-separated, each 1 to 4).
+    #[arg(long, value_delimiter = ',', default_values_t = [2, 3])]
+    pub(crate) arms: Vec<usize>,
+    /// Search seeds: one search per arm count and seed.
+    #[arg(long, value_delimiter = ',', default_values_t = [1, 2, 3, 4, 5])]
+    pub(crate) seeds: Vec<u64>,
+    /// The picking rate every train runs at (the paper's rig: 180).
+    #[arg(long, default_value_t = 180.0)]
+    pub(crate) picks_per_minute: f64,
+    /// The speed compared and minimised by each search, a measure in m/s (`noncirc
+    /// measures`): the mean speed while the tip is inside the tray, or
+    /// `picking_tip_speed_m_s`, the speed at the picking instant (a cusp can bring it to 0).
+    #[arg(long, default_value = noncirc::compare::DEFAULT_MEASURE)]
+    pub(crate) measure: String,
+    /// Each search's evaluation budget: at 200 000 the least speeds over seeds agree to a
+    /// few per cent on `paper-search` (at its own 60 000 they spread by half).
+    #[arg(long, default_value_t = 200_000)]
+    pub(crate) budget: u64,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    pub(crate) threads: Option<usize>,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct RobustnessArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneArgs,
+    /// Samples (default: the scene's `tolerances.samples`, 64).
+    #[arg(long)]
+    pub(crate) samples: Option<usize>,
+    /// Seed of the deviations (default: the scene's `tolerances.seed`).
+    #[arg(long)]
+    pub(crate) seed: Option<u64>,
+    /// Skip the linearised worst case (it costs two evaluations per toleranced quantity).
+    #[arg(long)]
+    pub(crate) no_worst_case: bool,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct SensitivityArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneArgs,
+    /// Base points N: N (k + 2) designs are evaluated for k free parameters.
+    #[arg(long, default_value_t = 1024)]
+    pub(crate) base_samples: usize,
+    /// Bootstrap resamples for the confidence intervals.
+    #[arg(long, default_value_t = 100)]
+    pub(crate) bootstrap: usize,
+    /// The box's share of the search box's widths, about the scene's design (1: the whole
+    /// search box, where the model refuses about a third of the designs).
+    #[arg(long, default_value_t = 0.25)]
+    pub(crate) box_scale: f64,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    pub(crate) threads: Option<usize>,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct ScenesArgs {
+    /// Print the scene reference instead (Markdown: every field with the papers' symbol,
+    /// unit, default, admissible values and meaning; docs/scenes.md is this output).
+    #[arg(long)]
+    pub(crate) reference: bool,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct StudioArgs {
+    /// Port on 127.0.0.1 (0: any free port).
+    #[arg(long, default_value_t = 8737)]
+    pub(crate) port: u16,
+    /// The studio's folder (default: this repository's `studio/`).
+    #[arg(long, value_name = "DIR")]
+    pub(crate) dir: Option<std::path::PathBuf>,
+}
