@@ -19,6 +19,7 @@ pub mod robustness;
 pub mod scene_file;
 pub mod scene_reference;
 pub mod search;
+pub mod sweep;
 pub mod teeth;
 
 pub use noncirc_core as core;

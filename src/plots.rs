@@ -4,7 +4,8 @@ use crate::export::{export_gears, export_trajectory};
 use crate::figures::{
     evaluation_figures, save, ConvergenceFigure, FigureOptions, LinesFigure, FIGURE_SAMPLES,
 };
-use crate::search::{Outcome, SweepRow};
+use crate::search::Outcome;
+use crate::sweep::SweepRow;
 use noncirc_core::{Evaluation, Param, Scene};
 use std::path::{Path, PathBuf};
 

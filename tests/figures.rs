@@ -148,7 +148,7 @@ fn box_search_and_sweep_figures_and_the_animation() {
         check_file(&f);
     }
     let paper = load_scene(None).unwrap();
-    let rows = noncirc::search::sweep(&paper, "train.beta0_deg", -40.0, -20.0, 3, &[]).unwrap();
+    let rows = noncirc::sweep::sweep(&paper, "train.beta0_deg", -40.0, -20.0, 3, &[]).unwrap();
     let files =
         noncirc::plots::sweep_figures(&paper, "train.beta0_deg", &rows, &dir, &Default::default())
             .unwrap();

@@ -548,7 +548,7 @@ fn sweeps_report_any_measure() {
         Measure::parse("picking_branch_gap_mm").unwrap(),
     ];
     let rows =
-        noncirc::search::sweep(&scene, "train.gamma0_deg", -63.0, -43.0, 3, &measures).unwrap();
+        noncirc::sweep::sweep(&scene, "train.gamma0_deg", -63.0, -43.0, 3, &measures).unwrap();
     assert_eq!(rows.len(), 3);
     for row in &rows {
         let mut s = scene.clone();
