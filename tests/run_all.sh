@@ -27,8 +27,9 @@ report_times() {
 }
 trap report_times EXIT
 
-stage "cargo fmt --check"
+stage "cargo fmt --check; the core's layers point one way"
 cargo fmt --all -- --check
+python3 scripts/check_layers.py
 stage "cargo clippy --all-targets -- -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
 stage "the core builds for the browser: the design studio's WebAssembly module"
