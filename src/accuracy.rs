@@ -2,7 +2,7 @@
 //! resolutions, against a converged reference that is itself checked.
 
 use crate::report::table;
-use noncirc_core::{compare, observed_order, ErrorRow};
+use noncirc_core::{observed_order, output_errors, ErrorRow};
 use noncirc_core::{Evaluation, Evaluator, Resolution, Scene};
 use serde::Serialize;
 use std::time::Instant;
@@ -64,7 +64,7 @@ pub fn measure(scene: &Scene, probes: usize) -> Result<AccuracyReport, String> {
         .map_err(|e| format!("reference check failed: {e}"))?;
     let rung = |res: Resolution, previous: Option<(usize, f64)>| match timed(scene, &res) {
         Ok((eval, time)) => {
-            let errors = compare(&eval, &reference, probes);
+            let errors = output_errors(&eval, &reference, probes);
             let order_mm = previous
                 .and_then(|(n, e)| observed_order(n, e, res.samples_per_turn, errors.worst().0));
             Level {
@@ -108,7 +108,7 @@ pub fn measure(scene: &Scene, probes: usize) -> Result<AccuracyReport, String> {
     Ok(AccuracyReport {
         scene: scene.name.clone(),
         reference_samples: REFERENCE[1],
-        reference_check: compare(&check, &reference, probes),
+        reference_check: output_errors(&check, &reference, probes),
         levels,
         tolerance_ladder,
     })

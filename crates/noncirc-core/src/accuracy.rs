@@ -37,8 +37,9 @@ fn angle_diff(a: f64, b: f64) -> f64 {
     ((a - b + 0.5 * TAU).rem_euclid(TAU) - 0.5 * TAU).abs()
 }
 
-/// Compares `eval` with `reference`, probing the trajectory at `probes` carrier angles.
-pub fn compare(eval: &Evaluation, reference: &Evaluation, probes: usize) -> ErrorRow {
+/// Each output's error of `eval` against `reference`, probing the trajectory at `probes`
+/// carrier angles.
+pub fn output_errors(eval: &Evaluation, reference: &Evaluation, probes: usize) -> ErrorRow {
     let diff = |a: Option<f64>, b: Option<f64>| match (a, b) {
         (Some(a), Some(b)) => (a - b).abs(),
         _ => 0.0,

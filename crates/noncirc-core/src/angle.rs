@@ -34,7 +34,7 @@ fn table() -> &'static [[f64; 2]; STEPS] {
 }
 
 /// An angle (rad) in degrees within one turn, `[0°, 360°)`: how angles are shown to users.
-pub fn degrees_in_turn(x: f64) -> f64 {
+pub(crate) fn degrees_in_turn(x: f64) -> f64 {
     let d = x.to_degrees().rem_euclid(360.0);
     // A tiny negative angle rounds up to 360.0 exactly.
     if d >= 360.0 {

@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 /// The `format` field of every checkpoint.
 pub const FORMAT: &str = "noncirc-checkpoint";
 /// The version this build writes and reads; raised whenever the state's layout changes.
-pub const VERSION: u32 = 1;
+pub(crate) const VERSION: u32 = 1;
 
 /// Members of one island's population on their way to another island of the same
 /// problem, with the problem they belong to.
@@ -155,7 +155,7 @@ impl Checkpoint {
 /// The hash of a scene's search problem: the scene but for how it is searched (the
 /// algorithm, population, seed and budget), which islands of one island model may differ
 /// in.
-pub fn problem_hash(scene: &Scene) -> String {
+pub(crate) fn problem_hash(scene: &Scene) -> String {
     let mut problem = scene.clone();
     let defaults = SearchSpec::default();
     problem.search.algorithm = defaults.algorithm;
@@ -165,7 +165,7 @@ pub fn problem_hash(scene: &Scene) -> String {
     scene_hash(&problem)
 }
 
-pub fn scene_hash(scene: &Scene) -> String {
+pub(crate) fn scene_hash(scene: &Scene) -> String {
     let bytes = serde_json::to_vec(scene).expect("a scene always serialises");
     let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
         (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)

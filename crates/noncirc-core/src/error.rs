@@ -137,7 +137,7 @@ impl std::fmt::Display for Num {
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// Checks that `value` is finite, naming it in the error otherwise.
-pub fn finite(name: &str, value: f64) -> Result<f64> {
+pub(crate) fn finite(name: &str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
@@ -149,7 +149,7 @@ pub fn finite(name: &str, value: f64) -> Result<f64> {
 }
 
 /// Like [`finite`], naming the value only when it is bad (no formatting on the hot path).
-pub fn finite_with(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
+pub(crate) fn finite_with(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
@@ -159,7 +159,7 @@ pub fn finite_with(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
 
 /// A positive length (mm) from [`MIN_LENGTH_MM`] to [`MAX_LENGTH_MM`], naming the value
 /// only when it is bad.
-pub fn positive_with(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
+pub(crate) fn positive_with(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
     if value.is_finite() && (MIN_LENGTH_MM..=MAX_LENGTH_MM).contains(&value) {
         Ok(value)
     } else {
@@ -177,14 +177,14 @@ pub fn positive_with(name: impl FnOnce() -> String, value: f64) -> Result<f64> {
 /// scale exactly over the 18 decades between them (a test holds it), while far smaller
 /// lengths reach subnormal numbers (a 5e-324 mm ellipse gave a centre distance of
 /// 0 ± NaN).
-pub const MIN_LENGTH_MM: f64 = 1e-9;
+pub(crate) const MIN_LENGTH_MM: f64 = 1e-9;
 
 /// Largest accepted length (mm): a thousand kilometres. Larger inputs overflow the
 /// geometry (squares of lengths) and are refused by name instead.
-pub const MAX_LENGTH_MM: f64 = 1e9;
+pub(crate) const MAX_LENGTH_MM: f64 = 1e9;
 
 /// Checks that a length (mm) is finite, non-negative and at most [`MAX_LENGTH_MM`].
-pub fn length(name: &str, value: f64) -> Result<f64> {
+pub(crate) fn length(name: &str, value: f64) -> Result<f64> {
     finite(name, value)?;
     if (0.0..=MAX_LENGTH_MM).contains(&value) {
         Ok(value)
@@ -198,7 +198,7 @@ pub fn length(name: &str, value: f64) -> Result<f64> {
 }
 
 /// Checks that `value` is finite and strictly positive.
-pub fn positive(name: &str, value: f64) -> Result<f64> {
+pub(crate) fn positive(name: &str, value: f64) -> Result<f64> {
     finite(name, value)?;
     if value > 0.0 {
         Ok(value)

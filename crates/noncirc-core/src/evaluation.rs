@@ -141,6 +141,22 @@ impl Evaluator {
     }
 
     /// Evaluates `scene` at its own resolution.
+    ///
+    /// ```
+    /// use noncirc_core::{Evaluator, ObjectiveKind, Scene};
+    ///
+    /// let scene = Scene::default(); // the three-arm paper's design
+    /// let eval = Evaluator::new().evaluate(&scene).unwrap();
+    /// // Every objective the scene asks for, with its value, bounds and violation.
+    /// assert_eq!(eval.objectives.len(), scene.objectives.len());
+    /// // The paper's picking angle is met; its sharp pitch curve leaves no module of 2.5 mm.
+    /// let picking = eval.objective(ObjectiveKind::PickingAngle).unwrap();
+    /// assert!(picking.violation == 0.0 && (picking.value - 0.30).abs() < 0.01);
+    /// assert!(eval.objective(ObjectiveKind::Module).unwrap().violation > 2.0);
+    /// // The picking and planting instants are located on arm I's path.
+    /// let events = eval.events.as_ref().unwrap();
+    /// assert!(events.picking.tip_mm.y > events.planting.tip_mm.y);
+    /// ```
     pub fn evaluate(&mut self, scene: &Scene) -> Result<Evaluation> {
         self.evaluate_at(scene, &scene.resolution)
     }

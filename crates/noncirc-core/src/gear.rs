@@ -147,7 +147,7 @@ fn ratio_sums(rho: &[f64], a: f64) -> Option<([f64; 2], f64)> {
 
 /// The driven curve's `(ρ2, dρ2/dφ2, d²ρ2/dφ2²)` at the contact where the driver shows `p`.
 #[inline]
-pub fn conjugate_polar(p: Polar, a: f64) -> Polar {
+pub(crate) fn conjugate_polar(p: Polar, a: f64) -> Polar {
     let gap = a - p.rho;
     // dφ2/dψ = ρ/(a-ρ); dρ2/dψ = -ρ'. One division: everything is over powers of ρ.
     let (inv, slope2) = (1.0 / p.rho, p.d1 * p.d1);
@@ -242,7 +242,7 @@ pub struct ModuleReport {
 
 /// Largest module for a ratio-1 train whose gears show the given curvature radii and share
 /// the pitch perimeter `perimeter` (mm).
-pub fn module_max(
+pub(crate) fn module_max(
     perimeter: f64,
     min_convex: f64,
     min_concave: f64,
@@ -278,7 +278,7 @@ pub fn module_max(
 /// Least convex and least concave |R_c| of the driver and its conjugate at the given
 /// uniform samples, each refined by the parabola through the extreme sample of the
 /// curvature and its neighbours. One pass, no allocation.
-pub fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
+pub(crate) fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     let n = samples.len();
     // `j` is at most 2n − 1 here: a subtraction wraps it (no integer division per sample).
     let kappa = |driven: bool, j: usize| {
@@ -358,6 +358,20 @@ impl SampleGrid {
 
 /// A solved gear pair: the driver's pitch curve, its conjugate at the closing centre
 /// distance, sampled on one [`SampleGrid`].
+///
+/// An ellipse turning about a focus meshes with its own copy: the closure puts the centres
+/// two semi-major axes apart, and the ratio runs from `(1 − k)/(1 + k)` to its inverse.
+///
+/// ```
+/// use noncirc_core::{CurveSpec, GearPair, Resolution};
+///
+/// let ellipse = CurveSpec::Ellipse { semi_major_mm: 30.0, eccentricity: 0.2 };
+/// let pair = GearPair::solve(ellipse.build().unwrap(), Resolution::DEFAULT).unwrap();
+/// assert!((pair.centre_distance() - 60.0).abs() < 1e-6);
+/// let (lo, hi) = (pair.ratio_nodes().iter().copied())
+///     .fold((f64::MAX, f64::MIN), |(lo, hi), r| (lo.min(r), hi.max(r)));
+/// assert!((lo - 0.8 / 1.2).abs() < 1e-3 && (hi - 1.2 / 0.8).abs() < 2e-3);
+/// ```
 #[derive(Debug, Clone)]
 pub struct GearPair {
     curve: PitchCurve,
@@ -389,7 +403,7 @@ impl GearPair {
     }
 
     /// As [`GearPair::solve`], reusing planned transforms (re-planned if the length differs).
-    pub fn solve_with(
+    pub(crate) fn solve_with(
         curve: PitchCurve,
         resolution: Resolution,
         integrator: &mut SpectralIntegrator,
@@ -400,7 +414,7 @@ impl GearPair {
     /// As [`GearPair::solve_with`], on any sample grid. Every pair of the crate is solved
     /// here: the samples must be positive and finite, the closure must converge, and the
     /// curve must stay inside the centre distance between the samples too.
-    pub fn solve_on(
+    pub(crate) fn solve_on(
         curve: PitchCurve,
         resolution: Resolution,
         grid: SampleGrid,
@@ -541,7 +555,7 @@ impl GearPair {
     /// Computes the spectrum [`GearPair::phi2`] interpolates with the caller's planned
     /// transforms (of the pair's sample count), so that a caller evaluating many pairs does
     /// not plan one per pair.
-    pub fn prepare_phi2(&self, integrator: &mut SpectralIntegrator) {
+    pub(crate) fn prepare_phi2(&self, integrator: &mut SpectralIntegrator) {
         self.ratio_coeffs.get_or_init(|| {
             if integrator.len() != self.ratio_nodes.len() {
                 *integrator = SpectralIntegrator::new(self.ratio_nodes.len());

@@ -123,7 +123,7 @@ impl Placed<'_> {
 /// turn, at the kinematics' nodes, or `None` when no two overlap. Pairs whose circles of
 /// largest radius keep apart are not looked at, so a two- or three-arm train with room
 /// between its sets costs nothing.
-pub fn gear_sets_overlap(kin: &Kinematics) -> Option<f64> {
+pub(crate) fn gear_sets_overlap(kin: &Kinematics) -> Option<f64> {
     let arms = kin.arms();
     // Gear kinds: 0 the intermediate, 1 the planet. Arm set I against set m; the pair at
     // lag m is the pair at lag arms − m seen from the other set, so like gears need

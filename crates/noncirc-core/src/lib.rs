@@ -5,6 +5,10 @@
 //! below is the API. The problem-independent optimiser is the crate noncirc-search, whose
 //! items are re-exported here.
 
+// Every public item is reachable from the root, and every type in a public signature can
+// be named there.
+#![warn(unreachable_pub, unnameable_types)]
+
 // The modules, in one-way layers: each module may use its own layer and those below
 // (util ← model ← scene ← evaluate ← study), without cycles; scripts/check_layers.py
 // checks it.
@@ -56,7 +60,7 @@ pub use curve::{
     PeriodicSpline, PitchCurve, Polar,
 };
 pub use goal::{Goal, GoalQuantity, INVALID_CV};
-pub use measure::{Measure, MeasureCost, Section};
+pub use measure::{Measure, MeasureCost, Scalar, Section, SectionQuantity};
 pub use moving_box::BoxSpec;
 pub use objective_kind::{scale, Bounds, ObjectiveKind};
 pub use params::Param;
@@ -72,37 +76,36 @@ pub use events::{attitude_deg, events, housing_radius, Event, Events, PickingChe
 pub use gear::{
     solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, Rotation, SampleGrid,
 };
-pub use gearbox::gear_sets_overlap;
 pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
 pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue};
 pub use planetary::{ArmState, Kinematics};
 pub use teeth::{
     segment_distance, signed_area, Cutter, Frame, GearTeethReport, Member, MeshReport, PairTrack,
-    Side, TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut, OVERLAP_TOLERANCE_MM,
+    Side, TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut,
 };
 pub use vec2::Vec2;
 
 // Evaluation and its accuracy.
-pub use accuracy::{compare, observed_order, ErrorRow};
+pub use accuracy::{observed_order, output_errors, ErrorRow};
 pub use error::{Error, Result};
 pub use evaluation::{Evaluation, Evaluator, GearSummary, StageCounts};
 
 // Tolerances, robustness and global sensitivity.
 pub use robustness::{
-    analyse, least_normalised_margin, quantile, radius_count, robust_score, sobol, Deviated,
+    analyse, least_normalised_margin, quantile, radius_count, robust_score, Deviated,
     ObjectiveSpread, RobustScore, SampleOutcome, ToleranceReport, ToleranceSamples, WorstCase,
-    BRANCH_SWITCH_RAD, REPORTED_QUANTILES,
+    REPORTED_QUANTILES,
 };
 pub use sensitivity::{saltelli_points, sobol_indices, SobolIndices};
-pub use tolerance::{Spread, Tolerances, ASSEMBLY};
+pub use tolerance::{Spread, Tolerances};
 
 // Search: the scene's problem and its checkpoints; the optimiser (solvers, executor)
 // from noncirc-search.
 pub use checkpoint::{Checkpoint, Migrants, FORMAT as CHECKPOINT_FORMAT};
 pub use noncirc_search::{
     das_dennis, execute, nearest, non_dominated_fronts, stop_after_generations, Algorithm,
-    BatchEvaluator, Candidate, Cmaes, Control, DifferentialEvolution, Ending, Fitness, HistoryRow,
-    Nsga, Observer, ParameterGuided, Rng, SearchState, Solver, SolverState, Survival,
+    BatchEvaluator, Candidate, Cmaes, Control, Ending, Fitness, HistoryRow, Observer, Rng,
+    SearchState, Solver, SolverState,
 };
 pub use problem::SceneProblem;
 pub use serial::SerialEvaluator;

@@ -180,7 +180,7 @@ pub enum MeasureCost {
     /// Needs the trajectory's sections: about one more evaluation's time.
     Anatomy,
     /// Places every gear's pitch curve at every node to check the gearbox
-    /// ([`crate::gear_sets_overlap`]): several evaluations' time.
+    /// (`gearbox::gear_sets_overlap`): several evaluations' time.
     Gearbox,
 }
 

@@ -393,7 +393,7 @@ pub fn evaluate_box(
 }
 
 /// As [`evaluate_box`], reusing planned transforms (re-planned if the length differs).
-pub fn evaluate_box_with(
+pub(crate) fn evaluate_box_with(
     spec: &BoxSpec,
     window: Option<[f64; 2]>,
     resolution: &Resolution,

@@ -128,8 +128,8 @@ impl Segment {
 /// the arms at lags 1 … arms/2 covers every pair: the pair at lag m is the pair at lag
 /// arms − m seen from the other arm. A one-arm train has no pair (the scene refuses the
 /// objective there); it reads +∞. The gears of different arm sets are the measure
-/// `gear_overlap_mm` ([`crate::gear_sets_overlap`]).
-pub fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
+/// `gear_overlap_mm` (`gearbox::gear_sets_overlap`).
+pub(crate) fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     if kin.arms() < 2 {
         return f64::INFINITY;
     }
@@ -218,7 +218,7 @@ pub fn advance_per_rad(arms: usize, agro: &Agronomy) -> f64 {
 /// Objective 5: worst forward excursion of the tip past the planted seedling in the ground
 /// frame, from the planting instant (excursion 0) until the tip rises above the seedling
 /// (mm; 0 when the tip never comes forward past it, which meets the bound `≤ 0`).
-pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
+pub(crate) fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     let n = kin.len();
     let h = TAU / n as f64;
     let advance = advance_per_rad(kin.arms(), agro);
@@ -253,7 +253,7 @@ pub fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
 
 /// Objective 6: clearance between the gearbox housing (the gears' envelope around the
 /// carrier axis plus the wall margin) and the ground (mm).
-pub fn ground_clearance(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
+pub(crate) fn ground_clearance(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
     let housing = housing_radius(kin, agro);
     let ground = ev.y_min_mm + agro.planting_depth_mm;
     -housing - ground
@@ -261,7 +261,7 @@ pub fn ground_clearance(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
 
 /// One objective's value for a moved mechanism. `ev` must be given when `needs_events`, and
 /// `gear_module` (from [`module`], computed once per design) for the module objective.
-pub fn objective_value(
+pub(crate) fn objective_value(
     kind: ObjectiveKind,
     kin: &Kinematics,
     ev: Option<&Events>,

@@ -253,6 +253,21 @@ impl SolvedPair {
 /// The sampled motion of arm I over one carrier turn, plus what is needed to evaluate it at
 /// any carrier angle. Arm k (of n) follows at `θ − k·360°/n`: with three, II and III at
 /// `θ − 120°` and `θ − 240°`.
+///
+/// The paper's train: arm I's tip traces a closed loop over one carrier turn.
+///
+/// ```
+/// use noncirc_core::{Kinematics, Scene};
+///
+/// let scene = Scene::default(); // the three-arm paper's design
+/// let curve = scene.gear.curve.build().unwrap();
+/// let kin = Kinematics::solve(&curve, &scene.train, &scene.resolution).unwrap();
+/// let tips = kin.tips();
+/// assert_eq!(tips.len(), kin.len());
+/// // One sample per carrier step over a whole turn; the loop closes on itself.
+/// let step = (tips[1] - tips[0]).hypot();
+/// assert!((tips[tips.len() - 1] - tips[0]).hypot() < 3.0 * step);
+/// ```
 #[derive(Debug, Clone)]
 pub struct Kinematics {
     /// The gears, shared with every reassembly of them.
@@ -296,7 +311,7 @@ impl Kinematics {
 
     /// As [`Kinematics::solve`], taking the curve and reusing a planned integrator of
     /// `samples_per_turn` points.
-    pub fn solve_with(
+    pub(crate) fn solve_with(
         curve: PitchCurve,
         spec: &TrainSpec,
         resolution: &Resolution,

@@ -16,7 +16,7 @@ use noncirc_search::Fitness;
 
 /// The default free parameters around a three-arm design: the control radii (±60 %, at
 /// least 5 mm), `Φ0` ± 60°, `β0` ± 60°, `S` ± 40 %, `H1` ± 40 % (below `S`), `γ0` ± 50°.
-pub fn default_space(scene: &Scene) -> Vec<FreeParam> {
+pub(crate) fn default_space(scene: &Scene) -> Vec<FreeParam> {
     let mut free = Vec::new();
     if let Some(radii) = match &scene.gear.curve {
         crate::curve::CurveSpec::Spline { radii_mm, .. }

@@ -8,7 +8,7 @@ use std::sync::Arc;
 ///
 /// Holds the FFT plans and scratch buffers so that repeated use allocates nothing.
 #[derive(Clone)]
-pub struct SpectralIntegrator {
+pub(crate) struct SpectralIntegrator {
     n: usize,
     forward: Arc<dyn Fft<f64>>,
     inverse: Arc<dyn Fft<f64>>,
@@ -24,7 +24,7 @@ impl std::fmt::Debug for SpectralIntegrator {
 
 impl SpectralIntegrator {
     /// Plans transforms of length `n` (samples per period).
-    pub fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         let mut planner = FftPlanner::new();
         let forward = planner.plan_fft_forward(n);
         let inverse = planner.plan_fft_inverse(n);
@@ -41,18 +41,13 @@ impl SpectralIntegrator {
     }
 
     /// Samples per period this integrator was planned for.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.n
-    }
-
-    /// Whether the planned length is zero.
-    pub fn is_empty(&self) -> bool {
-        self.n == 0
     }
 
     /// Fourier coefficients `c_k`, k = 0..n/2 (exclusive of Nyquist), of the trigonometric
     /// interpolant `f(u) = Σ c_k e^{iku}` of real samples (negative k are conjugates).
-    pub fn coefficients(&mut self, f: &[f64]) -> Vec<Complex64> {
+    pub(crate) fn coefficients(&mut self, f: &[f64]) -> Vec<Complex64> {
         let n = self.n;
         for (b, &v) in self.buffer.iter_mut().zip(f) {
             *b = Complex64::new(v, 0.0);
@@ -70,7 +65,7 @@ impl SpectralIntegrator {
     ///
     /// The periodic part is integrated term by term in the trigonometric interpolant;
     /// the Nyquist term (even `n`) is dropped, as its integral is not determined by the samples.
-    pub fn cumulative(&mut self, f: &[f64], out: &mut [f64]) -> f64 {
+    pub(crate) fn cumulative(&mut self, f: &[f64], out: &mut [f64]) -> f64 {
         let n = self.n;
         assert!(
             f.len() == n && out.len() == n,
@@ -112,7 +107,7 @@ impl SpectralIntegrator {
 /// derivatives at both ends, as a polynomial in the cell position `s ∈ [0, 1]`: built once,
 /// evaluated by Estrin's scheme.
 #[derive(Debug, Clone, Copy)]
-pub struct QuinticCell {
+pub(crate) struct QuinticCell {
     /// Coefficients of `s⁰..s⁵`.
     c: [f64; 6],
     h: f64,
@@ -120,7 +115,7 @@ pub struct QuinticCell {
 
 impl QuinticCell {
     #[inline]
-    pub fn new(y: [f64; 2], d1: [f64; 2], d2: [f64; 2], h: f64) -> Self {
+    pub(crate) fn new(y: [f64; 2], d1: [f64; 2], d2: [f64; 2], h: f64) -> Self {
         let (rise, p0, p1) = (y[1] - y[0], h * d1[0], h * d1[1]);
         let (q0, q1) = (0.5 * h * h * d2[0], 0.5 * h * h * d2[1]);
         Self {
@@ -138,7 +133,7 @@ impl QuinticCell {
 
     /// The value and its derivative per unit of the abscissa at cell position `s`.
     #[inline]
-    pub fn eval(&self, s: f64) -> (f64, f64) {
+    pub(crate) fn eval(&self, s: f64) -> (f64, f64) {
         let (value, per_cell) = self.eval_in_cell(s);
         (value, per_cell / self.h)
     }
@@ -159,7 +154,7 @@ impl QuinticCell {
 /// known at uniform nodes with its first two derivatives: interpolated by quintic Hermite
 /// cells, evaluated at any real argument; [`DriftInverse`] inverts it.
 #[derive(Debug, Clone, Copy)]
-pub struct MonotoneDrift<'a> {
+pub(crate) struct MonotoneDrift<'a> {
     /// Node values `F(u_j)`, `u_j = j·h`.
     pub value: &'a [f64],
     /// `F'(u_j)` (strictly positive).
@@ -192,7 +187,7 @@ impl MonotoneDrift<'_> {
     }
 
     /// `(F(u), F'(u))` at any real `u`.
-    pub fn eval(&self, u: f64) -> (f64, f64) {
+    pub(crate) fn eval(&self, u: f64) -> (f64, f64) {
         let n = self.value.len();
         let h = self.h();
         // `floor` is a library call on baseline x86-64: only off the first period.
@@ -214,7 +209,7 @@ impl MonotoneDrift<'_> {
 /// `(F⁻¹)' = 1/F'` and `(F⁻¹)'' = −F''/F'³` at the nodes. No Newton iteration; its error is
 /// O(h⁶), the same order as the forward interpolant's.
 #[derive(Debug, Clone, Copy)]
-pub struct DriftInverse<'a> {
+pub(crate) struct DriftInverse<'a> {
     /// The function being inverted (its node values are the inverse's abscissae).
     pub forward: MonotoneDrift<'a>,
     /// `1/F'(u_j)`.
@@ -226,7 +221,7 @@ pub struct DriftInverse<'a> {
 impl DriftInverse<'_> {
     /// The inverse's node derivatives `(1/F', −F''/F'³)` from the forward ones.
     #[inline]
-    pub fn node_derivatives(d1: f64, d2: f64) -> (f64, f64) {
+    pub(crate) fn node_derivatives(d1: f64, d2: f64) -> (f64, f64) {
         let r = 1.0 / d1;
         (r, -d2 * r * r * r)
     }
@@ -234,7 +229,7 @@ impl DriftInverse<'_> {
     /// The `u` with `F(u) = target`, starting the cell search at `hint` (a node index);
     /// returns `(u, cell)` so that sorted targets cost O(1) each.
     #[inline(always)]
-    pub fn eval(&self, target: f64, hint: usize) -> (f64, usize) {
+    pub(crate) fn eval(&self, target: f64, hint: usize) -> (f64, usize) {
         let f = &self.forward;
         let n = f.value.len();
         let h = f.h();

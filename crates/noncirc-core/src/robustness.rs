@@ -21,7 +21,7 @@ use serde::Serialize;
 
 /// A picking or planting instant that moves further than this (rad, 10°) under the
 /// tolerances has jumped to another branch of the trajectory.
-pub const BRANCH_SWITCH_RAD: f64 = 10.0 * std::f64::consts::PI / 180.0;
+pub(crate) const BRANCH_SWITCH_RAD: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
 /// Most Sobol dimensions (the sequence's table): 8 assembly groups and the radii.
 const MAX_DIMENSIONS: usize = 256;
@@ -29,7 +29,7 @@ const MAX_DIMENSIONS: usize = 256;
 /// A point in (0, 1) from the scrambled Sobol sequence: dimension `dim` of point `index`.
 /// The sequence's f32 is moved off 0 to the middle of its cell, so that no deviation is
 /// infinite under a normal spread.
-pub fn sobol(index: usize, dim: usize, seed: u64) -> f64 {
+pub(crate) fn sobol(index: usize, dim: usize, seed: u64) -> f64 {
     let seed = (seed ^ (seed >> 32)) as u32;
     let u = sobol_burley::sample(index as u32, dim as u32, seed) as f64;
     let cells = (1u64 << 24) as f64;

@@ -121,6 +121,21 @@ fn all_objectives() -> Vec<ObjectiveKind> {
 }
 
 /// A scene: the design, what is asked of it and at which resolution.
+///
+/// The default scene is the three-arm paper's design; a scene is edited by path and
+/// checked whole:
+///
+/// ```
+/// use noncirc_core::{Param, Scene};
+///
+/// let mut scene = Scene::default();
+/// let gamma0 = Param::parse("train.gamma0_deg", &scene).unwrap();
+/// gamma0.set(&mut scene, -50.0);
+/// assert_eq!(scene.train.gamma0_deg, -50.0);
+/// assert!(scene.validate().is_ok());
+/// scene.train.arm_length_mm = -1.0; // refused by name
+/// assert!(scene.validate().unwrap_err().to_string().contains("arm_length_mm"));
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {

@@ -9,7 +9,7 @@ use noncirc_search::Rng;
 use serde::Serialize;
 
 /// Most parameters: the Sobol table has 256 dimensions, two per parameter.
-pub const MAX_PARAMETERS: usize = 128;
+pub(crate) const MAX_PARAMETERS: usize = 128;
 
 /// Saltelli's points in the unit cube for `k` parameters and `n` base points: for each
 /// base point `j`, the rows `A_j`, `A_j` with column `i` from `B_j` for each `i`, then

@@ -115,7 +115,7 @@ impl Default for Tolerances {
 }
 
 /// The toleranced quantities other than the radii, in the order of a sample's deviations.
-pub const ASSEMBLY: [&str; 8] = [
+pub(crate) const ASSEMBLY: [&str; 8] = [
     "centre_distance_mm",
     "phi0_deg",
     "beta0_deg",

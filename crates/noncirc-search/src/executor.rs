@@ -38,6 +38,33 @@ pub enum Ending {
 
 /// Steps `state` until `budget` evaluations are spent or an observer stops it. Every
 /// observer is polled each time (a progress bar still draws when another one stops).
+///
+/// Differential evolution on a sphere centred in the unit cube, with an observer (any
+/// closure of the state and the budget) that stops the search once a design lies within
+/// 0.01 of the centre:
+///
+/// ```
+/// use noncirc_search::{execute, Algorithm, BatchEvaluator, Control, Ending, Fitness, SearchState};
+///
+/// struct Sphere;
+/// impl BatchEvaluator for Sphere {
+///     fn dim(&self) -> usize { 3 }
+///     fn goals(&self) -> usize { 1 }
+///     fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+///         let f = |u: &Vec<f64>| u.iter().map(|x| (x - 0.5).powi(2)).sum::<f64>();
+///         points.iter().map(|u| Fitness { cv: 0.0, f: vec![f(u)] }).collect()
+///     }
+/// }
+///
+/// let mut state = SearchState::new(Algorithm::De, 3, 1, 12, 7); // population 12, seed 7
+/// let mut close_enough = |s: &SearchState, _budget: u64| match &s.best {
+///     Some(best) if best.fitness.f[0] < 1e-4 => Control::Stop,
+///     _ => Control::Continue,
+/// };
+/// let ending = execute(&mut state, &mut Sphere, 100_000, &mut [&mut close_enough]);
+/// assert_eq!(ending, Ending::Stopped);
+/// assert!(state.best.unwrap().fitness.f[0] < 1e-4 && state.evaluations < 100_000);
+/// ```
 pub fn execute(
     state: &mut SearchState,
     evaluator: &mut dyn BatchEvaluator,

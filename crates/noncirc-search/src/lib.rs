@@ -15,6 +15,10 @@
 //! The scene's search problem (free parameters, goals, the evaluator of a scene) and the
 //! checkpoint format live in noncirc-core, which re-exports this crate's items at its root.
 
+// Every public item is reachable from the root, and every type in a public signature can
+// be named there.
+#![warn(unreachable_pub, unnameable_types)]
+
 mod algorithm;
 mod check;
 mod cmaes;

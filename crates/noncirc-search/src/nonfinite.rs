@@ -37,14 +37,14 @@ fn from_float<E: de::Error>(f: Float) -> Result<f64, E> {
 }
 
 /// `#[serde(with = "nonfinite::vec")]` for a `Vec<f64>`.
-pub mod vec {
+pub(crate) mod vec {
     use super::*;
 
-    pub fn serialize<S: Serializer>(v: &[f64], s: S) -> Result<S::Ok, S::Error> {
+    pub(crate) fn serialize<S: Serializer>(v: &[f64], s: S) -> Result<S::Ok, S::Error> {
         s.collect_seq(v.iter().map(|&x| to_float(x)))
     }
 
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
+    pub(crate) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
         Vec::<Float>::deserialize(d)?
             .into_iter()
             .map(from_float)

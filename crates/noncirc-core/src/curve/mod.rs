@@ -229,7 +229,7 @@ impl PitchCurve {
 
 /// Minimum of `f(values[j])` over a periodic uniform sample, refined by the parabola through
 /// the least sample and its neighbours.
-pub fn refined_sample_min(values: &[f64], f: impl Fn(f64) -> f64) -> f64 {
+pub(crate) fn refined_sample_min(values: &[f64], f: impl Fn(f64) -> f64) -> f64 {
     let n = values.len();
     let j = (0..n)
         .min_by(|&a, &b| f(values[a]).total_cmp(&f(values[b])))
@@ -243,7 +243,7 @@ pub fn refined_sample_min(values: &[f64], f: impl Fn(f64) -> f64) -> f64 {
 
 /// Least value of the parabola through three equally spaced samples whose middle one is
 /// the least (the middle sample if they are not convex).
-pub fn parabola_vertex(ym: f64, y0: f64, yp: f64) -> f64 {
+pub(crate) fn parabola_vertex(ym: f64, y0: f64, yp: f64) -> f64 {
     let curvature = ym - 2.0 * y0 + yp;
     if curvature <= 0.0 {
         return y0;

@@ -43,7 +43,7 @@ pub struct MeshReport {
 /// neighbour's: each tooth is met `steps_per_pitch` times a pitch, and the teeth together
 /// sample the mesh cycle at `teeth · steps_per_pitch` phases (for a circle pair, whose
 /// teeth are alike, that is exactly the finer check).
-pub fn check(
+pub(super) fn check(
     track: &PairTrack,
     gears: &[ToothedGear; 2],
     pitch: f64,

@@ -90,12 +90,12 @@ impl Default for ToothSpec {
 }
 
 /// Largest overlap of tooth bodies the mesh check tolerates (mm).
-pub const OVERLAP_TOLERANCE_MM: f64 = 1e-3;
+pub(crate) const OVERLAP_TOLERANCE_MM: f64 = 1e-3;
 
 /// How far (× m, beyond the backlash) the mesh check measures distances between the
 /// gears: clearances and backlash gaps up to this are exact, larger ones are not
 /// measured. Conjugate flanks touch, so only the backlash and interference are small.
-pub const MESH_REACH_MODULES: f64 = 0.05;
+pub(crate) const MESH_REACH_MODULES: f64 = 0.05;
 
 impl ToothSpec {
     /// Whether every setting is the default (a scene then leaves the table out).

@@ -4,7 +4,7 @@
 use crate::vec2::Vec2;
 
 /// Where segments `p0→p1` and `q0→q1` cross: the parameters `(t, u)` in `[0, 1]` of each.
-pub fn segments_cross(p0: Vec2, p1: Vec2, q0: Vec2, q1: Vec2) -> Option<(f64, f64)> {
+pub(super) fn segments_cross(p0: Vec2, p1: Vec2, q0: Vec2, q1: Vec2) -> Option<(f64, f64)> {
     let (d, e) = (p1 - p0, q1 - q0);
     let den = d.cross(e);
     if den == 0.0 {
@@ -16,7 +16,7 @@ pub fn segments_cross(p0: Vec2, p1: Vec2, q0: Vec2, q1: Vec2) -> Option<(f64, f6
 }
 
 /// The first crossing of two open polylines, as fractional indices `(i + t, j + u)`.
-pub fn first_crossing(a: &[Vec2], b: &[Vec2]) -> Option<(f64, f64)> {
+pub(super) fn first_crossing(a: &[Vec2], b: &[Vec2]) -> Option<(f64, f64)> {
     for i in 0..a.len().saturating_sub(1) {
         for j in 0..b.len().saturating_sub(1) {
             if let Some((t, u)) = segments_cross(a[i], a[i + 1], b[j], b[j + 1]) {
@@ -42,7 +42,7 @@ pub fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f64 {
 /// A closed outline (counter-clockwise: material on the left of each segment) with its
 /// segments binned on a uniform grid, for signed distances to points within a reach.
 #[derive(Debug, Clone)]
-pub struct OutlineGrid {
+pub(super) struct OutlineGrid {
     /// The outline's points with the first repeated at the end: segment `i` is
     /// `points[i]→points[i + 1]`.
     points: Vec<Vec2>,
@@ -132,7 +132,7 @@ const MAX_CELLS_PER_SIDE: f64 = 128.0;
 impl OutlineGrid {
     /// Bins the segments of `points` (closed, counter-clockwise) for distance queries up
     /// to `reach` (mm).
-    pub fn new(mut points: Vec<Vec2>, reach: f64) -> Self {
+    pub(super) fn new(mut points: Vec<Vec2>, reach: f64) -> Self {
         let (mut lo, mut hi) = (points[0], points[0]);
         for p in &points {
             lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
@@ -226,13 +226,13 @@ impl OutlineGrid {
     }
 
     /// The outline's points.
-    pub fn points(&self) -> &[Vec2] {
+    pub(super) fn points(&self) -> &[Vec2] {
         &self.points[..self.points.len() - 1]
     }
 
     /// Signed distance (mm) from `p` to the outline, negative inside the material, if the
     /// outline passes within the reach of `p` (exact then); `None` if it does not.
-    pub fn signed_distance(&self, p: Vec2) -> Option<f64> {
+    pub(super) fn signed_distance(&self, p: Vec2) -> Option<f64> {
         // The query's square in cell units, inside the grid or answered at once.
         let inv = self.inv_cell;
         let (x, y) = ((p.x - self.origin.x) * inv, (p.y - self.origin.y) * inv);
@@ -296,7 +296,7 @@ impl OutlineGrid {
 
     /// Where the closed outline crosses itself (the first crossing found), if it does:
     /// non-adjacent segments that meet, found through the grid.
-    pub fn self_crossing(&self) -> Option<Vec2> {
+    pub(super) fn self_crossing(&self) -> Option<Vec2> {
         let n = self.points.len() - 1;
         let bounds = |a: Vec2, b: Vec2| (a.x.min(b.x), a.x.max(b.x), a.y.min(b.y), a.y.max(b.y));
         for i in 0..n {

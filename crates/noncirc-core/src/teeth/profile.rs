@@ -117,7 +117,7 @@ enum Rounding {
 /// The tool as it cuts one gear: heights and the rounding, for the right side (the left
 /// mirrors it).
 #[derive(Debug, Clone, Copy)]
-pub struct Tool {
+pub(super) struct Tool {
     sin: f64,
     cos: f64,
     tip: f64,
@@ -139,7 +139,7 @@ pub struct Tool {
 impl Tool {
     /// The tool for a gear of module `m` with profile shift `shift` (× m) and tooth
     /// thickness `thickness` (mm), from the spec's proportions.
-    pub fn new(spec: &ToothSpec, m: f64, shift: f64, thickness: f64) -> Result<Self> {
+    pub(super) fn new(spec: &ToothSpec, m: f64, shift: f64, thickness: f64) -> Result<Self> {
         let alpha = spec.pressure_angle_deg.to_radians();
         let (sin, cos) = alpha.sin_cos();
         let tip = (spec.addendum + shift) * m;
@@ -213,7 +213,7 @@ impl Tool {
     }
 
     /// Where the tool's straight flank ends (mm, negative: below the pitch curve).
-    pub fn form_height(&self) -> f64 {
+    pub(super) fn form_height(&self) -> f64 {
         self.lambda_form * self.sin
     }
 }
@@ -228,7 +228,7 @@ enum Piece {
 }
 
 /// Cuts one gear of a pair.
-pub struct Cut<'a> {
+pub(super) struct Cut<'a> {
     pub track: &'a PairTrack,
     pub member: Member,
     pub tool: Tool,
@@ -592,7 +592,7 @@ impl Cut<'_> {
     }
 
     /// Cuts every tooth and assembles the closed outline.
-    pub fn run(&self) -> Result<ToothedGear> {
+    pub(super) fn run(&self) -> Result<ToothedGear> {
         let t = &self.tool;
         let mut outline: Vec<Vec2> = Vec::new();
         let mut corners = Vec::new();
