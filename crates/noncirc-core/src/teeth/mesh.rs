@@ -7,8 +7,8 @@
 //! as the rolling position alone says. One turn of the pair therefore checks all six
 //! meshes over a full carrier turn.
 
+use super::cut_gear::{Side, ToothedGear};
 use super::polyline::OutlineGrid;
-use super::profile::{Side, ToothedGear};
 use super::track::PairTrack;
 use crate::angle::unit;
 use crate::vec2::Vec2;

@@ -6,20 +6,24 @@
 //! Units: mm and radians; proportions of the tool (addendum, dedendum, tip radius, shift)
 //! in modules, as on a drawing.
 
+mod cut_gear;
 mod mesh;
 mod polyline;
 mod profile;
+mod roots;
+mod tool;
 mod track;
 
+pub use cut_gear::{Side, Tooth, ToothedGear, Undercut};
 pub use mesh::MeshReport;
 pub use polyline::{segment_distance, signed_area};
-pub use profile::{Side, Tooth, ToothedGear, Undercut};
 pub use track::{Frame, Member, PairTrack};
 
 use crate::curve::PitchCurve;
 use crate::error::{positive, Error, Result};
-use profile::{Cut, Tool};
+use profile::Cut;
 use serde::{Deserialize, Serialize};
+use tool::Tool;
 
 /// The cutting tool: a rack, or a pinion-type shaper cutter for pitch curves with concave
 /// arcs (its pitch radius must stay below their least radius of curvature).
