@@ -1,9 +1,9 @@
 //! docs/scenes.md, the scene reference, written from the core's table of fields
-//! ([`noncirc_core::FIELDS`]) with each field's default read from the default scene, and
+//! ([`noncirc_core::fields`]) with each field's default read from the default scene, and
 //! the lists of names (objectives, goals, algorithms, built-in scenes) read from the code.
 
 use crate::scene_file::{parse_scene, value_at, BUILTIN};
-use noncirc_core::{Algorithm, ObjectiveKind, Scene, FIELDS};
+use noncirc_core::{fields, Algorithm, ObjectiveKind, Scene};
 use std::fmt::Write;
 
 /// The sections of the reference: a key prefix and its heading.
@@ -96,7 +96,7 @@ pub fn markdown() -> String {
          (ha*, hf*, ρa*, x, j) are the usual gear-cutting ones.\n",
     );
     for (s, (_, heading)) in SECTIONS.iter().enumerate() {
-        let fields: Vec<_> = FIELDS.iter().filter(|f| section_of(f.key) == s).collect();
+        let fields: Vec<_> = fields().filter(|f| section_of(f.key) == s).collect();
         let _ = write!(
             md,
             "\n## {heading}\n\n\

@@ -213,7 +213,7 @@ pub fn summary_table(s: &crate::search::Summary) -> String {
 pub fn scene_order(a: &str, b: &str) -> std::cmp::Ordering {
     let rank = |p: &str| {
         let key = p.split('[').next().unwrap_or(p);
-        (noncirc_core::FIELDS.iter())
+        noncirc_core::fields()
             .position(|f| f.key == key)
             .unwrap_or(usize::MAX)
     };

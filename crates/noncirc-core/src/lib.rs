@@ -65,7 +65,7 @@ pub use moving_box::BoxSpec;
 pub use objective_kind::{scale, Bounds, ObjectiveKind};
 pub use params::Param;
 pub use planetary::{PusherSide, SunFrame, TrainSpec, ARM_NAMES};
-pub use reference::{field, symbol, Field, FIELDS};
+pub use reference::{field, fields, symbol, Field};
 pub use resolution::Resolution;
 pub use scene::{FreeParam, GearSpec, Scene, SceneKind, SearchSpec};
 

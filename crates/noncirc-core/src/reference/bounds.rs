@@ -1,0 +1,81 @@
+//! The reference of `[bounds]`: the objectives' admissible values.
+
+use super::Field;
+
+pub(super) const FIELDS: &[Field] = &[
+    Field {
+        key: "bounds.clearance_min_mm",
+        symbol: "",
+        unit: "mm",
+        range: "finite",
+        meaning: "Least clearance between an arm and the other planets (objective \
+                  `interference`).",
+        refused: &["bounds.clearance_min_mm=nan"],
+    },
+    Field {
+        key: "bounds.picking_angle_deg",
+        symbol: "",
+        unit: "°",
+        range: "[lower, upper], finite, lower ≤ upper",
+        meaning: "Admissible picking angle (objective `picking_angle`).",
+        refused: &["bounds.picking_angle_deg=[30.0,10.0]"],
+    },
+    Field {
+        key: "bounds.pushing_angle_deg",
+        symbol: "",
+        unit: "°",
+        range: "[lower, upper], finite, lower ≤ upper",
+        meaning: "Admissible pushing (planting) angle (objective `pushing_angle`).",
+        refused: &["bounds.pushing_angle_deg=[70.0,inf]"],
+    },
+    Field {
+        key: "bounds.angle_difference_deg",
+        symbol: "",
+        unit: "°",
+        range: "[lower, upper], finite, lower ≤ upper",
+        meaning: "Admissible pushing − picking angle (objective `angle_difference`).",
+        refused: &["bounds.angle_difference_deg=[nan,70.0]"],
+    },
+    Field {
+        key: "bounds.seedling_push_max_mm",
+        symbol: "",
+        unit: "mm",
+        range: "finite",
+        meaning: "Largest forward excursion past the planted seedling (objective \
+                  `seedling_push`).",
+        refused: &["bounds.seedling_push_max_mm=inf"],
+    },
+    Field {
+        key: "bounds.ground_clearance_min_mm",
+        symbol: "",
+        unit: "mm",
+        range: "finite",
+        meaning: "Least ground clearance of the gearbox (objective `ground_clearance`).",
+        refused: &["bounds.ground_clearance_min_mm=nan"],
+    },
+    Field {
+        key: "bounds.trajectory_height_min_mm",
+        symbol: "",
+        unit: "mm",
+        range: "finite",
+        meaning: "Least trajectory height (objective `trajectory_height`).",
+        refused: &["bounds.trajectory_height_min_mm=nan"],
+    },
+    Field {
+        key: "bounds.module_min_mm",
+        symbol: "",
+        unit: "mm",
+        range: "finite",
+        meaning: "Least module of the gears (objective `module`).",
+        refused: &["bounds.module_min_mm=nan"],
+    },
+    Field {
+        key: "bounds.picking_admissible_min_mm",
+        symbol: "",
+        unit: "mm",
+        range: "finite",
+        meaning: "Least margin by which the worst picking condition holds (objective \
+                  `picking_admissible`: the tip reaches into the pot, moving into the tray).",
+        refused: &["bounds.picking_admissible_min_mm=nan"],
+    },
+];

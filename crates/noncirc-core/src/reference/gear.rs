@@ -1,0 +1,237 @@
+//! The reference of `[gear]`: the pitch curve, the module rule and the teeth.
+
+use super::Field;
+
+pub(super) const FIELDS: &[Field] = &[
+    Field {
+        key: "gear.curve.kind",
+        symbol: "",
+        unit: "",
+        range: "`spline`, `bspline`, `bezier`, `table`, `fourier` or `ellipse`",
+        meaning: "How the sun's pitch curve is given: a periodic cubic spline of ρ(ψ) \
+                  through polar control points (the paper's), a closed B-spline or Bézier \
+                  curve of the control points read as Cartesian points, measured samples, \
+                  a Fourier series, or an ellipse turning about a focus.",
+        refused: &["gear.curve.kind=\"circle\""],
+    },
+    Field {
+        key: "gear.curve.radii_mm",
+        symbol: "r1 … r12",
+        unit: "mm",
+        range: "positive; as many as `angles_deg`, at least 4; the curve they give \
+                positive everywhere",
+        meaning: "Radii of the control points (spline, bspline, bezier, table).",
+        refused: &[
+            "gear.curve.radii_mm[7]=0",
+            "gear.curve.radii_mm=[20.0,30.0]",
+            "gear.curve={kind=\"spline\",radii_mm=[20.0,30.0,40.0],angles_deg=[0.0,90.0,180.0]}",
+        ],
+    },
+    Field {
+        key: "gear.curve.angles_deg",
+        symbol: "θ1 … θ12",
+        unit: "°",
+        range: "finite, strictly increasing within one turn",
+        meaning: "Polar angles of the control points in the sun's own frame.",
+        refused: &[
+            "gear.curve.angles_deg[2]=30",
+            "gear.curve.angles_deg[11]=400",
+        ],
+    },
+    Field {
+        key: "gear.curve.c0_mm",
+        symbol: "",
+        unit: "mm",
+        range: "positive; the series positive everywhere",
+        meaning: "Mean radius of a Fourier curve `ρ = c0 + Σk (cos_k cos kψ + sin_k sin kψ)`.",
+        refused: &["gear.curve={kind=\"fourier\",c0_mm=-5.0,cos_mm=[1.0],sin_mm=[0.0]}"],
+    },
+    Field {
+        key: "gear.curve.cos_mm",
+        symbol: "",
+        unit: "mm",
+        range: "finite",
+        meaning: "Cosine coefficients of a Fourier curve, k = 1, 2, …",
+        refused: &["gear.curve={kind=\"fourier\",c0_mm=30.0,cos_mm=[40.0],sin_mm=[0.0]}"],
+    },
+    Field {
+        key: "gear.curve.sin_mm",
+        symbol: "",
+        unit: "mm",
+        range: "finite",
+        meaning: "Sine coefficients of a Fourier curve, k = 1, 2, …",
+        refused: &["gear.curve={kind=\"fourier\",c0_mm=30.0,cos_mm=[0.0],sin_mm=[31.0]}"],
+    },
+    Field {
+        key: "gear.curve.semi_major_mm",
+        symbol: "A",
+        unit: "mm",
+        range: "a length from 1e-9 to 1e9 mm",
+        meaning: "Semi-major axis of an ellipse `ρ = A(1 − k²)/(1 − k cos ψ)`.",
+        refused: &["gear.curve={kind=\"ellipse\",semi_major_mm=0.0,eccentricity=0.3}"],
+    },
+    Field {
+        key: "gear.curve.eccentricity",
+        symbol: "k",
+        unit: "",
+        range: "0 ≤ k < 1",
+        meaning: "Eccentricity of an ellipse.",
+        refused: &["gear.curve={kind=\"ellipse\",semi_major_mm=40.0,eccentricity=1.0}"],
+    },
+    Field {
+        key: "gear.module.rule",
+        symbol: "",
+        unit: "",
+        range: "`undercut`, `perimeter` or `teeth`",
+        meaning: "How the module is read: the largest module whose teeth the curvature \
+                  allows without undercut; `m = L/(πz)` for `teeth` teeth with no check \
+                  (how the paper computed its 2.5 mm); or `m = L/(πz)` met only if the \
+                  teeth cut with `gear.teeth` pass every check (docs/teeth.md).",
+        refused: &[
+            "gear.module.rule=\"largest\"",
+            "gear.module.rule=\"perimeter\"",
+        ],
+    },
+    Field {
+        key: "gear.module.teeth",
+        symbol: "z",
+        unit: "",
+        range: "unset, or a whole number from 1; required by `perimeter` and `teeth`",
+        meaning: "Teeth per gear (shared by meshing gears).",
+        refused: &["gear.module.teeth=-3", "gear.module.teeth=2.5"],
+    },
+    Field {
+        key: "gear.module.z_min",
+        symbol: "z_min",
+        unit: "",
+        range: "above 0",
+        meaning: "Fewest teeth of a rack that cut a convex arc without undercut (17 for a \
+                  20° rack).",
+        refused: &["gear.module.z_min=0"],
+    },
+    Field {
+        key: "gear.module.cutter_teeth",
+        symbol: "",
+        unit: "",
+        range: "unset (concave arcs forbidden), or above 0",
+        meaning: "Teeth of the shaper cutter that cuts concave arcs.",
+        refused: &["gear.module.cutter_teeth=0"],
+    },
+    Field {
+        key: "gear.teeth.pressure_angle_deg",
+        symbol: "α",
+        unit: "°",
+        range: "between 5 and 45 (exclusive)",
+        meaning: "Pressure angle of the cutting tool.",
+        refused: &[
+            "gear.teeth.pressure_angle_deg=5",
+            "gear.teeth.pressure_angle_deg=45",
+        ],
+    },
+    Field {
+        key: "gear.teeth.addendum",
+        symbol: "ha*",
+        unit: "× m",
+        range: "above 0",
+        meaning: "Tip height above the pitch curve, in modules.",
+        refused: &["gear.teeth.addendum=0"],
+    },
+    Field {
+        key: "gear.teeth.dedendum",
+        symbol: "hf*",
+        unit: "× m",
+        range: "above 0",
+        meaning: "Root depth below the pitch curve, in modules.",
+        refused: &["gear.teeth.dedendum=-1"],
+    },
+    Field {
+        key: "gear.teeth.tip_radius",
+        symbol: "ρa*",
+        unit: "× m",
+        range: "above 0",
+        meaning: "Radius of the tool's tip rounding, which cuts the root fillet.",
+        refused: &["gear.teeth.tip_radius=0"],
+    },
+    Field {
+        key: "gear.teeth.backlash_mm",
+        symbol: "j",
+        unit: "mm",
+        range: "0 or more",
+        meaning: "Circumferential backlash of a pair on the pitch curve, half from each gear.",
+        refused: &["gear.teeth.backlash_mm=-0.1"],
+    },
+    Field {
+        key: "gear.teeth.profile_shift",
+        symbol: "x",
+        unit: "× m",
+        range: "less than the addendum in size",
+        meaning: "Profile shift of the driver (sun, planets); the intermediates take the \
+                  opposite, so the centre distance stays.",
+        refused: &["gear.teeth.profile_shift=1.0"],
+    },
+    Field {
+        key: "gear.teeth.cutter.kind",
+        symbol: "",
+        unit: "",
+        range: "`rack` or `shaper`",
+        meaning: "The cutting tool: a rack, or a pinion-type shaper for pitch curves with \
+                  concave arcs.",
+        refused: &["gear.teeth.cutter.kind=\"hob\""],
+    },
+    Field {
+        key: "gear.teeth.cutter.teeth",
+        symbol: "z0",
+        unit: "",
+        range: "6 or more (a shaper only)",
+        meaning: "Teeth of the shaper cutter: its pitch radius is `m·z0/2`.",
+        refused: &["gear.teeth.cutter={kind=\"shaper\",teeth=5}"],
+    },
+    Field {
+        key: "gear.teeth.flank_samples",
+        symbol: "",
+        unit: "",
+        range: "2 to 100000",
+        meaning: "Segments per flank of the outline (docs/teeth.md).",
+        refused: &["gear.teeth.flank_samples=1"],
+    },
+    Field {
+        key: "gear.teeth.fillet_samples",
+        symbol: "",
+        unit: "",
+        range: "2 to 100000",
+        meaning: "Segments per root fillet.",
+        refused: &["gear.teeth.fillet_samples=100001"],
+    },
+    Field {
+        key: "gear.teeth.mesh_steps_per_pitch",
+        symbol: "",
+        unit: "",
+        range: "1 to 100000",
+        meaning: "Mesh positions per pitch in the whole-turn mesh check.",
+        refused: &["gear.teeth.mesh_steps_per_pitch=0"],
+    },
+    Field {
+        key: "gear.teeth.arc_panels",
+        symbol: "",
+        unit: "",
+        range: "16 to 100000",
+        meaning: "Panels per turn of the arc-length tables.",
+        refused: &["gear.teeth.arc_panels=8"],
+    },
+    Field {
+        key: "gear.teeth.min_tip_land",
+        symbol: "sa*",
+        unit: "× m",
+        range: "0 or more",
+        meaning: "Least tip land below which a tooth is too thin at the tip.",
+        refused: &["gear.teeth.min_tip_land=-0.1"],
+    },
+    Field {
+        key: "gear.teeth.allow_undercut",
+        symbol: "",
+        unit: "",
+        range: "`true` or `false`",
+        meaning: "Whether undercut is accepted (it weakens the tooth and shortens the contact).",
+        refused: &["gear.teeth.allow_undercut=1"],
+    },
+];

@@ -1,0 +1,137 @@
+//! The reference of `[moving_box]`: the variable-speed moving box.
+
+use super::Field;
+
+pub(super) const FIELDS: &[Field] = &[
+    Field {
+        key: "moving_box.eccentricity",
+        symbol: "k",
+        unit: "",
+        range: "0 ≤ k < 1",
+        meaning: "Eccentricity of the box drive's elliptical gears; 1/(2+√3) gives a \
+                  fastest/slowest speed ratio of 3 (the moving-box paper).",
+        refused: &["moving_box.eccentricity=1", "moving_box.eccentricity=-0.1"],
+    },
+    Field {
+        key: "moving_box.speed_ratio",
+        symbol: "",
+        unit: "",
+        range: "unset, or at least 1",
+        meaning: "If set, k is derived from this fastest/slowest speed ratio instead.",
+        refused: &["moving_box.speed_ratio=0.5"],
+    },
+    Field {
+        key: "moving_box.pot_pitch_mm",
+        symbol: "",
+        unit: "mm",
+        range: "above 0, at most 1e9",
+        meaning: "Box travel per input turn.",
+        refused: &["moving_box.pot_pitch_mm=0"],
+    },
+    Field {
+        key: "moving_box.pot_width_mm",
+        symbol: "",
+        unit: "mm",
+        range: "above 0, at most 1e9",
+        meaning: "Pot width: the box may move at most a sixth of it while a seedling is picked.",
+        refused: &["moving_box.pot_width_mm=-18"],
+    },
+    Field {
+        key: "moving_box.module_mm",
+        symbol: "m",
+        unit: "mm",
+        range: "above 0, at most 1e9",
+        meaning: "Module of the elliptical gears (with `teeth`, it fixes their size).",
+        refused: &["moving_box.module_mm=0"],
+    },
+    Field {
+        key: "moving_box.teeth",
+        symbol: "z",
+        unit: "",
+        range: "a whole number from 1",
+        meaning: "Tooth count of the elliptical gears.",
+        refused: &["moving_box.teeth=0"],
+    },
+    Field {
+        key: "moving_box.input_speed_rpm",
+        symbol: "n",
+        unit: "r/min",
+        range: "above 0, at most 1e5",
+        meaning: "Input shaft speed.",
+        refused: &[
+            "moving_box.input_speed_rpm=0",
+            "moving_box.input_speed_rpm=2e5",
+        ],
+    },
+    Field {
+        key: "moving_box.window_deg",
+        symbol: "",
+        unit: "°",
+        range: "0 to 360",
+        meaning: "Width of the picking window on the driving gear.",
+        refused: &["moving_box.window_deg=400"],
+    },
+    Field {
+        key: "moving_box.window_centre_deg",
+        symbol: "",
+        unit: "°",
+        range: "finite",
+        meaning: "Centre of the picking window on the driving gear.",
+        refused: &["moving_box.window_centre_deg=nan"],
+    },
+    Field {
+        key: "moving_box.spiral_angle_deg",
+        symbol: "φs",
+        unit: "°",
+        range: "between 0 and 90 (exclusive)",
+        meaning: "Spiral angle of the sinusoidal spiral shaft's groove development.",
+        refused: &["moving_box.spiral_angle_deg=90"],
+    },
+    Field {
+        key: "moving_box.box_mass_kg",
+        symbol: "m",
+        unit: "kg",
+        range: "above 0, at most 1e6",
+        meaning: "Mass of the seedling box (an assumption: the paper gives none).",
+        refused: &["moving_box.box_mass_kg=0"],
+    },
+    Field {
+        key: "moving_box.groove_wall_angle_deg",
+        symbol: "α",
+        unit: "°",
+        range: "0 to 90 (90 excluded); with the groove friction angle below 90",
+        meaning: "Angle between the spiral groove's wall and the YOZ plane (an assumption).",
+        refused: &[
+            "moving_box.groove_wall_angle_deg=-1",
+            "moving_box.groove_wall_angle_deg=85",
+        ],
+    },
+    Field {
+        key: "moving_box.groove_friction_angle_deg",
+        symbol: "φ",
+        unit: "°",
+        range: "0 to 90 (90 excluded)",
+        meaning: "Friction angle in the spiral groove (an assumption).",
+        refused: &["moving_box.groove_friction_angle_deg=90"],
+    },
+    Field {
+        key: "moving_box.slide_friction_angle_deg",
+        symbol: "φ1",
+        unit: "°",
+        range: "0 to 90 (90 excluded)",
+        meaning: "Friction angle of the box on its slide (an assumption).",
+        refused: &["moving_box.slide_friction_angle_deg=-5"],
+    },
+    Field {
+        key: "moving_box.input_turns_per_carrier_turn",
+        symbol: "",
+        unit: "",
+        range: "above 0, at most 1e3; in a transplanter scene, `train.arms`",
+        meaning: "Transplanter coupling: box input turns per carrier turn (one pot per \
+                  pick: 3 for the three-arm mechanism, `train.arms` for any).",
+        refused: &[
+            "moving_box.input_turns_per_carrier_turn=0",
+            "moving_box.input_turns_per_carrier_turn=2",
+        ],
+    },
+];
