@@ -1,5 +1,6 @@
-//! The three-arm planetary transplanting mechanism: fixed sun, intermediate (conjugate)
-//! and planet (congruent to the sun) gears on a carrier, an arm on each planet (spec §2).
+//! The planetary transplanting mechanism: fixed sun, intermediate (conjugate) and planet
+//! (congruent to the sun) gears on a carrier, an arm on each planet (spec §2); three arm
+//! sets as in the paper, or 1 to 4 (`TrainSpec::arms`).
 
 use crate::angle::unit;
 use crate::curve::{PitchCurve, TAU};
