@@ -1,6 +1,6 @@
 //! Search: known optima, determinism across thread counts, checkpoint and resume.
 
-use noncirc::core::{das_dennis, Algorithm, BatchEvaluator, Fitness, SearchState};
+use noncirc::core::{Algorithm, BatchEvaluator, Fitness, SearchState};
 use noncirc::scene_file::load_scene;
 use noncirc::search::{Outcome, RunOptions, SearchSettings};
 
@@ -155,81 +155,6 @@ fn nsga2_converges_to_the_zdt1_front() {
         (l.min(c.fitness.f[0]), h.max(c.fitness.f[0]))
     });
     assert!(lo < 0.05 && hi > 0.9, "spread {lo}..{hi}");
-}
-
-#[test]
-fn das_dennis_directions_fill_the_simplex() {
-    // p = 7 partitions for 4 goals: C(10, 7) = 120 points with coordinates k/7 summing to 1.
-    let dirs = das_dennis(4, 120);
-    assert_eq!(dirs.len(), 120);
-    for d in &dirs {
-        assert!((d.iter().sum::<f64>() - 1.0).abs() < 1e-12);
-        assert!(d
-            .iter()
-            .all(|&v| (v * 7.0 - (v * 7.0).round()).abs() < 1e-12));
-    }
-    assert_eq!(das_dennis(3, 91).len(), 91); // p = 12
-    assert_eq!(das_dennis(2, 5).len(), 5); // p = 4
-}
-
-#[test]
-fn nsga3_converges_to_the_dtlz2_front_with_four_goals() {
-    // DTLZ2 (4 goals, d = 8): the front is the unit sphere's positive orthant, reached with
-    // u_3.. = 0.5.
-    let goals = 4;
-    let dtlz2 = move |u: &[f64]| {
-        let g: f64 = u[goals - 1..].iter().map(|x| (x - 0.5).powi(2)).sum();
-        let angle = |x: f64| x * std::f64::consts::FRAC_PI_2;
-        let f = (0..goals)
-            .map(|i| {
-                let mut v = 1.0 + g;
-                for x in &u[..goals - 1 - i] {
-                    v *= angle(*x).cos();
-                }
-                if i > 0 {
-                    v *= angle(u[goals - 1 - i]).sin();
-                }
-                v
-            })
-            .collect();
-        Fitness { cv: 0.0, f }
-    };
-    let mut eval = Closure {
-        dim: 8,
-        goals,
-        f: dtlz2,
-    };
-    let mut state = SearchState::new(Algorithm::Nsga3, 8, goals, 120, 5);
-    while state.evaluations < 36_000 {
-        state.step(&mut eval);
-    }
-    let front = state.solver.front();
-    assert!(front.len() >= 100, "front of {}", front.len());
-    let radius =
-        |c: &noncirc::core::Candidate| c.fitness.f.iter().map(|v| v * v).sum::<f64>().sqrt();
-    let worst = front.iter().map(|c| radius(c) - 1.0).fold(0.0, f64::max);
-    assert!(worst < 0.05, "distance to the true front {worst}");
-    // Spread: the members' nearest reference directions cover most of the 120.
-    let dirs = das_dennis(goals, 120);
-    let mut covered = std::collections::BTreeSet::new();
-    for c in &front {
-        let r = radius(c);
-        let nearest = (0..dirs.len())
-            .min_by(|&a, &b| {
-                let cos = |d: &Vec<f64>| {
-                    let n = d.iter().map(|v| v * v).sum::<f64>().sqrt();
-                    d.iter().zip(&c.fitness.f).map(|(x, y)| x * y).sum::<f64>() / (n * r)
-                };
-                cos(&dirs[b]).total_cmp(&cos(&dirs[a]))
-            })
-            .unwrap();
-        covered.insert(nearest);
-    }
-    assert!(
-        covered.len() >= 90,
-        "{} of 120 directions covered",
-        covered.len()
-    );
 }
 
 /// The paper-search scene searched by `algorithm`: 2400 evaluations, 24 a generation, seed 11.

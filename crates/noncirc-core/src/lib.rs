@@ -103,9 +103,9 @@ pub use tolerance::{Spread, Tolerances};
 // from noncirc-search.
 pub use checkpoint::{Checkpoint, Migrants, FORMAT as CHECKPOINT_FORMAT};
 pub use noncirc_search::{
-    das_dennis, execute, nearest, non_dominated_fronts, stop_after_generations, Algorithm,
-    BatchEvaluator, Candidate, Cmaes, Control, Ending, Fitness, HistoryRow, Observer, Rng,
-    SearchState, Solver, SolverState,
+    execute, nearest, non_dominated_fronts, stop_after_generations, Algorithm, BatchEvaluator,
+    Candidate, Cmaes, Control, Ending, Fitness, HistoryRow, Observer, Rng, SearchState, Solver,
+    SolverState,
 };
 pub use problem::SceneProblem;
 pub use serial::SerialEvaluator;

@@ -44,7 +44,7 @@ pub use executor::{execute, stop_after_generations, Control, Ending, Observer};
 pub use fitness::{BatchEvaluator, Candidate, Fitness};
 pub use guided::ParameterGuided;
 pub use names::nearest;
-pub use nsga::{das_dennis, non_dominated_fronts, Nsga, Survival};
+pub use nsga::{non_dominated_fronts, Nsga, Survival};
 pub use rng::Rng;
 pub use solver::{SolverState, MAX_POPULATION};
 pub use state::{HistoryRow, SearchState};

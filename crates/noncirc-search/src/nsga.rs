@@ -345,7 +345,7 @@ fn crowding(pop: &[Candidate], front: &[usize]) -> Vec<f64> {
 /// Das–Dennis reference directions on the unit simplex in `goals` dimensions: all points
 /// with coordinates `k/p` summing to 1, for the largest `p` that gives at most `limit`
 /// points (at least `p = 1`: the axes).
-pub fn das_dennis(goals: usize, limit: usize) -> Vec<Vec<f64>> {
+pub(crate) fn das_dennis(goals: usize, limit: usize) -> Vec<Vec<f64>> {
     let count = |p: usize| binomial(goals + p - 1, p);
     let mut p = 1;
     while count(p + 1) <= limit as u64 && p < 1000 {
@@ -462,4 +462,85 @@ fn niching(
         }
     }
     chosen
+}
+
+#[cfg(test)]
+mod tests {
+    use super::das_dennis;
+    use crate::test_problem::FnProblem;
+    use crate::{Algorithm, Candidate, Fitness, SearchState};
+
+    #[test]
+    fn das_dennis_directions_fill_the_simplex() {
+        // p = 7 partitions for 4 goals: C(10, 7) = 120 points with coordinates k/7 summing to 1.
+        let dirs = das_dennis(4, 120);
+        assert_eq!(dirs.len(), 120);
+        for d in &dirs {
+            assert!((d.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+            assert!(d
+                .iter()
+                .all(|&v| (v * 7.0 - (v * 7.0).round()).abs() < 1e-12));
+        }
+        assert_eq!(das_dennis(3, 91).len(), 91); // p = 12
+        assert_eq!(das_dennis(2, 5).len(), 5); // p = 4
+    }
+
+    #[test]
+    fn nsga3_converges_to_the_dtlz2_front_with_four_goals() {
+        // DTLZ2 (4 goals, d = 8): the front is the unit sphere's positive orthant, reached with
+        // u_3.. = 0.5.
+        let goals = 4;
+        let dtlz2 = move |u: &[f64]| {
+            let g: f64 = u[goals - 1..].iter().map(|x| (x - 0.5).powi(2)).sum();
+            let angle = |x: f64| x * std::f64::consts::FRAC_PI_2;
+            let f = (0..goals)
+                .map(|i| {
+                    let mut v = 1.0 + g;
+                    for x in &u[..goals - 1 - i] {
+                        v *= angle(*x).cos();
+                    }
+                    if i > 0 {
+                        v *= angle(u[goals - 1 - i]).sin();
+                    }
+                    v
+                })
+                .collect();
+            Fitness { cv: 0.0, f }
+        };
+        let mut eval = FnProblem {
+            dim: 8,
+            goals,
+            score: dtlz2,
+        };
+        let mut state = SearchState::new(Algorithm::Nsga3, 8, goals, 120, 5);
+        while state.evaluations < 36_000 {
+            state.step(&mut eval);
+        }
+        let front = state.solver.front();
+        assert!(front.len() >= 100, "front of {}", front.len());
+        let radius = |c: &Candidate| c.fitness.f.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let worst = front.iter().map(|c| radius(c) - 1.0).fold(0.0, f64::max);
+        assert!(worst < 0.05, "distance to the true front {worst}");
+        // Spread: the members' nearest reference directions cover most of the 120.
+        let dirs = das_dennis(goals, 120);
+        let mut covered = std::collections::BTreeSet::new();
+        for c in &front {
+            let r = radius(c);
+            let nearest = (0..dirs.len())
+                .min_by(|&a, &b| {
+                    let cos = |d: &Vec<f64>| {
+                        let n = d.iter().map(|v| v * v).sum::<f64>().sqrt();
+                        d.iter().zip(&c.fitness.f).map(|(x, y)| x * y).sum::<f64>() / (n * r)
+                    };
+                    cos(&dirs[b]).total_cmp(&cos(&dirs[a]))
+                })
+                .unwrap();
+            covered.insert(nearest);
+        }
+        assert!(
+            covered.len() >= 90,
+            "{} of 120 directions covered",
+            covered.len()
+        );
+    }
 }
