@@ -79,12 +79,7 @@ pub(crate) fn pool(threads: Option<usize>) -> Result<Option<Arc<rayon::ThreadPoo
     if let Some(p) = pools.get(&n) {
         return Ok(Some(p.clone()));
     }
-    let p = Arc::new(
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(internal)?,
-    );
+    let p = Arc::new(noncirc::search::thread_pool(n)?);
     pools.insert(n, p.clone());
     Ok(Some(p))
 }
