@@ -24,9 +24,9 @@ CORE = ROOT / "crates/noncirc-core/src"
 SEARCH = ROOT / "crates/noncirc-search"
 
 LAYERS = [  # lowest first; a module may use its own layer and those below
-    "error reference vec2 angle quadrature resolution",                          # util
+    "error vec2 angle quadrature resolution",                                    # util
     "curve gear planetary teeth moving_box gearbox",                             # model
-    "scene params agronomy objective_kind measure goal tolerance",               # scene
+    "scene reference messages params agronomy objective_kind measure goal tolerance",  # scene
     "evaluation events anatomy objectives measure_value accuracy",               # evaluate
     "robustness sensitivity problem checkpoint serial",                          # study
 ]

@@ -255,33 +255,36 @@ pub fn load_scene_with(spec: Option<&str>, assignments: &[String]) -> Result<Sce
     }
 }
 
-/// Every key path of a scene's tree (`train.phi0_deg`, `gear.curve.radii_mm[0]`, and the
-/// tables themselves), for "the nearest are" suggestions.
-fn key_paths(tree: &serde_json::Value) -> Vec<String> {
-    fn walk(v: &serde_json::Value, path: String, out: &mut Vec<String>) {
-        match v {
-            serde_json::Value::Object(m) => {
-                for (k, x) in m {
-                    let p = if path.is_empty() {
-                        k.clone()
-                    } else {
-                        format!("{path}.{k}")
-                    };
-                    walk(x, p.clone(), out);
-                    out.push(p);
-                }
-            }
-            serde_json::Value::Array(a) => {
-                for (i, x) in a.iter().enumerate() {
-                    walk(x, format!("{path}[{i}]"), out);
-                }
-            }
-            _ => {}
+/// Whether `key` names a field of the field table ([`noncirc_core::fields`]) or a table of
+/// them (`bounds`, `gear.curve`): a list's element as `key[3]`, an entry of a list of
+/// tables as `search.free[0].name` (the table's `search.free[i].name`).
+fn in_table(key: &str) -> bool {
+    let mut general = String::new();
+    let mut rest = key;
+    while let Some((before, after)) = rest.split_once('[') {
+        let Some((index, after)) = after.split_once(']') else {
+            return false;
+        };
+        general += before;
+        // An element of a list of tables, or a list's element at the end of the key.
+        general += if after.is_empty() { "" } else { "[i]" };
+        if !index.chars().all(|c| c.is_ascii_digit()) {
+            return false;
         }
+        rest = after;
     }
-    let mut out = Vec::new();
-    walk(tree, String::new(), &mut out);
-    out
+    general += rest;
+    noncirc_core::fields().any(|f| {
+        f.key == general
+            || f.key
+                .strip_prefix(general.as_str())
+                .is_some_and(|r| r.starts_with('.') || r.starts_with('['))
+    })
+}
+
+/// The field table's keys, for "the nearest are" suggestions.
+fn table_keys() -> Vec<String> {
+    noncirc_core::fields().map(|f| f.key.to_string()).collect()
 }
 
 /// The first NaN or infinite float in a TOML value, if any.
@@ -316,9 +319,8 @@ pub fn apply_values(
 ) -> Result<Scene, SceneError> {
     let assignments: Vec<String> = (values.iter()).map(|(k, v)| format!("{k}={v}")).collect();
     let mut tree = scene_tree(&scene);
-    let plain = tree.clone();
     for ((key, value), assignment) in values.iter().zip(&assignments) {
-        *slot(&mut tree, &plain, key, assignment)? = value.clone();
+        *slot(&mut tree, key, assignment)? = value.clone();
     }
     let scene = read_tree(tree, &assignments)?;
     checked(scene, &format!("--set {}", assignments.join(" ")), None)
@@ -328,15 +330,34 @@ pub fn apply_values(
 /// JSON: a number, list, string or table.
 pub fn value_at(scene: &Scene, key: &str) -> Result<serde_json::Value, SceneError> {
     let mut tree = scene_tree(scene);
-    let plain = tree.clone();
-    Ok(slot(&mut tree, &plain, key, key)?.clone())
+    Ok(slot(&mut tree, key, key)?.clone())
 }
 
-/// The scene's serialised tree, with what a scene leaves out while it is the default (the
-/// teeth, `search.confirm_with_teeth`, the arm count, the picking rate, the tolerances)
-/// filled in, so that it can be read and set.
+/// The scene's serialised tree, with what a written scene leaves out while it is the
+/// default filled in, so that it can be read and set: every number of the field table
+/// (the arm count, the picking rate) by its accessor, and the tables and flags a written
+/// scene leaves out (the teeth, the tolerances, `search.confirm_with_teeth`) from their
+/// defaults.
 fn scene_tree(scene: &Scene) -> serde_json::Value {
     let mut tree = serde_json::to_value(scene).expect("a scene always serialises");
+    for field in noncirc_core::fields() {
+        let Some((table, key)) = field.key.rsplit_once('.') else {
+            continue;
+        };
+        let Ok(param) = noncirc_core::Param::parse(field.key, scene) else {
+            continue; // not a number, or not in this scene (another curve kind)
+        };
+        let node = table
+            .split('.')
+            .try_fold(&mut tree, |node, part| node.get_mut(part));
+        if let Some(table) = node.and_then(|n| n.as_object_mut()) {
+            table.entry(key).or_insert_with(|| match param.get(scene) {
+                // A whole number as an integer, which an integer field reads back.
+                Some(v) if v.fract() == 0.0 && v.abs() < 2f64.powi(53) => (v as i64).into(),
+                v => v.into(),
+            });
+        }
+    }
     if let Some(gear) = tree.get_mut("gear").and_then(|g| g.as_object_mut()) {
         gear.entry("teeth").or_insert_with(|| {
             serde_json::to_value(noncirc_core::ToothSpec::default()).expect("serialises")
@@ -347,12 +368,6 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
             .entry("confirm_with_teeth")
             .or_insert(serde_json::Value::Bool(false));
     }
-    if let Some(train) = tree.get_mut("train").and_then(|t| t.as_object_mut()) {
-        train.entry("arms").or_insert(serde_json::Value::from(3));
-        train
-            .entry("picks_per_minute")
-            .or_insert(serde_json::Value::Null);
-    }
     if let Some(top) = tree.as_object_mut() {
         top.entry("tolerances").or_insert_with(|| {
             serde_json::to_value(noncirc_core::Tolerances::default()).expect("serialises")
@@ -361,11 +376,10 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
     tree
 }
 
-/// The node of `tree` at `key` (`a.b.c`, `a.b[i]`); `plain`, the unedited tree, lists the
-/// nearest keys when there is none; `assignment` names the request in errors.
+/// The node of `tree` at `key` (`a.b.c`, `a.b[i]`), a field of the field table or a table
+/// of them; `assignment` names the request in errors.
 fn slot<'t>(
     tree: &'t mut serde_json::Value,
-    plain: &serde_json::Value,
     key: &str,
     assignment: &str,
 ) -> Result<&'t mut serde_json::Value, SceneError> {
@@ -373,6 +387,14 @@ fn slot<'t>(
         assignment: assignment.to_string(),
         message,
     };
+    let unknown = || SceneError::UnknownKey {
+        assignment: assignment.to_string(),
+        key: key.trim().to_string(),
+        nearest: noncirc_core::nearest(key.trim(), &table_keys()),
+    };
+    if !in_table(key.trim()) {
+        return Err(unknown());
+    }
     let mut node = tree;
     for part in key.trim().split('.') {
         let (name, index) = match part.split_once('[') {
@@ -388,11 +410,7 @@ fn slot<'t>(
         node = node
             .as_object_mut()
             .and_then(|obj| obj.get_mut(name))
-            .ok_or_else(|| SceneError::UnknownKey {
-                assignment: assignment.to_string(),
-                key: key.trim().to_string(),
-                nearest: noncirc_core::nearest(key.trim(), &key_paths(plain)),
-            })?;
+            .ok_or_else(unknown)?;
         if let Some(i) = index {
             node = node
                 .as_array_mut()
@@ -414,7 +432,6 @@ fn read_tree(tree: serde_json::Value, assignments: &[String]) -> Result<Scene, S
 /// Writes `key.path=value` assignments into the scene's tree and reads it back.
 fn set_values(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError> {
     let mut tree = scene_tree(&scene);
-    let plain = tree.clone();
     for assignment in assignments {
         let err = |message: String| SceneError::Override {
             assignment: assignment.clone(),
@@ -436,7 +453,7 @@ fn set_values(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError>
             }
             Err(_) => serde_json::Value::String(raw.to_string()),
         };
-        *slot(&mut tree, &plain, key, assignment)? = value;
+        *slot(&mut tree, key, assignment)? = value;
     }
     read_tree(tree, assignments)
 }
@@ -493,6 +510,37 @@ mod tests {
             Some(33.5)
         );
         assert!(apply_overrides(scene.clone(), &["gear.curve.radii_mm[12]=1".into()]).is_err());
+    }
+
+    #[test]
+    fn keys_go_through_the_field_table() {
+        for key in [
+            "train.arms",
+            "gear.curve.radii_mm[3]",
+            "bounds.picking_angle_deg[1]",
+            "search.free[0].lower",
+            "bounds",
+            "gear.curve",
+            "tolerances.radius_mm",
+        ] {
+            assert!(in_table(key), "{key}");
+        }
+        for key in ["train.arm", "gear.curve.radii_mm[x]", "bounds.", "nope"] {
+            assert!(!in_table(key), "{key}");
+        }
+        // The arm count, left out of a written scene while it is the default, reads back
+        // by its accessor, as an integer that the scene's integer field takes.
+        let scene = load_scene(None).unwrap();
+        assert_eq!(
+            value_at(&scene, "train.arms").unwrap(),
+            serde_json::json!(3)
+        );
+        let two = apply_overrides(scene.clone(), &["train.arms=2".into()]).unwrap();
+        assert_eq!(value_at(&two, "train.arms").unwrap(), serde_json::json!(2));
+        let e = apply_overrides(scene, &["train.arm_lenght_mm=1".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("the nearest are train.arm_length_mm"), "{e}");
     }
 
     #[test]

@@ -1,76 +1,63 @@
 //! Typed errors: every one names the offending value.
 
-/// Everything that can go wrong in the core. Each variant carries the bad value.
+/// Everything that can go wrong in the core. Each variant carries the bad value. The
+/// messages are written in `messages.rs`, a layer up: they name a scene path with the
+/// papers' symbol from the scene's field table (`train.arm_length_mm (S)`).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {
     /// A number that must be finite is NaN or infinite.
-    #[error("{} must be a finite number, got {}", Named(name), Num(*value))]
     NonFinite { name: String, value: f64 },
     /// A scalar parameter is outside its admissible range.
-    #[error("{} = {} is out of range: expected {expected}", Named(name), Num(*value))]
     OutOfRange {
         name: String,
         value: f64,
         expected: String,
     },
     /// A pitch curve reaches zero or negative radius.
-    #[error(
-        "pitch radius must be positive everywhere, but rho = {rho_mm:.6} mm at psi = {psi_deg:.4}°"
-    )]
     NonPositiveRadius { psi_deg: f64, rho_mm: f64 },
     /// Control angles are not strictly increasing within one turn.
-    #[error("control angles must be strictly increasing within one turn: angle {index} is {angle_deg}° after {previous_deg}°")]
     ControlAngles {
         index: usize,
         angle_deg: f64,
         previous_deg: f64,
     },
     /// Too few control points for the representation.
-    #[error("{kind} needs at least {min} points, got {got}")]
     TooFewPoints {
         kind: &'static str,
         min: usize,
         got: usize,
     },
     /// A Cartesian curve is not star-shaped about the rotation centre.
-    #[error("{kind} pitch curve is not star-shaped about the centre: its polar angle turns back near ({x_mm:.3}, {y_mm:.3}) mm")]
     NotStarShaped {
         kind: &'static str,
         x_mm: f64,
         y_mm: f64,
     },
     /// The quadrature is too coarse for the curve: the closure integral is not resolved.
-    #[error("closure not resolved at {samples} samples per turn: centre distance uncertain by about {error_mm:.3e} mm (tolerance {tolerance_mm:.1e} mm); the curve's sharpest feature needs more samples per turn")]
     UnderResolved {
         samples: usize,
         error_mm: f64,
         tolerance_mm: f64,
     },
     /// The pitch curve's maximum lies between samples and reaches past the centre distance.
-    #[error("pitch curve reaches rho = {rho_max_mm:.6} mm between samples, beyond the centre distance {centre_distance_mm:.6} mm: raise samples per turn")]
     SpikeBetweenSamples {
         rho_max_mm: f64,
         centre_distance_mm: f64,
     },
     /// A name (of a measure, a goal, a parameter) that does not exist.
-    #[error("unknown {what} '{name}': the nearest are {}", nearest.join(", "))]
     UnknownName {
         what: &'static str,
         name: String,
         nearest: Vec<String>,
     },
     /// A search state (checkpoint) that cannot be resumed: what is wrong with it.
-    #[error("checkpoint: {0}")]
     Checkpoint(String),
     /// An optional setting that another setting needs.
-    #[error("{name} is not set: {needed_by}")]
     Missing { name: String, needed_by: String },
     /// A list of the scene (objectives, goals, free parameters) with an entry that cannot
     /// stand there, or empty where it must not be; `problem` names the entry.
-    #[error("{list}: {problem}")]
     BadList { list: &'static str, problem: String },
     /// Teeth that cannot be cut on this pitch curve with these settings: where and why.
-    #[error("{gear} gear, tooth {tooth} (pitch arc {arc_mm:.3} mm): {why}")]
     Teeth {
         gear: &'static str,
         tooth: usize,
@@ -78,14 +65,12 @@ pub enum Error {
         why: String,
     },
     /// A toothed outline that crosses itself, and where.
-    #[error("{gear} gear: the toothed outline crosses itself near ({x_mm:.4}, {y_mm:.4}) mm")]
     OutlineCrossing {
         gear: &'static str,
         x_mm: f64,
         y_mm: f64,
     },
     /// A design that cannot be manufactured (e.g. a module of zero).
-    #[error("{0}")]
     Infeasible(String),
 }
 
@@ -103,32 +88,6 @@ impl From<noncirc_search::Error> for Error {
                 nearest,
             },
             noncirc_search::Error::Checkpoint(problem) => Error::Checkpoint(problem),
-        }
-    }
-}
-
-/// Displays a number readably: scientific notation when very large or very small.
-/// A scene path with the papers' symbol where they name one: `train.arm_length_mm (S)`.
-struct Named<'a>(&'a str);
-
-impl std::fmt::Display for Named<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match crate::reference::symbol(self.0) {
-            Some(symbol) => write!(f, "{} ({symbol})", self.0),
-            None => write!(f, "{}", self.0),
-        }
-    }
-}
-
-struct Num(f64);
-
-impl std::fmt::Display for Num {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let v = self.0;
-        if v.is_finite() && v != 0.0 && !(1e-4..1e9).contains(&v.abs()) {
-            write!(f, "{v:e}")
-        } else {
-            write!(f, "{v}")
         }
     }
 }

@@ -13,11 +13,10 @@
 // (util ← model ← scene ← evaluate ← study), without cycles; scripts/check_layers.py
 // checks it.
 
-// Util: errors, the reference of fields, plane vectors, angles, quadrature, resolution.
+// Util: errors, plane vectors, angles, quadrature, resolution.
 mod angle;
 mod error;
 mod quadrature;
-mod reference;
 mod resolution;
 mod vec2;
 
@@ -29,12 +28,15 @@ mod moving_box;
 mod planetary;
 mod teeth;
 
-// Scene: what is designed and asked, by name.
+// Scene: what is designed and asked, by name; the table of its fields; the error messages
+// (which name fields by the table's symbols).
 mod agronomy;
 mod goal;
 mod measure;
+mod messages;
 mod objective_kind;
 mod params;
+mod reference;
 mod scene;
 mod tolerance;
 

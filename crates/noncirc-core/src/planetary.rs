@@ -61,7 +61,7 @@ pub struct TrainSpec {
     /// Arm sets on the carrier, evenly spaced (1 to 4): each a planet, an intermediate
     /// and an arm. The paper's mechanism has three; the classic rotary one two. Left out
     /// of a written scene while it is 3.
-    #[serde(skip_serializing_if = "TrainSpec::is_three")]
+    #[serde(skip_serializing_if = "TrainSpec::is_default_arms")]
     pub arms: usize,
     /// The picking rate (picks per minute): when set, the carrier turns at
     /// `picks_per_minute / arms` r/min, so trains with other arm counts compare at the
@@ -95,8 +95,9 @@ impl TrainSpec {
     /// Most arm sets on a carrier.
     pub const MAX_ARMS: usize = 4;
 
-    fn is_three(arms: &usize) -> bool {
-        *arms == 3
+    /// Whether `arms` is the default arm count (a written scene leaves it out then).
+    fn is_default_arms(arms: &usize) -> bool {
+        *arms == Self::default().arms
     }
 
     /// The carrier's speed (r/min): from the picking rate when it is set.

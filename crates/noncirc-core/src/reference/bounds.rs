@@ -11,6 +11,7 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "Least clearance between an arm and the other planets (objective \
                   `interference`).",
         refused: &["bounds.clearance_min_mm=nan"],
+        number: Some(real!(bounds.clearance_min_mm)),
     },
     Field {
         key: "bounds.picking_angle_deg",
@@ -19,6 +20,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "[lower, upper], finite, lower ≤ upper",
         meaning: "Admissible picking angle (objective `picking_angle`).",
         refused: &["bounds.picking_angle_deg=[30.0,10.0]"],
+        number: Some(pair!(bounds.picking_angle_deg)),
     },
     Field {
         key: "bounds.pushing_angle_deg",
@@ -27,6 +29,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "[lower, upper], finite, lower ≤ upper",
         meaning: "Admissible pushing (planting) angle (objective `pushing_angle`).",
         refused: &["bounds.pushing_angle_deg=[70.0,inf]"],
+        number: Some(pair!(bounds.pushing_angle_deg)),
     },
     Field {
         key: "bounds.angle_difference_deg",
@@ -35,6 +38,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "[lower, upper], finite, lower ≤ upper",
         meaning: "Admissible pushing − picking angle (objective `angle_difference`).",
         refused: &["bounds.angle_difference_deg=[nan,70.0]"],
+        number: Some(pair!(bounds.angle_difference_deg)),
     },
     Field {
         key: "bounds.seedling_push_max_mm",
@@ -44,6 +48,7 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "Largest forward excursion past the planted seedling (objective \
                   `seedling_push`).",
         refused: &["bounds.seedling_push_max_mm=inf"],
+        number: Some(real!(bounds.seedling_push_max_mm)),
     },
     Field {
         key: "bounds.ground_clearance_min_mm",
@@ -52,6 +57,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "finite",
         meaning: "Least ground clearance of the gearbox (objective `ground_clearance`).",
         refused: &["bounds.ground_clearance_min_mm=nan"],
+        number: Some(real!(bounds.ground_clearance_min_mm)),
     },
     Field {
         key: "bounds.trajectory_height_min_mm",
@@ -60,6 +66,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "finite",
         meaning: "Least trajectory height (objective `trajectory_height`).",
         refused: &["bounds.trajectory_height_min_mm=nan"],
+        number: Some(real!(bounds.trajectory_height_min_mm)),
     },
     Field {
         key: "bounds.module_min_mm",
@@ -68,6 +75,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "finite",
         meaning: "Least module of the gears (objective `module`).",
         refused: &["bounds.module_min_mm=nan"],
+        number: Some(real!(bounds.module_min_mm)),
     },
     Field {
         key: "bounds.picking_admissible_min_mm",
@@ -77,5 +85,6 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "Least margin by which the worst picking condition holds (objective \
                   `picking_admissible`: the tip reaches into the pot, moving into the tray).",
         refused: &["bounds.picking_admissible_min_mm=nan"],
+        number: Some(real!(bounds.picking_admissible_min_mm)),
     },
 ];

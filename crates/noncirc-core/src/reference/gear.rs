@@ -13,6 +13,7 @@ pub(super) const FIELDS: &[Field] = &[
                   curve of the control points read as Cartesian points, measured samples, \
                   a Fourier series, or an ellipse turning about a focus.",
         refused: &["gear.curve.kind=\"circle\""],
+        number: None,
     },
     Field {
         key: "gear.curve.radii_mm",
@@ -26,6 +27,7 @@ pub(super) const FIELDS: &[Field] = &[
             "gear.curve.radii_mm=[20.0,30.0]",
             "gear.curve={kind=\"spline\",radii_mm=[20.0,30.0,40.0],angles_deg=[0.0,90.0,180.0]}",
         ],
+        number: Some(curve_list!(radii_mm: Spline | Bspline | Bezier | Table)),
     },
     Field {
         key: "gear.curve.angles_deg",
@@ -37,6 +39,7 @@ pub(super) const FIELDS: &[Field] = &[
             "gear.curve.angles_deg[2]=30",
             "gear.curve.angles_deg[11]=400",
         ],
+        number: Some(curve_list!(angles_deg: Spline | Bspline | Bezier | Table)),
     },
     Field {
         key: "gear.curve.c0_mm",
@@ -45,6 +48,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "positive; the series positive everywhere",
         meaning: "Mean radius of a Fourier curve `ρ = c0 + Σk (cos_k cos kψ + sin_k sin kψ)`.",
         refused: &["gear.curve={kind=\"fourier\",c0_mm=-5.0,cos_mm=[1.0],sin_mm=[0.0]}"],
+        number: Some(curve!(Fourier, c0_mm)),
     },
     Field {
         key: "gear.curve.cos_mm",
@@ -53,6 +57,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "finite",
         meaning: "Cosine coefficients of a Fourier curve, k = 1, 2, …",
         refused: &["gear.curve={kind=\"fourier\",c0_mm=30.0,cos_mm=[40.0],sin_mm=[0.0]}"],
+        number: Some(curve_list!(cos_mm: Fourier)),
     },
     Field {
         key: "gear.curve.sin_mm",
@@ -61,6 +66,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "finite",
         meaning: "Sine coefficients of a Fourier curve, k = 1, 2, …",
         refused: &["gear.curve={kind=\"fourier\",c0_mm=30.0,cos_mm=[0.0],sin_mm=[31.0]}"],
+        number: Some(curve_list!(sin_mm: Fourier)),
     },
     Field {
         key: "gear.curve.semi_major_mm",
@@ -69,6 +75,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "a length from 1e-9 to 1e9 mm",
         meaning: "Semi-major axis of an ellipse `ρ = A(1 − k²)/(1 − k cos ψ)`.",
         refused: &["gear.curve={kind=\"ellipse\",semi_major_mm=0.0,eccentricity=0.3}"],
+        number: Some(curve!(Ellipse, semi_major_mm)),
     },
     Field {
         key: "gear.curve.eccentricity",
@@ -77,6 +84,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 ≤ k < 1",
         meaning: "Eccentricity of an ellipse.",
         refused: &["gear.curve={kind=\"ellipse\",semi_major_mm=40.0,eccentricity=1.0}"],
+        number: Some(curve!(Ellipse, eccentricity)),
     },
     Field {
         key: "gear.module.rule",
@@ -91,6 +99,7 @@ pub(super) const FIELDS: &[Field] = &[
             "gear.module.rule=\"largest\"",
             "gear.module.rule=\"perimeter\"",
         ],
+        number: None,
     },
     Field {
         key: "gear.module.teeth",
@@ -99,6 +108,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "unset, or a whole number from 1; required by `perimeter` and `teeth`",
         meaning: "Teeth per gear (shared by meshing gears).",
         refused: &["gear.module.teeth=-3", "gear.module.teeth=2.5"],
+        number: Some(optional_integer!(u32, gear.module.teeth)),
     },
     Field {
         key: "gear.module.z_min",
@@ -108,6 +118,7 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "Fewest teeth of a rack that cut a convex arc without undercut (17 for a \
                   20° rack).",
         refused: &["gear.module.z_min=0"],
+        number: Some(real!(gear.module.z_min)),
     },
     Field {
         key: "gear.module.cutter_teeth",
@@ -116,6 +127,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "unset (concave arcs forbidden), or above 0",
         meaning: "Teeth of the shaper cutter that cuts concave arcs.",
         refused: &["gear.module.cutter_teeth=0"],
+        number: Some(optional!(gear.module.cutter_teeth)),
     },
     Field {
         key: "gear.teeth.pressure_angle_deg",
@@ -127,6 +139,7 @@ pub(super) const FIELDS: &[Field] = &[
             "gear.teeth.pressure_angle_deg=5",
             "gear.teeth.pressure_angle_deg=45",
         ],
+        number: None,
     },
     Field {
         key: "gear.teeth.addendum",
@@ -135,6 +148,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "above 0",
         meaning: "Tip height above the pitch curve, in modules.",
         refused: &["gear.teeth.addendum=0"],
+        number: None,
     },
     Field {
         key: "gear.teeth.dedendum",
@@ -143,6 +157,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "above 0",
         meaning: "Root depth below the pitch curve, in modules.",
         refused: &["gear.teeth.dedendum=-1"],
+        number: None,
     },
     Field {
         key: "gear.teeth.tip_radius",
@@ -151,6 +166,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "above 0",
         meaning: "Radius of the tool's tip rounding, which cuts the root fillet.",
         refused: &["gear.teeth.tip_radius=0"],
+        number: None,
     },
     Field {
         key: "gear.teeth.backlash_mm",
@@ -159,6 +175,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 or more",
         meaning: "Circumferential backlash of a pair on the pitch curve, half from each gear.",
         refused: &["gear.teeth.backlash_mm=-0.1"],
+        number: None,
     },
     Field {
         key: "gear.teeth.profile_shift",
@@ -168,6 +185,7 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "Profile shift of the driver (sun, planets); the intermediates take the \
                   opposite, so the centre distance stays.",
         refused: &["gear.teeth.profile_shift=1.0"],
+        number: None,
     },
     Field {
         key: "gear.teeth.cutter.kind",
@@ -177,6 +195,7 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "The cutting tool: a rack, or a pinion-type shaper for pitch curves with \
                   concave arcs.",
         refused: &["gear.teeth.cutter.kind=\"hob\""],
+        number: None,
     },
     Field {
         key: "gear.teeth.cutter.teeth",
@@ -185,6 +204,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "6 or more (a shaper only)",
         meaning: "Teeth of the shaper cutter: its pitch radius is `m·z0/2`.",
         refused: &["gear.teeth.cutter={kind=\"shaper\",teeth=5}"],
+        number: None,
     },
     Field {
         key: "gear.teeth.flank_samples",
@@ -193,6 +213,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "2 to 100000",
         meaning: "Segments per flank of the outline (docs/teeth.md).",
         refused: &["gear.teeth.flank_samples=1"],
+        number: None,
     },
     Field {
         key: "gear.teeth.fillet_samples",
@@ -201,6 +222,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "2 to 100000",
         meaning: "Segments per root fillet.",
         refused: &["gear.teeth.fillet_samples=100001"],
+        number: None,
     },
     Field {
         key: "gear.teeth.mesh_steps_per_pitch",
@@ -209,6 +231,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "1 to 100000",
         meaning: "Mesh positions per pitch in the whole-turn mesh check.",
         refused: &["gear.teeth.mesh_steps_per_pitch=0"],
+        number: None,
     },
     Field {
         key: "gear.teeth.arc_panels",
@@ -217,6 +240,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "16 to 100000",
         meaning: "Panels per turn of the arc-length tables.",
         refused: &["gear.teeth.arc_panels=8"],
+        number: None,
     },
     Field {
         key: "gear.teeth.min_tip_land",
@@ -225,6 +249,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 or more",
         meaning: "Least tip land below which a tooth is too thin at the tip.",
         refused: &["gear.teeth.min_tip_land=-0.1"],
+        number: None,
     },
     Field {
         key: "gear.teeth.allow_undercut",
@@ -233,5 +258,6 @@ pub(super) const FIELDS: &[Field] = &[
         range: "`true` or `false`",
         meaning: "Whether undercut is accepted (it weakens the tooth and shortens the contact).",
         refused: &["gear.teeth.allow_undercut=1"],
+        number: None,
     },
 ];

@@ -1,7 +1,109 @@
-//! The scene reference: every field of a scene with the papers' symbol, its unit, its
-//! admissible values and its meaning. docs/scenes.md is generated from this table (with
-//! each field's default read from the code); a test holds the table to the scene's fields
-//! both ways and probes every admissible range with a value it must refuse.
+//! The scene's fields, one table per scene table: for every field the papers' symbol, its
+//! unit, its admissible values, its meaning and, for a number, how it is read and written
+//! (its accessor: search, sweeps, `--set` and Python's `with_set` go through it).
+//! docs/scenes.md is generated from this table (with each field's default read from the
+//! code); a test holds the table to the scene's fields both ways and probes every
+//! admissible range with a value it must refuse.
+//!
+//! To add a field: the struct field (with its default) and one entry here; nothing else
+//! spells its path.
+
+use crate::scene::Scene;
+
+/// Reads a number (`None`: the scene does not have it, e.g. another curve kind, or an
+/// optional field left unset).
+type Get = fn(&Scene) -> Option<f64>;
+/// Writes a number; `false` when the scene does not have the field.
+type Set = fn(&mut Scene, f64) -> bool;
+/// A list of numbers, to read (`None`: the scene does not have it).
+type ListGet = fn(&Scene) -> Option<&[f64]>;
+/// A list of numbers, to write in place.
+type ListSet = fn(&mut Scene) -> Option<&mut [f64]>;
+
+/// How a numeric field is read and written.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Number {
+    /// One number.
+    Scalar(Get, Set),
+    /// A list of numbers, indexed as `key[i]`.
+    List(ListGet, ListSet),
+}
+
+/// A real field: `real!(train.phi0_deg)`.
+macro_rules! real {
+    ($($f:ident).+) => {
+        $crate::reference::Number::Scalar(|s| Some(s.$($f).+), |s, v| { s.$($f).+ = v; true })
+    };
+}
+
+/// An optional real field: unset reads as absent, and writing sets it.
+macro_rules! optional {
+    ($($f:ident).+) => {
+        $crate::reference::Number::Scalar(|s| s.$($f).+, |s, v| { s.$($f).+ = Some(v); true })
+    };
+}
+
+/// An integer field, written rounded to the nearest integer. A negative or non-finite value
+/// saturates (Rust's float-to-integer cast) and is then refused by `Scene::validate`.
+macro_rules! integer {
+    ($ty:ty, $($f:ident).+) => {
+        $crate::reference::Number::Scalar(|s| Some(s.$($f).+ as f64), |s, v| { s.$($f).+ = v.round() as $ty; true })
+    };
+}
+
+/// An optional integer field.
+macro_rules! optional_integer {
+    ($ty:ty, $($f:ident).+) => {
+        $crate::reference::Number::Scalar(
+            |s| s.$($f).+.map(|x| x as f64),
+            |s, v| { s.$($f).+ = Some(v.round() as $ty); true },
+        )
+    };
+}
+
+/// A two-sided bound `[lower, upper]`, indexed as a list of two.
+macro_rules! pair {
+    ($($f:ident).+) => {
+        $crate::reference::Number::List(|s| Some(&s.$($f).+[..]), |s| Some(&mut s.$($f).+[..]))
+    };
+}
+
+/// A number of one pitch-curve kind.
+macro_rules! curve {
+    ($kind:ident, $f:ident) => {
+        $crate::reference::Number::Scalar(
+            |s| match &s.gear.curve {
+                $crate::curve::CurveSpec::$kind { $f, .. } => Some(*$f),
+                _ => None,
+            },
+            |s, v| match &mut s.gear.curve {
+                $crate::curve::CurveSpec::$kind { $f, .. } => {
+                    *$f = v;
+                    true
+                }
+                _ => false,
+            },
+        )
+    };
+}
+
+/// A list of one or more pitch-curve kinds.
+macro_rules! curve_list {
+    ($f:ident: $($kind:ident)|+) => {
+        $crate::reference::Number::List(
+            |s| match &s.gear.curve {
+                $($crate::curve::CurveSpec::$kind { $f, .. })|+ => Some(&$f[..]),
+                #[allow(unreachable_patterns)]
+                _ => None,
+            },
+            |s| match &mut s.gear.curve {
+                $($crate::curve::CurveSpec::$kind { $f, .. })|+ => Some(&mut $f[..]),
+                #[allow(unreachable_patterns)]
+                _ => None,
+            },
+        )
+    };
+}
 
 mod agronomy;
 mod bounds;
@@ -13,7 +115,7 @@ mod top;
 mod train;
 
 /// One field of a scene.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy)]
 pub struct Field {
     /// The scene path, as `--set` and Python's `with_set` take it (`train.arm_length_mm`);
     /// a list's elements are `key[i]`.
@@ -29,6 +131,9 @@ pub struct Field {
     /// `key=value` assignments (TOML values) each of which a scene must refuse: the
     /// reference's test applies them, so that the range above stays true.
     pub refused: &'static [&'static str],
+    /// How a number is read and written (`Param`); `None` for names, flags and tables,
+    /// which only scene files and `--set` write.
+    pub(crate) number: Option<Number>,
 }
 
 /// The field of a scene path (`gear.curve.radii_mm[3]` is `gear.curve.radii_mm`'s).

@@ -11,6 +11,7 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "Eccentricity of the box drive's elliptical gears; 1/(2+√3) gives a \
                   fastest/slowest speed ratio of 3 (the moving-box paper).",
         refused: &["moving_box.eccentricity=1", "moving_box.eccentricity=-0.1"],
+        number: Some(real!(moving_box.eccentricity)),
     },
     Field {
         key: "moving_box.speed_ratio",
@@ -19,6 +20,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "unset, or at least 1",
         meaning: "If set, k is derived from this fastest/slowest speed ratio instead.",
         refused: &["moving_box.speed_ratio=0.5"],
+        number: Some(optional!(moving_box.speed_ratio)),
     },
     Field {
         key: "moving_box.pot_pitch_mm",
@@ -27,6 +29,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "above 0, at most 1e9",
         meaning: "Box travel per input turn.",
         refused: &["moving_box.pot_pitch_mm=0"],
+        number: Some(real!(moving_box.pot_pitch_mm)),
     },
     Field {
         key: "moving_box.pot_width_mm",
@@ -35,6 +38,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "above 0, at most 1e9",
         meaning: "Pot width: the box may move at most a sixth of it while a seedling is picked.",
         refused: &["moving_box.pot_width_mm=-18"],
+        number: Some(real!(moving_box.pot_width_mm)),
     },
     Field {
         key: "moving_box.module_mm",
@@ -43,6 +47,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "above 0, at most 1e9",
         meaning: "Module of the elliptical gears (with `teeth`, it fixes their size).",
         refused: &["moving_box.module_mm=0"],
+        number: Some(real!(moving_box.module_mm)),
     },
     Field {
         key: "moving_box.teeth",
@@ -51,6 +56,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "a whole number from 1",
         meaning: "Tooth count of the elliptical gears.",
         refused: &["moving_box.teeth=0"],
+        number: Some(integer!(u32, moving_box.teeth)),
     },
     Field {
         key: "moving_box.input_speed_rpm",
@@ -62,6 +68,7 @@ pub(super) const FIELDS: &[Field] = &[
             "moving_box.input_speed_rpm=0",
             "moving_box.input_speed_rpm=2e5",
         ],
+        number: Some(real!(moving_box.input_speed_rpm)),
     },
     Field {
         key: "moving_box.window_deg",
@@ -70,6 +77,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 360",
         meaning: "Width of the picking window on the driving gear.",
         refused: &["moving_box.window_deg=400"],
+        number: Some(real!(moving_box.window_deg)),
     },
     Field {
         key: "moving_box.window_centre_deg",
@@ -78,6 +86,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "finite",
         meaning: "Centre of the picking window on the driving gear.",
         refused: &["moving_box.window_centre_deg=nan"],
+        number: Some(real!(moving_box.window_centre_deg)),
     },
     Field {
         key: "moving_box.spiral_angle_deg",
@@ -86,6 +95,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "between 0 and 90 (exclusive)",
         meaning: "Spiral angle of the sinusoidal spiral shaft's groove development.",
         refused: &["moving_box.spiral_angle_deg=90"],
+        number: Some(real!(moving_box.spiral_angle_deg)),
     },
     Field {
         key: "moving_box.box_mass_kg",
@@ -94,6 +104,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "above 0, at most 1e6",
         meaning: "Mass of the seedling box (an assumption: the paper gives none).",
         refused: &["moving_box.box_mass_kg=0"],
+        number: Some(real!(moving_box.box_mass_kg)),
     },
     Field {
         key: "moving_box.groove_wall_angle_deg",
@@ -105,6 +116,7 @@ pub(super) const FIELDS: &[Field] = &[
             "moving_box.groove_wall_angle_deg=-1",
             "moving_box.groove_wall_angle_deg=85",
         ],
+        number: Some(real!(moving_box.groove_wall_angle_deg)),
     },
     Field {
         key: "moving_box.groove_friction_angle_deg",
@@ -113,6 +125,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 90 (90 excluded)",
         meaning: "Friction angle in the spiral groove (an assumption).",
         refused: &["moving_box.groove_friction_angle_deg=90"],
+        number: Some(real!(moving_box.groove_friction_angle_deg)),
     },
     Field {
         key: "moving_box.slide_friction_angle_deg",
@@ -121,6 +134,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 90 (90 excluded)",
         meaning: "Friction angle of the box on its slide (an assumption).",
         refused: &["moving_box.slide_friction_angle_deg=-5"],
+        number: Some(real!(moving_box.slide_friction_angle_deg)),
     },
     Field {
         key: "moving_box.input_turns_per_carrier_turn",
@@ -133,5 +147,6 @@ pub(super) const FIELDS: &[Field] = &[
             "moving_box.input_turns_per_carrier_turn=0",
             "moving_box.input_turns_per_carrier_turn=2",
         ],
+        number: Some(real!(moving_box.input_turns_per_carrier_turn)),
     },
 ];

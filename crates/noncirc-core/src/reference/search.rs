@@ -14,6 +14,7 @@ pub(super) const FIELDS: &[Field] = &[
             "search.free=[{name=\"train.s\",lower=0.0,upper=1.0}]",
             "search.free=[{name=\"train.arm_length_mm\",lower=150.0,upper=140.0}]",
         ],
+        number: None,
     },
     Field {
         key: "search.free[i].name",
@@ -22,6 +23,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "a numeric scene path (`train.phi0_deg`, `gear.curve.radii_mm[3]`)",
         meaning: "The free parameter.",
         refused: &["search.free=[{name=\"train.rotation\",lower=0.0,upper=1.0}]"],
+        number: None,
     },
     Field {
         key: "search.free[i].lower",
@@ -30,6 +32,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "finite, below `upper`",
         meaning: "Lower bound of the parameter.",
         refused: &["search.free=[{name=\"train.phi0_deg\",lower=nan,upper=1.0}]"],
+        number: None,
     },
     Field {
         key: "search.free[i].upper",
@@ -38,6 +41,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "finite, above `lower`",
         meaning: "Upper bound of the parameter.",
         refused: &["search.free=[{name=\"train.phi0_deg\",lower=0.0,upper=inf}]"],
+        number: None,
     },
     Field {
         key: "search.algorithm",
@@ -46,6 +50,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "an algorithm's name (below)",
         meaning: "The search algorithm.",
         refused: &["search.algorithm=\"annealing\""],
+        number: None,
     },
     Field {
         key: "search.budget",
@@ -54,6 +59,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "a whole number, 0 or more",
         meaning: "Evaluation budget.",
         refused: &["search.budget=-1"],
+        number: Some(integer!(u64, search.budget)),
     },
     Field {
         key: "search.population",
@@ -62,6 +68,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "1 to 100000",
         meaning: "Population size of population-based algorithms.",
         refused: &["search.population=0", "search.population=100001"],
+        number: Some(integer!(usize, search.population)),
     },
     Field {
         key: "search.seed",
@@ -70,6 +77,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "a whole number, 0 or more",
         meaning: "Random seed: the same seed gives the same run, whatever the thread count.",
         refused: &["search.seed=-1"],
+        number: Some(integer!(u64, search.seed)),
     },
     Field {
         key: "search.screening.samples_per_turn",
@@ -79,6 +87,7 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "Samples per turn while screening; every reported design is re-evaluated \
                   at the scene's resolution.",
         refused: &["search.screening.samples_per_turn=10"],
+        number: Some(integer!(usize, search.screening.samples_per_turn)),
     },
     Field {
         key: "search.screening.closure_rel_tol",
@@ -87,6 +96,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "as `resolution.closure_rel_tol`",
         meaning: "Closure tolerance while screening.",
         refused: &["search.screening.closure_rel_tol=0"],
+        number: Some(real!(search.screening.closure_rel_tol)),
     },
     Field {
         key: "search.screening.newton_rel_tol",
@@ -95,6 +105,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "as `resolution.newton_rel_tol`",
         meaning: "Closure iteration stop while screening.",
         refused: &["search.screening.newton_rel_tol=1e-3"],
+        number: Some(real!(search.screening.newton_rel_tol)),
     },
     Field {
         key: "search.goals",
@@ -107,6 +118,7 @@ pub(super) const FIELDS: &[Field] = &[
             "search.goals=[\"fastest\"]",
             "search.goals=[\"module\",\"module\"]",
         ],
+        number: None,
     },
     Field {
         key: "search.confirm_with_teeth",
@@ -116,5 +128,6 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "Confirm the reported designs with their teeth cut and checked while the \
                   search screens with the scene's own module rule.",
         refused: &["search.confirm_with_teeth=true"],
+        number: None,
     },
 ];

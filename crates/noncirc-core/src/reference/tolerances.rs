@@ -10,6 +10,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "Tolerance of each pitch-curve control radius, independently (a Fourier curve's `c0`, an ellipse's semi-major axis): the cut gear's radial error. Default ±0.02 mm (ISO 1328-1 grade 8 runout of a gear this size, halved). Uniform on ± this value.",
         refused: &["tolerances.radius_mm={band=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.radius_mm.sigma",
@@ -18,6 +19,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "As `tolerances.radius_mm.band`, as the standard deviation of a normal spread.",
         refused: &["tolerances.radius_mm={sigma=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.centre_distance_mm.band",
@@ -26,6 +28,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "Tolerance of the carrier's bores: each gear pair held this much further apart than its centre distance (the gears then mesh with backlash). Default ±0.03 mm (a bored housing's centre-distance tolerance). Uniform on ± this value.",
         refused: &["tolerances.centre_distance_mm={band=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.centre_distance_mm.sigma",
@@ -34,6 +37,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "As `tolerances.centre_distance_mm.band`, as the standard deviation of a normal spread.",
         refused: &["tolerances.centre_distance_mm={sigma=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.phi0_deg.band",
@@ -42,6 +46,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "Tolerance of Φ0, the sun's installation angle. Default ±0.1° (a keyed sun: key play over the shaft radius). Uniform on ± this value.",
         refused: &["tolerances.phi0_deg={band=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.phi0_deg.sigma",
@@ -50,6 +55,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "As `tolerances.phi0_deg.band`, as the standard deviation of a normal spread.",
         refused: &["tolerances.phi0_deg={sigma=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.beta0_deg.band",
@@ -58,6 +64,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "Tolerance of β0, the arm's angle on the planet shaft. Default ±0.2° (a keyed or splined arm). Uniform on ± this value.",
         refused: &["tolerances.beta0_deg={band=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.beta0_deg.sigma",
@@ -66,6 +73,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "As `tolerances.beta0_deg.band`, as the standard deviation of a normal spread.",
         refused: &["tolerances.beta0_deg={sigma=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.gamma0_deg.band",
@@ -74,6 +82,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "Tolerance of γ0, the carrier's corner angle, one value per set of machined parts. Default ±0.05° (bore position 0.03 mm over the carrier's arm). Uniform on ± this value.",
         refused: &["tolerances.gamma0_deg={band=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.gamma0_deg.sigma",
@@ -82,6 +91,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "As `tolerances.gamma0_deg.band`, as the standard deviation of a normal spread.",
         refused: &["tolerances.gamma0_deg={sigma=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.arm_length_mm.band",
@@ -90,6 +100,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "Tolerance of S, the arm length. Default ±0.5 mm (ISO 2768-1 medium, 120–400 mm). Uniform on ± this value.",
         refused: &["tolerances.arm_length_mm={band=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.arm_length_mm.sigma",
@@ -98,6 +109,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "As `tolerances.arm_length_mm.band`, as the standard deviation of a normal spread.",
         refused: &["tolerances.arm_length_mm={sigma=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.pusher_offset_mm.band",
@@ -106,6 +118,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "Tolerance of H1, the pusher offset. Default ±0.3 mm (ISO 2768-1 medium, 30–120 mm). Uniform on ± this value.",
         refused: &["tolerances.pusher_offset_mm={band=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.pusher_offset_mm.sigma",
@@ -114,6 +127,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "As `tolerances.pusher_offset_mm.band`, as the standard deviation of a normal spread.",
         refused: &["tolerances.pusher_offset_mm={sigma=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.tray_distance_mm.band",
@@ -122,6 +136,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "Tolerance of the tray surface's distance from the carrier axis. Default ±1 mm (the seedling box on its rails). Uniform on ± this value.",
         refused: &["tolerances.tray_distance_mm={band=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.tray_distance_mm.sigma",
@@ -130,6 +145,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "As `tolerances.tray_distance_mm.band`, as the standard deviation of a normal spread.",
         refused: &["tolerances.tray_distance_mm={sigma=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.tray_normal_deg.band",
@@ -138,6 +154,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "Tolerance of the tray normal's direction. Default ±0.5°. Uniform on ± this value.",
         refused: &["tolerances.tray_normal_deg={band=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.tray_normal_deg.sigma",
@@ -146,6 +163,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "0 to 1000; a group has a `band` or a `sigma`",
         meaning: "As `tolerances.tray_normal_deg.band`, as the standard deviation of a normal spread.",
         refused: &["tolerances.tray_normal_deg={sigma=-1}"],
+        number: None,
     },
     Field {
         key: "tolerances.samples",
@@ -155,6 +173,7 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "Samples per design of the tolerance analysis and of the robust goals \
                   (scrambled Sobol points).",
         refused: &["tolerances.samples=0", "tolerances.samples=70000"],
+        number: None,
     },
     Field {
         key: "tolerances.assemblies_per_part_set",
@@ -168,6 +187,7 @@ pub(super) const FIELDS: &[Field] = &[
             "tolerances.assemblies_per_part_set=0",
             "tolerances.assemblies_per_part_set=100",
         ],
+        number: None,
     },
     Field {
         key: "tolerances.seed",
@@ -177,5 +197,6 @@ pub(super) const FIELDS: &[Field] = &[
         meaning: "Seed of the scrambled Sobol points: every design meets the same \
                   deviations (common random numbers).",
         refused: &["tolerances.seed=-1"],
+        number: None,
     },
 ];

@@ -10,6 +10,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "any text",
         meaning: "Short name of the scene.",
         refused: &["name=1"],
+        number: None,
     },
     Field {
         key: "description",
@@ -18,6 +19,7 @@ pub(super) const FIELDS: &[Field] = &[
         range: "any text",
         meaning: "One-line description.",
         refused: &["description=[]"],
+        number: None,
     },
     Field {
         key: "kind",
@@ -28,6 +30,7 @@ pub(super) const FIELDS: &[Field] = &[
                   mechanism, the moving box alone, or the mechanism with the box coupled \
                   through the picking window.",
         refused: &["kind=\"four_arm\""],
+        number: None,
     },
     Field {
         key: "objectives",
@@ -40,6 +43,7 @@ pub(super) const FIELDS: &[Field] = &[
             "objectives=[\"module\",\"module\"]",
             "objectives=[\"speed\"]",
         ],
+        number: None,
     },
     Field {
         key: "resolution.samples_per_turn",
@@ -53,6 +57,7 @@ pub(super) const FIELDS: &[Field] = &[
             "resolution.samples_per_turn=100",
             "resolution.samples_per_turn=786438",
         ],
+        number: Some(integer!(usize, resolution.samples_per_turn)),
     },
     Field {
         key: "resolution.closure_rel_tol",
@@ -65,6 +70,7 @@ pub(super) const FIELDS: &[Field] = &[
             "resolution.closure_rel_tol=0",
             "resolution.closure_rel_tol=0.1",
         ],
+        number: Some(real!(resolution.closure_rel_tol)),
     },
     Field {
         key: "resolution.newton_rel_tol",
@@ -76,5 +82,6 @@ pub(super) const FIELDS: &[Field] = &[
             "resolution.newton_rel_tol=0",
             "resolution.newton_rel_tol=1e-5",
         ],
+        number: Some(real!(resolution.newton_rel_tol)),
     },
 ];
