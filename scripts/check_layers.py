@@ -26,7 +26,7 @@ SEARCH = ROOT / "crates/noncirc-search"
 LAYERS = [  # lowest first; a module may use its own layer and those below
     "error vec2 angle quadrature resolution",                                    # util
     "curve gear planetary teeth moving_box gearbox",                             # model
-    "scene reference messages params agronomy objective_kind measure goal tolerance",  # scene
+    "scene check reference messages params agronomy objective_kind measure goal tolerance",  # scene
     "evaluation events anatomy objectives measure_value accuracy",               # evaluate
     "robustness sensitivity problem checkpoint serial",                          # study
 ]

@@ -147,3 +147,96 @@ fn errors_name_the_papers_symbols() {
         assert!(err.to_string().contains(named), "{probe}: {err}");
     }
 }
+
+/// Whether the scene's checks refuse it naming `key` (or one of its list's elements).
+fn refused_naming(scene: &noncirc_core::Scene, key: &str) -> Option<String> {
+    let checks = scene
+        .validate()
+        .and_then(|()| scene.validate_search())
+        .and_then(|()| scene.gear.curve.build().map(drop));
+    match checks {
+        Err(e) if e.to_string().starts_with(key) => Some(e.to_string()),
+        _ => None,
+    }
+}
+
+#[test]
+fn every_interval_is_exactly_what_the_checks_admit() {
+    use noncirc_core::{Bound, Param, Range, SceneKind};
+    // Every number of the table, in a scene that reads it: at each finite bound, the value
+    // just outside is refused naming the field, and, where no rule of several fields
+    // joins the interval, the value at or just inside is not refused for this field (no
+    // check in code is stricter than the table says).
+    let mut probed = BTreeSet::new();
+    for scene in scenes() {
+        for field in fields() {
+            let Range::Interval { low, high, and } = field.range else {
+                continue;
+            };
+            let path = if field.is_list() {
+                format!("{}[0]", field.key)
+            } else {
+                field.key.to_string()
+            };
+            let Ok(param) = Param::parse(&path, &scene) else {
+                continue;
+            };
+            // A scene checks the tables its kind reads: a mechanism's train and agronomy,
+            // a moving box where it moves.
+            let mechanism = matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
+            let moving = matches!(scene.kind, SceneKind::MovingBox | SceneKind::Transplanter);
+            let reads = match field.key.split('.').next() {
+                Some("train" | "agronomy") => mechanism,
+                Some("moving_box") => moving,
+                _ => true,
+            };
+            if !reads {
+                continue;
+            }
+            // Whole numbers are written rounded: step by one.
+            let mut probe = scene.clone();
+            param.set(&mut probe, 0.25);
+            let step = if param.get(&probe) == Some(0.25) {
+                1e-6
+            } else {
+                1.0
+            };
+            let mut cases = Vec::new(); // (value, refused)
+            for (bound, sign) in [(low, -1.0), (high, 1.0)] {
+                match bound {
+                    Bound::Included(b) => {
+                        cases.push((b, false));
+                        cases.push((b + sign * step * b.abs().max(1.0), true));
+                    }
+                    Bound::Excluded(b) => {
+                        cases.push((b - sign * step * b.abs().max(1.0), false));
+                        cases.push((b, true));
+                    }
+                    Bound::Unbounded => {}
+                }
+            }
+            for (value, refused) in cases {
+                let mut s = scene.clone();
+                param.set(&mut s, value);
+                if param.get(&s) != Some(value) || !(refused || and.is_empty()) {
+                    continue; // not writable (a negative count saturates to 0), or a rule
+                }
+                let got = refused_naming(&s, field.key);
+                assert_eq!(
+                    got.is_some(),
+                    refused,
+                    "{path} = {value} in {} (range {}): {got:?}",
+                    scene.name,
+                    field.range
+                );
+            }
+            probed.insert(field.key);
+        }
+    }
+    // Every number with an interval was probed in some scene.
+    let unprobed: Vec<_> = fields()
+        .filter(|f| matches!(f.range, Range::Interval { .. }) && !probed.contains(f.key))
+        .map(|f| f.key)
+        .collect();
+    assert!(unprobed.is_empty(), "never probed: {unprobed:?}");
+}

@@ -233,9 +233,25 @@ fn every_number_of_a_scene_is_a_parameter() {
         // Unset optional fields are parameters too (they can be set) but not numbers yet.
         paths.retain(|p| !numbers.iter().any(|(n, _)| n == p));
         // `train.arms` is left out of a scene file while it is the paper's 3, so that
-        // three-arm scenes (and their checkpoints' fingerprints) read as before.
+        // three-arm scenes (and their checkpoints' fingerprints) read as before; so is the
+        // `[gear.teeth]` table while every tooth setting is the default.
+        let teeth = noncirc_core::ToothSpec::default();
         for p in &paths {
-            let expected = (p == "train.arms").then_some(3.0);
+            let expected = match p.as_str() {
+                "train.arms" => Some(3.0),
+                "gear.teeth.pressure_angle_deg" => Some(teeth.pressure_angle_deg),
+                "gear.teeth.addendum" => Some(teeth.addendum),
+                "gear.teeth.dedendum" => Some(teeth.dedendum),
+                "gear.teeth.tip_radius" => Some(teeth.tip_radius),
+                "gear.teeth.backlash_mm" => Some(teeth.backlash_mm),
+                "gear.teeth.profile_shift" => Some(teeth.profile_shift),
+                "gear.teeth.flank_samples" => Some(teeth.flank_samples as f64),
+                "gear.teeth.fillet_samples" => Some(teeth.fillet_samples as f64),
+                "gear.teeth.mesh_steps_per_pitch" => Some(teeth.mesh_steps_per_pitch as f64),
+                "gear.teeth.arc_panels" => Some(teeth.arc_panels as f64),
+                "gear.teeth.min_tip_land" => Some(teeth.min_tip_land),
+                _ => None,
+            };
             assert_eq!(
                 Param::parse(p, scene).unwrap().get(scene),
                 expected,

@@ -479,3 +479,36 @@ mod tests {
             .contains("'value'"));
     }
 }
+
+#[cfg(test)]
+mod names {
+    use super::EvaluationReport;
+    use noncirc_core::{Evaluator, Measure, Scalar, Scene};
+
+    /// The report's events are written by the measures' names where they report the
+    /// same number: a measure is read by one name wherever it is printed.
+    #[test]
+    fn events_carry_the_measures_names_and_values() {
+        let scene = Scene::default();
+        let eval = Evaluator::new().evaluate(&scene).unwrap();
+        let report = serde_json::to_value(EvaluationReport::new(&scene, &eval)).unwrap();
+        let events = &report["events"];
+        for s in [
+            Scalar::PickingCarrier,
+            Scalar::PlantingCarrier,
+            Scalar::PickingTipSpeed,
+            Scalar::PickingBranchGap,
+            Scalar::PlantingBranchGap,
+        ] {
+            let m = Measure::Scalar(s);
+            let value = m.value(&eval, None).unwrap();
+            let printed = events[m.name()].as_f64();
+            assert_eq!(printed, Some(value), "{}", m.name());
+            for arm in events["arms"].as_array().unwrap() {
+                if matches!(s, Scalar::PickingCarrier | Scalar::PlantingCarrier) {
+                    assert!(arm[m.name()].is_f64(), "{}", m.name());
+                }
+            }
+        }
+    }
+}

@@ -1,7 +1,6 @@
 //! Agronomic inputs of the objectives: the tray, the plant spacing and seedling, the
 //! planting depth, the arms' and housing's widths, and the machine's travel direction.
 
-use crate::error::{finite, length, Result};
 use serde::{Deserialize, Serialize};
 
 /// Which way the machine travels over the field.
@@ -59,26 +58,5 @@ impl Default for Agronomy {
             housing_margin_mm: 10.0,
             travel: Travel::Auto,
         }
-    }
-}
-
-impl Agronomy {
-    /// Checks every input, naming the bad one.
-    pub fn validate(&self) -> Result<()> {
-        finite("agronomy.tray_normal_deg", self.tray_normal_deg)?;
-        for (name, v) in [
-            ("agronomy.tray_depth_mm", self.tray_depth_mm),
-            ("agronomy.plant_spacing_mm", self.plant_spacing_mm),
-            ("agronomy.seedling_height_mm", self.seedling_height_mm),
-            ("agronomy.planting_depth_mm", self.planting_depth_mm),
-            ("agronomy.arm_half_width_mm", self.arm_half_width_mm),
-            ("agronomy.housing_margin_mm", self.housing_margin_mm),
-        ] {
-            length(name, v)?;
-        }
-        if let Some(d) = self.tray_distance_mm {
-            length("agronomy.tray_distance_mm", d)?;
-        }
-        Ok(())
     }
 }

@@ -193,7 +193,7 @@ impl Evaluator {
     /// scene with another train and agronomy, and only those two are checked here.
     pub(crate) fn evaluate_solved(&mut self, scene: &Scene, kin: Kinematics) -> Result<Evaluation> {
         scene.train.validate()?;
-        scene.agronomy.validate()?;
+        scene.check_fields("agronomy")?;
         if !matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter) {
             return Err(Error::OutOfRange {
                 name: "kind".into(),

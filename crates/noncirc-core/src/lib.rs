@@ -28,9 +28,10 @@ mod moving_box;
 mod planetary;
 mod teeth;
 
-// Scene: what is designed and asked, by name; the table of its fields; the error messages
+// Scene: what is designed and asked, by name; its checks; the table of its fields; the error messages
 // (which name fields by the table's symbols).
 mod agronomy;
+mod check;
 mod goal;
 mod measure;
 mod messages;
@@ -67,7 +68,7 @@ pub use moving_box::BoxSpec;
 pub use objective_kind::{scale, Bounds, ObjectiveKind};
 pub use params::Param;
 pub use planetary::{PusherSide, SunFrame, TrainSpec, ARM_NAMES};
-pub use reference::{field, fields, symbol, Field};
+pub use reference::{field, fields, symbol, Bound, Field, Range};
 pub use resolution::Resolution;
 pub use scene::{FreeParam, GearSpec, Scene, SceneKind, SearchSpec};
 

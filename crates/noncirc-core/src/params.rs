@@ -4,9 +4,9 @@
 //! accessors (each field's own, from its entry in the field table, [`crate::reference`])
 //! so that applying a design vector is a handful of field writes.
 
-use crate::error::{finite, Error, Result};
+use crate::error::{Error, Result};
 use crate::reference::{fields, Number};
-use crate::scene::{Scene, SceneKind, SearchSpec};
+use crate::scene::Scene;
 use noncirc_search::nearest;
 
 /// A field's accessor and, for a list, the element.
@@ -52,7 +52,7 @@ impl Param {
         // A list needs an element, a scalar none.
         let index = match (number, index) {
             (Number::List(..), Some(i)) => i,
-            (Number::Scalar(..), None) => 0,
+            (Number::Scalar(..) | Number::Optional(..), None) => 0,
             _ => return Err(unknown()),
         };
         let access = Access { number, index };
@@ -62,7 +62,7 @@ impl Param {
         };
         // Present in this scene (an optional field left unset still counts: it can be set).
         let present = match number {
-            Number::Scalar(_, set) => set(&mut scene.clone(), 0.0),
+            Number::Scalar(_, set) | Number::Optional(_, set) => set(&mut scene.clone(), 0.0),
             Number::List(get, _) => get(scene).is_some_and(|v| index < v.len()),
         };
         if !present {
@@ -77,7 +77,7 @@ impl Param {
         let mut out = Vec::new();
         for field in fields() {
             match field.number {
-                Some(Number::Scalar(_, set)) if set(&mut probe, 0.0) => {
+                Some(Number::Scalar(_, set) | Number::Optional(_, set)) if set(&mut probe, 0.0) => {
                     out.push(field.key.to_string());
                 }
                 Some(Number::List(get, _)) => {
@@ -98,7 +98,7 @@ impl Param {
     /// Writes `value` into `scene` (integer fields take it rounded).
     pub fn set(&self, scene: &mut Scene, value: f64) {
         match self.access.number {
-            Number::Scalar(_, set) => {
+            Number::Scalar(_, set) | Number::Optional(_, set) => {
                 set(scene, value);
             }
             Number::List(_, set) => {
@@ -112,87 +112,9 @@ impl Param {
     /// Reads the current value from `scene`; `None` for an optional field left unset.
     pub fn get(&self, scene: &Scene) -> Option<f64> {
         match self.access.number {
-            Number::Scalar(get, _) => get(scene),
+            Number::Scalar(get, _) | Number::Optional(get, _) => get(scene),
             Number::List(get, _) => get(scene).and_then(|v| v.get(self.access.index).copied()),
         }
-    }
-}
-
-/// The search settings' check, which parses the free parameters' paths.
-impl Scene {
-    /// The search settings: goals this scene can compute, each once; free parameters that
-    /// exist, each once, with finite ordered bounds a finite width apart. Checked when a
-    /// scene is read and when a search starts (not per design: [`Scene::validate`] is).
-    pub fn validate_search(&self) -> Result<()> {
-        let population = self.search.population;
-        if !(1..=SearchSpec::MAX_POPULATION).contains(&population) {
-            return Err(Error::OutOfRange {
-                name: "search.population".into(),
-                value: population as f64,
-                expected: format!("1 to {}", SearchSpec::MAX_POPULATION),
-            });
-        }
-        if self.search.free.len() > SearchSpec::MAX_FREE {
-            return Err(Error::OutOfRange {
-                name: "search.free (count)".into(),
-                value: self.search.free.len() as f64,
-                expected: format!("at most {}", SearchSpec::MAX_FREE),
-            });
-        }
-        self.search.screening.validate()?;
-        let arms = self.train.arms;
-        if !self.search.screening.samples_per_turn.is_multiple_of(arms) {
-            return Err(Error::OutOfRange {
-                name: "search.screening.samples_per_turn".into(),
-                value: self.search.screening.samples_per_turn as f64,
-                expected: format!("a multiple of train.arms = {arms}"),
-            });
-        }
-        if self.search.confirm_with_teeth && self.gear.module.teeth.is_none() {
-            return Err(Error::Missing {
-                name: "gear.module.teeth".into(),
-                needed_by: "search.confirm_with_teeth cuts that many teeth".into(),
-            });
-        }
-        for (i, goal) in self.search.goals.iter().enumerate() {
-            let name = goal.name();
-            let problem = if self.search.goals[..i].contains(goal) {
-                format!("'{name}' is listed twice")
-            } else if goal.needs_moving_box() && self.kind != SceneKind::Transplanter {
-                format!("'{name}' needs a moving box: only a transplanter scene computes it")
-            } else if goal.is_robust()
-                && !matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter)
-            {
-                format!("'{name}' samples a mechanism's tolerances: a three-arm scene needs it")
-            } else {
-                continue;
-            };
-            return Err(Error::BadList {
-                list: "search.goals",
-                problem,
-            });
-        }
-        for (i, f) in self.search.free.iter().enumerate() {
-            Param::parse(&f.name, self)?;
-            finite(&format!("search.free '{}' lower", f.name), f.lower)?;
-            finite(&format!("search.free '{}' upper", f.name), f.upper)?;
-            let problem = if self.search.free[..i].iter().any(|g| g.name == f.name) {
-                format!("'{}' is listed twice", f.name)
-            } else if !(f.lower < f.upper && (f.upper - f.lower).is_finite()) {
-                format!(
-                    "'{}' has bounds [{}, {}]: the lower must be below the upper, a finite \
-                     width apart",
-                    f.name, f.lower, f.upper
-                )
-            } else {
-                continue;
-            };
-            return Err(Error::BadList {
-                list: "search.free",
-                problem,
-            });
-        }
-        Ok(())
     }
 }
 

@@ -2,7 +2,6 @@
 
 use crate::agronomy::Agronomy;
 use crate::curve::CurveSpec;
-use crate::error::{Error, Result};
 use crate::gear::ModuleRule;
 use crate::goal::Goal;
 use crate::moving_box::BoxSpec;
@@ -194,89 +193,5 @@ impl Default for Scene {
             search: SearchSpec::default(),
             tolerances: Tolerances::default(),
         }
-    }
-}
-
-impl Scene {
-    /// Checks every value an evaluation uses, naming the bad one: the resolution, the
-    /// module and teeth settings, the bounds, a mechanism's train and agronomy, the moving
-    /// box, and the objectives against the scene's kind.
-    pub fn validate(&self) -> Result<()> {
-        self.resolution.validate()?;
-        self.gear.module.validate()?;
-        self.gear.teeth.validate()?;
-        self.bounds.validate()?;
-        self.tolerances.validate()?;
-        if matches!(self.kind, SceneKind::MovingBox | SceneKind::Transplanter) {
-            self.moving_box.validate()?;
-        }
-        let mechanism = matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
-        if mechanism {
-            // Checked with the scene, so that a file or an edit is refused where the
-            // value is set, not at the first evaluation.
-            self.train.validate()?;
-            self.agronomy.validate()?;
-        }
-        if mechanism {
-            let arms = self.train.arms;
-            if !self.resolution.samples_per_turn.is_multiple_of(arms) {
-                return Err(Error::OutOfRange {
-                    name: "resolution.samples_per_turn".into(),
-                    value: self.resolution.samples_per_turn as f64,
-                    expected: format!("a multiple of train.arms = {arms}"),
-                });
-            }
-            // The box moves one pot per pick, and the train picks once per arm a turn.
-            let turns = self.moving_box.input_turns_per_carrier_turn;
-            if self.kind == SceneKind::Transplanter && turns != arms as f64 {
-                return Err(Error::OutOfRange {
-                    name: "moving_box.input_turns_per_carrier_turn".into(),
-                    value: turns,
-                    expected: format!(
-                        "train.arms = {arms}: the box moves one pot per pick, and the train \
-                         picks {arms} times a carrier turn"
-                    ),
-                });
-            }
-            if arms == 1 && self.objectives.contains(&ObjectiveKind::Interference) {
-                return Err(Error::BadList {
-                    list: "objectives",
-                    problem: "'interference' needs two arms or more: a one-arm train \
-                              (train.arms = 1) has no other arm or planet to strike"
-                        .into(),
-                });
-            }
-        }
-        if mechanism && self.objectives.is_empty() {
-            return Err(Error::BadList {
-                list: "objectives",
-                problem: "empty: a mechanism scene needs at least one objective (with none, \
-                          every design would report feasible)"
-                    .into(),
-            });
-        }
-        for (i, o) in self.objectives.iter().enumerate() {
-            if self.objectives[..i].contains(o) {
-                return Err(Error::BadList {
-                    list: "objectives",
-                    problem: format!(
-                        "'{}' is listed twice (its violation would count twice)",
-                        o.name()
-                    ),
-                });
-            }
-        }
-        for o in &self.objectives {
-            let allowed =
-                mechanism || (self.kind == SceneKind::Gear && *o == ObjectiveKind::Module);
-            if !allowed {
-                return Err(Error::OutOfRange {
-                    name: format!("objectives: '{}'", o.name()),
-                    value: f64::NAN,
-                    expected: format!("an objective a {:?} scene can evaluate", self.kind),
-                });
-            }
-        }
-        Ok(())
     }
 }

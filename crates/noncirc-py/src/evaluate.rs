@@ -5,7 +5,7 @@ use crate::convert::{json_to_py, points, pool, resolution};
 use crate::errors::{internal, invalid, parameter, Result};
 use crate::scene::Scene;
 use noncirc::batch::BatchRows;
-use noncirc::core::{Evaluator, Measure, SceneProblem};
+use noncirc::core::{Evaluator, Measure, Scalar, SceneProblem};
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
@@ -43,8 +43,16 @@ pub(crate) fn evaluate<'py>(
     out.set_item("objectives", objectives)?;
     if let Some(e) = &eval.events {
         let d = PyDict::new(py);
-        d.set_item("picking_carrier_deg", e.picking.carrier_rad.to_degrees())?;
-        d.set_item("planting_carrier_deg", e.planting.carrier_rad.to_degrees())?;
+        // The names that are measures' are the measures' own.
+        let name = |s: Scalar| Measure::Scalar(s).name();
+        d.set_item(
+            name(Scalar::PickingCarrier),
+            e.picking.carrier_rad.to_degrees(),
+        )?;
+        d.set_item(
+            name(Scalar::PlantingCarrier),
+            e.planting.carrier_rad.to_degrees(),
+        )?;
         d.set_item("picking_attitude_deg", e.picking.attitude_deg)?;
         d.set_item("planting_attitude_deg", e.planting.attitude_deg)?;
         d.set_item(
@@ -54,10 +62,10 @@ pub(crate) fn evaluate<'py>(
                 e.picking_window_rad[1].to_degrees(),
             ),
         )?;
-        d.set_item("picking_tip_speed_m_s", e.picking_tip_speed_m_s)?;
+        d.set_item(name(Scalar::PickingTipSpeed), e.picking_tip_speed_m_s)?;
         d.set_item("trajectory_height_mm", e.y_max_mm - e.y_min_mm)?;
-        d.set_item("picking_branch_gap_mm", e.picking_branch_gap_mm)?;
-        d.set_item("planting_branch_gap_mm", e.planting_branch_gap_mm)?;
+        d.set_item(name(Scalar::PickingBranchGap), e.picking_branch_gap_mm)?;
+        d.set_item(name(Scalar::PlantingBranchGap), e.planting_branch_gap_mm)?;
         let check = PyDict::new(py);
         for (name, value) in e.check.conditions() {
             check.set_item(name, value)?;

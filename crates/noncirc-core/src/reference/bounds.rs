@@ -1,13 +1,13 @@
 //! The reference of `[bounds]`: the objectives' admissible values.
 
-use super::Field;
+use super::{Field, Range};
 
 pub(super) const FIELDS: &[Field] = &[
     Field {
         key: "bounds.clearance_min_mm",
         symbol: "",
         unit: "mm",
-        range: "finite",
+        range: Range::FINITE,
         meaning: "Least clearance between an arm and the other planets (objective \
                   `interference`).",
         refused: &["bounds.clearance_min_mm=nan"],
@@ -17,7 +17,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "bounds.picking_angle_deg",
         symbol: "",
         unit: "°",
-        range: "[lower, upper], finite, lower ≤ upper",
+        range: Range::FINITE.and(": `[lower, upper]`, lower ≤ upper"),
         meaning: "Admissible picking angle (objective `picking_angle`).",
         refused: &["bounds.picking_angle_deg=[30.0,10.0]"],
         number: Some(pair!(bounds.picking_angle_deg)),
@@ -26,7 +26,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "bounds.pushing_angle_deg",
         symbol: "",
         unit: "°",
-        range: "[lower, upper], finite, lower ≤ upper",
+        range: Range::FINITE.and(": `[lower, upper]`, lower ≤ upper"),
         meaning: "Admissible pushing (planting) angle (objective `pushing_angle`).",
         refused: &["bounds.pushing_angle_deg=[70.0,inf]"],
         number: Some(pair!(bounds.pushing_angle_deg)),
@@ -35,7 +35,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "bounds.angle_difference_deg",
         symbol: "",
         unit: "°",
-        range: "[lower, upper], finite, lower ≤ upper",
+        range: Range::FINITE.and(": `[lower, upper]`, lower ≤ upper"),
         meaning: "Admissible pushing − picking angle (objective `angle_difference`).",
         refused: &["bounds.angle_difference_deg=[nan,70.0]"],
         number: Some(pair!(bounds.angle_difference_deg)),
@@ -44,7 +44,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "bounds.seedling_push_max_mm",
         symbol: "",
         unit: "mm",
-        range: "finite",
+        range: Range::FINITE,
         meaning: "Largest forward excursion past the planted seedling (objective \
                   `seedling_push`).",
         refused: &["bounds.seedling_push_max_mm=inf"],
@@ -54,7 +54,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "bounds.ground_clearance_min_mm",
         symbol: "",
         unit: "mm",
-        range: "finite",
+        range: Range::FINITE,
         meaning: "Least ground clearance of the gearbox (objective `ground_clearance`).",
         refused: &["bounds.ground_clearance_min_mm=nan"],
         number: Some(real!(bounds.ground_clearance_min_mm)),
@@ -63,7 +63,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "bounds.trajectory_height_min_mm",
         symbol: "",
         unit: "mm",
-        range: "finite",
+        range: Range::FINITE,
         meaning: "Least trajectory height (objective `trajectory_height`).",
         refused: &["bounds.trajectory_height_min_mm=nan"],
         number: Some(real!(bounds.trajectory_height_min_mm)),
@@ -72,7 +72,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "bounds.module_min_mm",
         symbol: "",
         unit: "mm",
-        range: "finite",
+        range: Range::FINITE,
         meaning: "Least module of the gears (objective `module`).",
         refused: &["bounds.module_min_mm=nan"],
         number: Some(real!(bounds.module_min_mm)),
@@ -81,7 +81,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "bounds.picking_admissible_min_mm",
         symbol: "",
         unit: "mm",
-        range: "finite",
+        range: Range::FINITE,
         meaning: "Least margin by which the worst picking condition holds (objective \
                   `picking_admissible`: the tip reaches into the pot, moving into the tray).",
         refused: &["bounds.picking_admissible_min_mm=nan"],

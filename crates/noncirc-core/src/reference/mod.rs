@@ -25,6 +25,8 @@ type ListSet = fn(&mut Scene) -> Option<&mut [f64]>;
 pub(crate) enum Number {
     /// One number.
     Scalar(Get, Set),
+    /// One number that may be left unset.
+    Optional(Get, Set),
     /// A list of numbers, indexed as `key[i]`.
     List(ListGet, ListSet),
 }
@@ -39,7 +41,7 @@ macro_rules! real {
 /// An optional real field: unset reads as absent, and writing sets it.
 macro_rules! optional {
     ($($f:ident).+) => {
-        $crate::reference::Number::Scalar(|s| s.$($f).+, |s, v| { s.$($f).+ = Some(v); true })
+        $crate::reference::Number::Optional(|s| s.$($f).+, |s, v| { s.$($f).+ = Some(v); true })
     };
 }
 
@@ -54,7 +56,7 @@ macro_rules! integer {
 /// An optional integer field.
 macro_rules! optional_integer {
     ($ty:ty, $($f:ident).+) => {
-        $crate::reference::Number::Scalar(
+        $crate::reference::Number::Optional(
             |s| s.$($f).+.map(|x| x as f64),
             |s, v| { s.$($f).+ = Some(v.round() as $ty); true },
         )
@@ -109,10 +111,13 @@ mod agronomy;
 mod bounds;
 mod gear;
 mod moving_box;
+mod range;
 mod search;
 mod tolerances;
 mod top;
 mod train;
+
+pub use range::{Bound, Range};
 
 /// One field of a scene.
 #[derive(Debug, Clone, Copy)]
@@ -124,8 +129,9 @@ pub struct Field {
     pub symbol: &'static str,
     /// Unit ("" for counts, names and ratios).
     pub unit: &'static str,
-    /// The admissible values, as the checks hold them.
-    pub range: &'static str,
+    /// The admissible values: a number's interval, which [`Field::check`] checks, or a
+    /// rule that code checks.
+    pub range: Range,
     /// What the field means.
     pub meaning: &'static str,
     /// `key=value` assignments (TOML values) each of which a scene must refuse: the
@@ -161,20 +167,22 @@ pub fn symbol(path: &str) -> Option<String> {
     }
 }
 
+/// The field tables, in the order of a scene file, each with the scene table it
+/// describes (its first key's part: "" for the top level and `[resolution]`).
+pub(crate) const TABLES: [(&str, &[Field]); 8] = [
+    ("", top::FIELDS),
+    ("gear", gear::FIELDS),
+    ("train", train::FIELDS),
+    ("agronomy", agronomy::FIELDS),
+    ("bounds", bounds::FIELDS),
+    ("moving_box", moving_box::FIELDS),
+    ("search", search::FIELDS),
+    ("tolerances", tolerances::FIELDS),
+];
+
 /// Every field of a scene, in the order of a scene file: one table per scene table.
 pub fn fields() -> impl Iterator<Item = &'static Field> {
-    [
-        top::FIELDS,
-        gear::FIELDS,
-        train::FIELDS,
-        agronomy::FIELDS,
-        bounds::FIELDS,
-        moving_box::FIELDS,
-        search::FIELDS,
-        tolerances::FIELDS,
-    ]
-    .into_iter()
-    .flatten()
+    TABLES.iter().flat_map(|(_, fields)| fields.iter())
 }
 
 #[cfg(test)]

@@ -1,13 +1,13 @@
 //! The reference of `[search]`: how the design space is searched.
 
-use super::Field;
+use super::{Field, Range};
 
 pub(super) const FIELDS: &[Field] = &[
     Field {
         key: "search.free",
         symbol: "",
         unit: "",
-        range: "at most 1000 entries, each a parameter that exists, once",
+        range: Range::Rule("at most 1000 entries, each a parameter that exists, once"),
         meaning: "The free parameters of a search, `{ name, lower, upper }`; empty: the \
                   default space around the scene's design (docs/search.md).",
         refused: &[
@@ -20,7 +20,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.free[i].name",
         symbol: "",
         unit: "",
-        range: "a numeric scene path (`train.phi0_deg`, `gear.curve.radii_mm[3]`)",
+        range: Range::Rule("a numeric scene path (`train.phi0_deg`, `gear.curve.radii_mm[3]`)"),
         meaning: "The free parameter.",
         refused: &["search.free=[{name=\"train.rotation\",lower=0.0,upper=1.0}]"],
         number: None,
@@ -29,7 +29,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.free[i].lower",
         symbol: "",
         unit: "the parameter's",
-        range: "finite, below `upper`",
+        range: Range::Rule("finite, below `upper`"),
         meaning: "Lower bound of the parameter.",
         refused: &["search.free=[{name=\"train.phi0_deg\",lower=nan,upper=1.0}]"],
         number: None,
@@ -38,7 +38,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.free[i].upper",
         symbol: "",
         unit: "the parameter's",
-        range: "finite, above `lower`",
+        range: Range::Rule("finite, above `lower`"),
         meaning: "Upper bound of the parameter.",
         refused: &["search.free=[{name=\"train.phi0_deg\",lower=0.0,upper=inf}]"],
         number: None,
@@ -47,7 +47,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.algorithm",
         symbol: "",
         unit: "",
-        range: "an algorithm's name (below)",
+        range: Range::Rule("an algorithm's name (below)"),
         meaning: "The search algorithm.",
         refused: &["search.algorithm=\"annealing\""],
         number: None,
@@ -56,7 +56,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.budget",
         symbol: "",
         unit: "evaluations",
-        range: "a whole number, 0 or more",
+        range: Range::at_least(0.0),
         meaning: "Evaluation budget.",
         refused: &["search.budget=-1"],
         number: Some(integer!(u64, search.budget)),
@@ -65,7 +65,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.population",
         symbol: "",
         unit: "",
-        range: "1 to 100000",
+        range: Range::from_to(1.0, 1e5),
         meaning: "Population size of population-based algorithms.",
         refused: &["search.population=0", "search.population=100001"],
         number: Some(integer!(usize, search.population)),
@@ -74,7 +74,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.seed",
         symbol: "",
         unit: "",
-        range: "a whole number, 0 or more",
+        range: Range::at_least(0.0),
         meaning: "Random seed: the same seed gives the same run, whatever the thread count.",
         refused: &["search.seed=-1"],
         number: Some(integer!(u64, search.seed)),
@@ -83,7 +83,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.screening.samples_per_turn",
         symbol: "",
         unit: "",
-        range: "as `resolution.samples_per_turn`",
+        range: Range::Rule("as `resolution.samples_per_turn`"),
         meaning: "Samples per turn while screening; every reported design is re-evaluated \
                   at the scene's resolution.",
         refused: &["search.screening.samples_per_turn=10"],
@@ -93,7 +93,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.screening.closure_rel_tol",
         symbol: "",
         unit: "",
-        range: "as `resolution.closure_rel_tol`",
+        range: Range::Rule("as `resolution.closure_rel_tol`"),
         meaning: "Closure tolerance while screening.",
         refused: &["search.screening.closure_rel_tol=0"],
         number: Some(real!(search.screening.closure_rel_tol)),
@@ -102,7 +102,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.screening.newton_rel_tol",
         symbol: "",
         unit: "",
-        range: "as `resolution.newton_rel_tol`",
+        range: Range::Rule("as `resolution.newton_rel_tol`"),
         meaning: "Closure iteration stop while screening.",
         refused: &["search.screening.newton_rel_tol=1e-3"],
         number: Some(real!(search.screening.newton_rel_tol)),
@@ -111,7 +111,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.goals",
         symbol: "",
         unit: "",
-        range: "goal names (below), each once",
+        range: Range::Rule("goal names (below), each once"),
         meaning: "Goals beyond feasibility; empty: `least_margin`. Two or more make a \
                   multi-objective search (docs/search.md).",
         refused: &[
@@ -124,7 +124,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.confirm_with_teeth",
         symbol: "",
         unit: "",
-        range: "`true` or `false`; `true` needs `gear.module.teeth`",
+        range: Range::Rule("`true` or `false`; `true` needs `gear.module.teeth`"),
         meaning: "Confirm the reported designs with their teeth cut and checked while the \
                   search screens with the scene's own module rule.",
         refused: &["search.confirm_with_teeth=true"],

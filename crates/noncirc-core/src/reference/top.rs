@@ -1,13 +1,13 @@
 //! The reference of the scene's own fields: its name, kind, objectives and resolution.
 
-use super::Field;
+use super::{Field, Range};
 
 pub(super) const FIELDS: &[Field] = &[
     Field {
         key: "name",
         symbol: "",
         unit: "",
-        range: "any text",
+        range: Range::Rule("any text"),
         meaning: "Short name of the scene.",
         refused: &["name=1"],
         number: None,
@@ -16,7 +16,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "description",
         symbol: "",
         unit: "",
-        range: "any text",
+        range: Range::Rule("any text"),
         meaning: "One-line description.",
         refused: &["description=[]"],
         number: None,
@@ -25,7 +25,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "kind",
         symbol: "",
         unit: "",
-        range: "`gear`, `three_arm`, `moving_box` or `transplanter`",
+        range: Range::Rule("`gear`, `three_arm`, `moving_box` or `transplanter`"),
         meaning: "What the scene designs: a gear pair alone, the three-arm planetary \
                   mechanism, the moving box alone, or the mechanism with the box coupled \
                   through the picking window.",
@@ -36,7 +36,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "objectives",
         symbol: "",
         unit: "",
-        range: "objective names (below), each once; not empty in a mechanism scene",
+        range: Range::Rule("objective names (below), each once; not empty in a mechanism scene"),
         meaning: "Which objectives are evaluated; a gear scene may ask `module` only.",
         refused: &[
             "objectives=[]",
@@ -49,7 +49,9 @@ pub(super) const FIELDS: &[Field] = &[
         key: "resolution.samples_per_turn",
         symbol: "",
         unit: "",
-        range: "a multiple of 6 from 12 to 786432, and of `train.arms` in a mechanism scene",
+        range: Range::Rule(
+            "a multiple of 6 from 12 to 786432, and of `train.arms` in a mechanism scene",
+        ),
         meaning: "Uniform samples of the pitch curve per turn, also the carrier-angle \
                   samples per cycle (docs/accuracy.md).",
         refused: &[
@@ -63,7 +65,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "resolution.closure_rel_tol",
         symbol: "",
         unit: "",
-        range: "above 0, at most 1e-2",
+        range: Range::above_at_most(0.0, 0.01),
         meaning: "Largest accepted relative uncertainty of the centre distance; above it \
                   the closure is reported as under-resolved.",
         refused: &[
@@ -76,7 +78,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "resolution.newton_rel_tol",
         symbol: "",
         unit: "",
-        range: "above 0, at most a tenth of `closure_rel_tol`",
+        range: Range::above(0.0).and(", at most a tenth of `closure_rel_tol`"),
         meaning: "Relative step below which the closure iteration stops.",
         refused: &[
             "resolution.newton_rel_tol=0",

@@ -1,0 +1,196 @@
+//! The scene's checks: every number against its interval in the field table
+//! ([`crate::reference`]), then what code checks (rules over several fields, names,
+//! lists, and the models' own checks); and the search settings.
+
+use crate::error::{finite, Error, Result};
+use crate::objective_kind::ObjectiveKind;
+use crate::params::Param;
+use crate::reference::TABLES;
+use crate::scene::{Scene, SceneKind, SearchSpec};
+
+impl Scene {
+    /// Checks the numbers of one scene table (`agronomy`) against their intervals in the
+    /// field table.
+    pub(crate) fn check_fields(&self, table: &str) -> Result<()> {
+        (TABLES.iter())
+            .filter(|(name, _)| *name == table)
+            .flat_map(|(_, fields)| fields.iter())
+            .try_for_each(|field| field.check(self))
+    }
+
+    /// Whether an evaluation of this scene reads the fields of a scene table (`train`): a
+    /// mechanism's train and agronomy only in a mechanism scene, the moving box only where
+    /// it moves.
+    fn reads(&self, table: &str) -> bool {
+        match table {
+            "train" | "agronomy" => {
+                matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter)
+            }
+            "moving_box" => {
+                matches!(self.kind, SceneKind::MovingBox | SceneKind::Transplanter)
+            }
+            _ => true,
+        }
+    }
+
+    /// Checks every value an evaluation uses, naming the bad one: the resolution, the
+    /// module and teeth settings, the bounds, a mechanism's train and agronomy, the moving
+    /// box, and the objectives against the scene's kind.
+    pub fn validate(&self) -> Result<()> {
+        // Every number against its interval in the field table, then what code checks:
+        // rules over several fields, names and lists (and the models' own checks).
+        for (table, fields) in TABLES {
+            if self.reads(table) {
+                fields.iter().try_for_each(|field| field.check(self))?;
+            }
+        }
+        self.resolution.validate()?;
+        self.gear.module.validate()?;
+        self.gear.teeth.validate()?;
+        self.bounds.check_order()?;
+        self.tolerances.validate()?;
+        if matches!(self.kind, SceneKind::MovingBox | SceneKind::Transplanter) {
+            self.moving_box.validate()?;
+        }
+        let mechanism = matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
+        if mechanism {
+            // Checked with the scene, so that a file or an edit is refused where the
+            // value is set, not at the first evaluation.
+            self.train.validate()?;
+            let arms = self.train.arms;
+            if !self.resolution.samples_per_turn.is_multiple_of(arms) {
+                return Err(Error::OutOfRange {
+                    name: "resolution.samples_per_turn".into(),
+                    value: self.resolution.samples_per_turn as f64,
+                    expected: format!("a multiple of train.arms = {arms}"),
+                });
+            }
+            // The box moves one pot per pick, and the train picks once per arm a turn.
+            let turns = self.moving_box.input_turns_per_carrier_turn;
+            if self.kind == SceneKind::Transplanter && turns != arms as f64 {
+                return Err(Error::OutOfRange {
+                    name: "moving_box.input_turns_per_carrier_turn".into(),
+                    value: turns,
+                    expected: format!(
+                        "train.arms = {arms}: the box moves one pot per pick, and the train \
+                         picks {arms} times a carrier turn"
+                    ),
+                });
+            }
+            if arms == 1 && self.objectives.contains(&ObjectiveKind::Interference) {
+                return Err(Error::BadList {
+                    list: "objectives",
+                    problem: "'interference' needs two arms or more: a one-arm train \
+                              (train.arms = 1) has no other arm or planet to strike"
+                        .into(),
+                });
+            }
+        }
+        if mechanism && self.objectives.is_empty() {
+            return Err(Error::BadList {
+                list: "objectives",
+                problem: "empty: a mechanism scene needs at least one objective (with none, \
+                          every design would report feasible)"
+                    .into(),
+            });
+        }
+        for (i, o) in self.objectives.iter().enumerate() {
+            if self.objectives[..i].contains(o) {
+                return Err(Error::BadList {
+                    list: "objectives",
+                    problem: format!(
+                        "'{}' is listed twice (its violation would count twice)",
+                        o.name()
+                    ),
+                });
+            }
+        }
+        for o in &self.objectives {
+            let allowed =
+                mechanism || (self.kind == SceneKind::Gear && *o == ObjectiveKind::Module);
+            if !allowed {
+                return Err(Error::OutOfRange {
+                    name: format!("objectives: '{}'", o.name()),
+                    value: f64::NAN,
+                    expected: format!("an objective a {:?} scene can evaluate", self.kind),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The search settings: goals this scene can compute, each once; free parameters that
+    /// exist, each once, with finite ordered bounds a finite width apart. Checked when a
+    /// scene is read and when a search starts (not per design: [`Scene::validate`] is).
+    pub fn validate_search(&self) -> Result<()> {
+        let population = self.search.population;
+        if !(1..=SearchSpec::MAX_POPULATION).contains(&population) {
+            return Err(Error::OutOfRange {
+                name: "search.population".into(),
+                value: population as f64,
+                expected: format!("1 to {}", SearchSpec::MAX_POPULATION),
+            });
+        }
+        if self.search.free.len() > SearchSpec::MAX_FREE {
+            return Err(Error::OutOfRange {
+                name: "search.free (count)".into(),
+                value: self.search.free.len() as f64,
+                expected: format!("at most {}", SearchSpec::MAX_FREE),
+            });
+        }
+        self.search.screening.validate()?;
+        let arms = self.train.arms;
+        if !self.search.screening.samples_per_turn.is_multiple_of(arms) {
+            return Err(Error::OutOfRange {
+                name: "search.screening.samples_per_turn".into(),
+                value: self.search.screening.samples_per_turn as f64,
+                expected: format!("a multiple of train.arms = {arms}"),
+            });
+        }
+        if self.search.confirm_with_teeth && self.gear.module.teeth.is_none() {
+            return Err(Error::Missing {
+                name: "gear.module.teeth".into(),
+                needed_by: "search.confirm_with_teeth cuts that many teeth".into(),
+            });
+        }
+        for (i, goal) in self.search.goals.iter().enumerate() {
+            let name = goal.name();
+            let problem = if self.search.goals[..i].contains(goal) {
+                format!("'{name}' is listed twice")
+            } else if goal.needs_moving_box() && self.kind != SceneKind::Transplanter {
+                format!("'{name}' needs a moving box: only a transplanter scene computes it")
+            } else if goal.is_robust()
+                && !matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter)
+            {
+                format!("'{name}' samples a mechanism's tolerances: a three-arm scene needs it")
+            } else {
+                continue;
+            };
+            return Err(Error::BadList {
+                list: "search.goals",
+                problem,
+            });
+        }
+        for (i, f) in self.search.free.iter().enumerate() {
+            Param::parse(&f.name, self)?;
+            finite(&format!("search.free '{}' lower", f.name), f.lower)?;
+            finite(&format!("search.free '{}' upper", f.name), f.upper)?;
+            let problem = if self.search.free[..i].iter().any(|g| g.name == f.name) {
+                format!("'{}' is listed twice", f.name)
+            } else if !(f.lower < f.upper && (f.upper - f.lower).is_finite()) {
+                format!(
+                    "'{}' has bounds [{}, {}]: the lower must be below the upper, a finite \
+                     width apart",
+                    f.name, f.lower, f.upper
+                )
+            } else {
+                continue;
+            };
+            return Err(Error::BadList {
+                list: "search.free",
+                problem,
+            });
+        }
+        Ok(())
+    }
+}
