@@ -242,10 +242,10 @@ pub fn sensitivity(
             "bootstrap = {bootstrap}: expected 0 to 10000 resamples"
         )));
     }
-    if !matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter) {
+    if !matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
         return Err(Error::Input(format!(
-            "sensitivity needs a three-arm or transplanter scene (this one is {:?})",
-            scene.kind
+            "sensitivity needs a three_arm or transplanter scene (this one is {})",
+            scene.kind.name()
         )));
     }
     let problem = SceneProblem::new(scene)?;

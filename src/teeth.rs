@@ -52,7 +52,7 @@ impl TeethRun {
         scene.validate()?;
         let curve = scene.gear.curve.build()?;
         let rule = &scene.gear.module;
-        let train = matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
+        let train = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
         let kin = if train {
             Some(Kinematics::solve(&curve, &scene.train, &scene.resolution)?)
         } else {

@@ -183,7 +183,7 @@ fn every_interval_is_exactly_what_the_checks_admit() {
             };
             // A scene checks the tables its kind reads: a mechanism's train and agronomy,
             // a moving box where it moves.
-            let mechanism = matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
+            let mechanism = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
             let moving = matches!(scene.kind, SceneKind::MovingBox | SceneKind::Transplanter);
             let reads = match field.key.split('.').next() {
                 Some("train" | "agronomy") => mechanism,

@@ -306,19 +306,24 @@ impl EvaluationReport {
     /// The objectives as gauges, like the paper's progress bars, then the events.
     pub fn table(&self) -> String {
         let mut out = format!(
-            "scene {} ({:?}) — {} samples/turn",
-            self.scene, self.kind, self.samples_per_turn
+            "scene {} ({}) — {} samples/turn",
+            self.scene,
+            self.kind.name(),
+            self.samples_per_turn
         );
         if let Some(a) = self.centre_distance_mm {
             out += &format!(", centre distance {a:.4} mm");
         }
         out += "\n\n";
         if self.events.is_none() && self.objectives.is_empty() {
-            out +=
-                &format!(
-                "this {:?} scene has no three-arm mechanism: no objectives or events to report{}\n",
-                self.kind,
-                if self.moving_box.is_some() { "; its moving box:" } else { "" }
+            out += &format!(
+                "this {} scene has no mechanism: no objectives or events to report{}\n",
+                self.kind.name(),
+                if self.moving_box.is_some() {
+                    "; its moving box:"
+                } else {
+                    ""
+                }
             );
         }
         out += &objective_table(&self.objectives);

@@ -5,17 +5,16 @@
 use crate::error::{finite, Error, Result};
 use crate::objective_kind::ObjectiveKind;
 use crate::params::Param;
-use crate::reference::TABLES;
+use crate::reference::{interval_checks, TABLES};
 use crate::scene::{Scene, SceneKind, SearchSpec};
 
 impl Scene {
     /// Checks the numbers of one scene table (`agronomy`) against their intervals in the
     /// field table.
     pub(crate) fn check_fields(&self, table: &str) -> Result<()> {
-        (TABLES.iter())
-            .filter(|(name, _)| *name == table)
-            .flat_map(|(_, fields)| fields.iter())
-            .try_for_each(|field| field.check(self))
+        (interval_checks().iter())
+            .filter(|c| TABLES[c.table].0 == table)
+            .try_for_each(|c| c.check(self))
     }
 
     /// Whether an evaluation of this scene reads the fields of a scene table (`train`): a
@@ -24,7 +23,7 @@ impl Scene {
     fn reads(&self, table: &str) -> bool {
         match table {
             "train" | "agronomy" => {
-                matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter)
+                matches!(self.kind, SceneKind::Mechanism | SceneKind::Transplanter)
             }
             "moving_box" => {
                 matches!(self.kind, SceneKind::MovingBox | SceneKind::Transplanter)
@@ -39,11 +38,10 @@ impl Scene {
     pub fn validate(&self) -> Result<()> {
         // Every number against its interval in the field table, then what code checks:
         // rules over several fields, names and lists (and the models' own checks).
-        for (table, fields) in TABLES {
-            if self.reads(table) {
-                fields.iter().try_for_each(|field| field.check(self))?;
-            }
-        }
+        let reads = TABLES.map(|(table, _)| self.reads(table));
+        (interval_checks().iter())
+            .filter(|c| reads[c.table])
+            .try_for_each(|c| c.check(self))?;
         self.resolution.validate()?;
         self.gear.module.validate()?;
         self.gear.teeth.validate()?;
@@ -52,7 +50,7 @@ impl Scene {
         if matches!(self.kind, SceneKind::MovingBox | SceneKind::Transplanter) {
             self.moving_box.validate()?;
         }
-        let mechanism = matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter);
+        let mechanism = matches!(self.kind, SceneKind::Mechanism | SceneKind::Transplanter);
         if mechanism {
             // Checked with the scene, so that a file or an edit is refused where the
             // value is set, not at the first evaluation.
@@ -112,7 +110,7 @@ impl Scene {
                 return Err(Error::OutOfRange {
                     name: format!("objectives: '{}'", o.name()),
                     value: f64::NAN,
-                    expected: format!("an objective a {:?} scene can evaluate", self.kind),
+                    expected: format!("an objective a {} scene can evaluate", self.kind.name()),
                 });
             }
         }
@@ -160,9 +158,9 @@ impl Scene {
             } else if goal.needs_moving_box() && self.kind != SceneKind::Transplanter {
                 format!("'{name}' needs a moving box: only a transplanter scene computes it")
             } else if goal.is_robust()
-                && !matches!(self.kind, SceneKind::ThreeArm | SceneKind::Transplanter)
+                && !matches!(self.kind, SceneKind::Mechanism | SceneKind::Transplanter)
             {
-                format!("'{name}' samples a mechanism's tolerances: a three-arm scene needs it")
+                format!("'{name}' samples a mechanism's tolerances: a three_arm or transplanter scene needs it")
             } else {
                 continue;
             };

@@ -194,11 +194,14 @@ impl Evaluator {
     pub(crate) fn evaluate_solved(&mut self, scene: &Scene, kin: Kinematics) -> Result<Evaluation> {
         scene.train.validate()?;
         scene.check_fields("agronomy")?;
-        if !matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter) {
+        if !matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
             return Err(Error::OutOfRange {
                 name: "kind".into(),
                 value: f64::NAN,
-                expected: format!("a three-arm or transplanter scene (not {:?})", scene.kind),
+                expected: format!(
+                    "a three_arm or transplanter scene (not {})",
+                    scene.kind.name()
+                ),
             });
         }
         self.counts.kinematics += 1;
@@ -305,7 +308,7 @@ impl Evaluator {
                 }
                 out.gear_pair = Some(pair);
             }
-            SceneKind::ThreeArm | SceneKind::Transplanter => {
+            SceneKind::Mechanism | SceneKind::Transplanter => {
                 let kin = self.solve_train(scene, resolution)?;
                 self.mechanism(scene, kin, &mut out)?;
             }

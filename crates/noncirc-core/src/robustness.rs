@@ -177,13 +177,13 @@ impl Deviated {
     /// trajectory, the design is evaluated again against the fixed tray (on the same
     /// train: no closure).
     pub fn new(evaluator: &mut Evaluator, scene: &Scene, placed: &Evaluation) -> Result<Self> {
-        if !matches!(scene.kind, SceneKind::ThreeArm | SceneKind::Transplanter) {
+        if !matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
             return Err(Error::OutOfRange {
                 name: "kind".into(),
                 value: f64::NAN,
                 expected: format!(
-                    "a three-arm or transplanter scene for a tolerance analysis (not {:?})",
-                    scene.kind
+                    "a three_arm or transplanter scene for a tolerance analysis (not {})",
+                    scene.kind.name()
                 ),
             });
         }

@@ -46,13 +46,27 @@ impl Default for GearSpec {
 pub enum SceneKind {
     /// A non-circular gear pair alone: closure, ratio, module.
     Gear,
-    /// The three-arm planetary transplanting mechanism and its objectives.
+    /// The planetary transplanting mechanism (three arm sets as in the paper, or
+    /// `train.arms`) and its objectives; `three_arm` in a scene file.
     #[default]
-    ThreeArm,
+    #[serde(rename = "three_arm")]
+    Mechanism,
     /// The variable-speed moving box alone.
     MovingBox,
-    /// Three-arm mechanism plus moving box, coupled through the picking window.
+    /// The mechanism plus the moving box, coupled through the picking window.
     Transplanter,
+}
+
+impl SceneKind {
+    /// The kind's name in a scene file: `gear`, `three_arm`, `moving_box`, `transplanter`.
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneKind::Gear => "gear",
+            SceneKind::Mechanism => "three_arm",
+            SceneKind::MovingBox => "moving_box",
+            SceneKind::Transplanter => "transplanter",
+        }
+    }
 }
 
 /// A free parameter of a search: a scene path and its bounds.

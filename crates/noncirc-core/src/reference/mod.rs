@@ -117,6 +117,7 @@ mod tolerances;
 mod top;
 mod train;
 
+pub(crate) use range::interval_checks;
 pub use range::{Bound, Range};
 
 /// One field of a scene.
