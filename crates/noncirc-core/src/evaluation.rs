@@ -325,3 +325,20 @@ impl Evaluator {
         Ok(out)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::events::housing_radius;
+
+    #[test]
+    fn the_paper_design_picks_outside_the_housing() {
+        let mut scene = Scene::default();
+        scene.resolution.samples_per_turn = 360;
+        let eval = Evaluator::new().evaluate(&scene).unwrap();
+        let (kin, events) = (eval.kinematics.as_ref().unwrap(), eval.events.unwrap());
+        // Farther from the carrier axis than the housing's disc, by a margin.
+        let housing = housing_radius(kin, &scene.agronomy);
+        assert!(events.picking.tip_mm.hypot() > housing + 15.0, "{housing}");
+    }
+}

@@ -210,7 +210,7 @@ fn extreme_and_runner_up(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
 
 /// The housing's radius about the carrier axis (mm): the disc the gearbox sweeps (the
 /// envelope of the sun, the intermediates and the planets) plus the wall margin.
-pub fn housing_radius(kin: &Kinematics, agro: &Agronomy) -> f64 {
+pub(crate) fn housing_radius(kin: &Kinematics, agro: &Agronomy) -> f64 {
     let a = kin.centre_distance();
     let (rmin, rmax) = kin.radius_range();
     rmax.max(kin.carrier_distance() + (a - rmin))

@@ -75,7 +75,7 @@ pub use scene::{FreeParam, GearSpec, Scene, SceneKind, SearchSpec};
 // The model: gear pairs, the train's motion, events, sections, measures.
 pub use anatomy::{anatomy, Anatomy, SectionMeasures};
 pub use angle::unit;
-pub use events::{attitude_deg, events, housing_radius, Event, Events, PickingCheck};
+pub use events::{attitude_deg, events, Event, Events, PickingCheck};
 pub use gear::{
     solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, Rotation, SampleGrid,
 };
@@ -83,8 +83,8 @@ pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves
 pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue};
 pub use planetary::{ArmState, Kinematics};
 pub use teeth::{
-    segment_distance, signed_area, Cutter, Frame, GearTeethReport, Member, MeshReport, PairTrack,
-    Side, TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut,
+    segment_distance, Cutter, Frame, GearTeethReport, Member, MeshReport, PairTrack, Side,
+    TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut,
 };
 pub use vec2::Vec2;
 

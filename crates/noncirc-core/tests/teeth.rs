@@ -2,10 +2,17 @@
 //! classical contact ratio and undercut limit, the backlash a thinning gives, and a pair
 //! the curvature rule passes whose teeth collide.
 
-use noncirc_core::{
-    signed_area, CurveSpec, Ellipse, PitchCurve, Side, ToothSpec, ToothedPair, Vec2,
-};
+use noncirc_core::{CurveSpec, Ellipse, PitchCurve, Side, ToothSpec, ToothedPair, Vec2};
 use std::f64::consts::PI;
+
+/// Signed area (mm²) of a closed polyline (the shoelace formula): positive when
+/// counter-clockwise.
+fn signed_area(points: &[Vec2]) -> f64 {
+    let n = points.len();
+    0.5 * (0..n)
+        .map(|i| points[i].cross(points[(i + 1) % n]))
+        .sum::<f64>()
+}
 
 fn circle(r: f64) -> PitchCurve {
     PitchCurve::Ellipse(Ellipse::new(r, 0.0).unwrap())

@@ -16,7 +16,7 @@ mod track;
 
 pub use cut_gear::{Side, Tooth, ToothedGear, Undercut};
 pub use mesh::MeshReport;
-pub use polyline::{segment_distance, signed_area};
+pub use polyline::segment_distance;
 pub use track::{Frame, Member, PairTrack};
 
 use crate::curve::PitchCurve;

@@ -328,14 +328,6 @@ impl OutlineGrid {
     }
 }
 
-/// Signed area (mm²) of a closed polyline: positive when counter-clockwise.
-pub fn signed_area(points: &[Vec2]) -> f64 {
-    let n = points.len();
-    0.5 * (0..n)
-        .map(|i| points[i].cross(points[(i + 1) % n]))
-        .sum::<f64>()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -359,7 +351,6 @@ mod tests {
         assert!((corner - 0.5).abs() < 1e-15);
         assert!(g.signed_distance(Vec2::new(1.9, 1.95)).unwrap() < 0.0);
         assert_eq!(g.signed_distance(Vec2::new(9.0, 9.0)), None);
-        assert!((signed_area(&square()) - 4.0).abs() < 1e-15);
         assert_eq!(g.self_crossing(), None);
     }
 
