@@ -90,7 +90,7 @@ pub fn markdown() -> String {
          §4.1) and the moving-box paper's setting (Zhou et al. 2018). A value outside its \
          admissible range is refused when the scene is read or edited, with an error that \
          names the field and its symbol: `train.arm_length_mm (S) = -1 is out of range: \
-         expected above 0, at most 1e9`.\n\n\
+         expected > 0`.\n\n\
          Symbols are the papers': Φ0, β0, S, H1, γ0 and r1 … r12, θ1 … θ12 from the \
          three-arm paper; k, φs, α, φ, φ1 from the moving-box paper; the tooth proportions \
          (ha*, hf*, ρa*, x, j) are the usual gear-cutting ones.\n",

@@ -159,5 +159,5 @@ fn the_moving_box_refuses_overflowing_inputs() {
 #[test]
 fn a_subnormal_gear_is_refused() {
     let e = refused("ellipse-gear", &["gear.curve.semi_major_mm=5e-324"]);
-    assert!(e.contains("semi_major_mm (A) = 5e-324"), "{e}");
+    assert!(e.contains("semi_major_mm = 5e-324"), "{e}");
 }

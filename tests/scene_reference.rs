@@ -148,23 +148,25 @@ fn errors_name_the_papers_symbols() {
     }
 }
 
-/// Whether the scene's checks refuse it naming `key` (or one of its list's elements).
-fn refused_naming(scene: &noncirc_core::Scene, key: &str) -> Option<String> {
-    let checks = scene
+/// The checks a scene file's scene passes: the scene's, the search settings', the curve's.
+fn checks(scene: &noncirc_core::Scene) -> Result<(), String> {
+    scene
         .validate()
         .and_then(|()| scene.validate_search())
-        .and_then(|()| scene.gear.curve.build().map(drop));
-    match checks {
-        Err(e) if e.to_string().starts_with(key) => Some(e.to_string()),
-        _ => None,
-    }
+        .and_then(|()| scene.gear.curve.build().map(drop))
+        .map_err(|e| e.to_string())
+}
+
+/// Whether the scene's checks refuse it naming `key` (or one of its list's elements).
+fn refused_naming(scene: &noncirc_core::Scene, key: &str) -> Option<String> {
+    checks(scene).err().filter(|e| e.starts_with(key))
 }
 
 #[test]
 fn every_interval_is_exactly_what_the_checks_admit() {
     use noncirc_core::{Bound, Param, Range, SceneKind};
     // Every number of the table, in a scene that reads it: at each finite bound, the value
-    // just outside is refused naming the field, and, where no rule of several fields
+    // just outside is refused, and, where no rule of several fields
     // joins the interval, the value at or just inside is not refused for this field (no
     // check in code is stricter than the table says).
     let mut probed = BTreeSet::new();
@@ -221,7 +223,13 @@ fn every_interval_is_exactly_what_the_checks_admit() {
                 if param.get(&s) != Some(value) || !(refused || and.is_empty()) {
                     continue; // not writable (a negative count saturates to 0), or a rule
                 }
-                let got = refused_naming(&s, field.key);
+                // Outside: refused (a model words its own errors: `ellipse semi_major_mm`,
+                // `pitch radius must be positive`). Inside: not refused for this field.
+                let got = if refused {
+                    checks(&s).err()
+                } else {
+                    refused_naming(&s, field.key)
+                };
                 assert_eq!(
                     got.is_some(),
                     refused,

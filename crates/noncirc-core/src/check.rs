@@ -1,6 +1,7 @@
-//! The scene's checks: every number against its interval in the field table
-//! ([`crate::reference`]), then what code checks (rules over several fields, names,
-//! lists, and the models' own checks); and the search settings.
+//! The scene's checks: its own numbers (agronomy, bounds) against their intervals in the
+//! field table ([`crate::reference`]), then what code checks (the models' numbers, which
+//! each model checks as a library API of its own, rules over several fields, names,
+//! lists); and the search settings.
 
 use crate::error::{finite, Error, Result};
 use crate::objective_kind::ObjectiveKind;
@@ -36,9 +37,10 @@ impl Scene {
     /// module and teeth settings, the bounds, a mechanism's train and agronomy, the moving
     /// box, and the objectives against the scene's kind.
     pub fn validate(&self) -> Result<()> {
-        // Every number against its interval in the field table, then what code checks:
-        // rules over several fields, names and lists (and the models' own checks).
-        let reads = TABLES.map(|(table, _)| self.reads(table));
+        // The scene's own numbers (agronomy, bounds) against their intervals in the field
+        // table, then what code checks: the models' numbers, rules over several fields,
+        // names and lists.
+        let reads = TABLES.map(|(table, _, _)| self.reads(table));
         (interval_checks().iter())
             .filter(|c| reads[c.table])
             .try_for_each(|c| c.check(self))?;

@@ -1,6 +1,6 @@
 //! The core's error messages. They sit above the error type (`error.rs`, in the bottom
 //! layer) because they name a scene path with the papers' symbol from the scene's field
-//! table: `train.arm_length_mm (S) = -1 is out of range: expected above 0, at most 1e9`.
+//! table: `train.arm_length_mm (S) = -1 is out of range: expected > 0`.
 
 use crate::error::Error;
 use crate::reference::symbol;

@@ -168,22 +168,36 @@ pub fn symbol(path: &str) -> Option<String> {
     }
 }
 
+/// What checks a scene table's numbers against their intervals.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Checker {
+    /// The code that computes with them: a model's own check (`TrainSpec::validate`, a
+    /// curve's build), which a model keeps because it is a library API of its own, or
+    /// the search settings' check. The test `every_interval_is_exactly_what_the_checks_admit`
+    /// holds it to the table at every bound.
+    Code,
+    /// The table itself, in [`Scene::validate`](crate::scene::Scene::validate): the
+    /// scene's own inputs, which no model checks.
+    Table,
+}
+
 /// The field tables, in the order of a scene file, each with the scene table it
-/// describes (its first key's part: "" for the top level and `[resolution]`).
-pub(crate) const TABLES: [(&str, &[Field]); 8] = [
-    ("", top::FIELDS),
-    ("gear", gear::FIELDS),
-    ("train", train::FIELDS),
-    ("agronomy", agronomy::FIELDS),
-    ("bounds", bounds::FIELDS),
-    ("moving_box", moving_box::FIELDS),
-    ("search", search::FIELDS),
-    ("tolerances", tolerances::FIELDS),
+/// describes (its first key's part: "" for the top level and `[resolution]`) and what
+/// checks its numbers.
+pub(crate) const TABLES: [(&str, Checker, &[Field]); 8] = [
+    ("", Checker::Code, top::FIELDS),
+    ("gear", Checker::Code, gear::FIELDS),
+    ("train", Checker::Code, train::FIELDS),
+    ("agronomy", Checker::Table, agronomy::FIELDS),
+    ("bounds", Checker::Table, bounds::FIELDS),
+    ("moving_box", Checker::Code, moving_box::FIELDS),
+    ("search", Checker::Code, search::FIELDS),
+    ("tolerances", Checker::Code, tolerances::FIELDS),
 ];
 
 /// Every field of a scene, in the order of a scene file: one table per scene table.
 pub fn fields() -> impl Iterator<Item = &'static Field> {
-    TABLES.iter().flat_map(|(_, fields)| fields.iter())
+    TABLES.iter().flat_map(|(_, _, fields)| fields.iter())
 }
 
 #[cfg(test)]

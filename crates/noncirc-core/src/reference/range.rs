@@ -177,9 +177,8 @@ impl Field {
     }
 }
 
-/// One number's interval, compact for the check of every evaluated design: the field
-/// table's entries are large (texts), and reading all of them per design would evict the
-/// evaluation's own data from the cache (it cost 10 % of a fast evaluation).
+/// One number's interval, compact for the check of every evaluated design (the field
+/// table's entries are large: their texts).
 #[derive(Clone, Copy)]
 pub(crate) struct IntervalCheck {
     /// The scene table's index in [`super::TABLES`].
@@ -244,12 +243,14 @@ impl IntervalCheck {
     }
 }
 
-/// Every number's interval, table by table, read once from the field table.
+/// The interval of every number that the table checks itself ([`super::Checker::Table`]),
+/// table by table, read once from the field table.
 pub(crate) fn interval_checks() -> &'static [IntervalCheck] {
     static CHECKS: std::sync::OnceLock<Vec<IntervalCheck>> = std::sync::OnceLock::new();
     CHECKS.get_or_init(|| {
         (super::TABLES.iter().enumerate())
-            .flat_map(|(t, (_, fields))| {
+            .filter(|(_, (_, checker, _))| *checker == super::Checker::Table)
+            .flat_map(|(t, (_, _, fields))| {
                 fields.iter().filter_map(move |f| IntervalCheck::new(t, f))
             })
             .collect()
