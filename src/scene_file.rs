@@ -282,9 +282,27 @@ fn in_table(key: &str) -> bool {
     })
 }
 
-/// The field table's keys, for "the nearest are" suggestions.
-fn table_keys() -> Vec<String> {
-    noncirc_core::fields().map(|f| f.key.to_string()).collect()
+/// The field table's keys that `tree` has (a list of tables' `[i]` keys when the list
+/// has an entry), for "the nearest are" suggestions.
+fn table_keys(tree: &serde_json::Value) -> Vec<String> {
+    let has = |key: &str| {
+        let mut node = Some(tree);
+        for part in key.split('.') {
+            let (name, list) = match part.strip_suffix("[i]") {
+                Some(name) => (name, true),
+                None => (part, false),
+            };
+            node = node.and_then(|n| n.get(name));
+            if list {
+                node = node.and_then(|n| n.get(0));
+            }
+        }
+        node.is_some()
+    };
+    (noncirc_core::fields().map(|f| f.key))
+        .filter(|k| has(k))
+        .map(str::to_string)
+        .collect()
 }
 
 /// The first NaN or infinite float in a TOML value, if any.
@@ -344,8 +362,11 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
         let Some((table, key)) = field.key.rsplit_once('.') else {
             continue;
         };
+        if !field.is_number() {
+            continue;
+        }
         let Ok(param) = noncirc_core::Param::parse(field.key, scene) else {
-            continue; // not a number, or not in this scene (another curve kind)
+            continue; // not in this scene (another curve kind)
         };
         let node = table
             .split('.')
@@ -387,14 +408,15 @@ fn slot<'t>(
         assignment: assignment.to_string(),
         message,
     };
-    let unknown = || SceneError::UnknownKey {
+    let unknown_in = |tree: &serde_json::Value| SceneError::UnknownKey {
         assignment: assignment.to_string(),
         key: key.trim().to_string(),
-        nearest: noncirc_core::nearest(key.trim(), &table_keys()),
+        nearest: noncirc_core::nearest(key.trim(), &table_keys(tree)),
     };
     if !in_table(key.trim()) {
-        return Err(unknown());
+        return Err(unknown_in(tree));
     }
+    let plain = tree.clone();
     let mut node = tree;
     for part in key.trim().split('.') {
         let (name, index) = match part.split_once('[') {
@@ -410,7 +432,7 @@ fn slot<'t>(
         node = node
             .as_object_mut()
             .and_then(|obj| obj.get_mut(name))
-            .ok_or_else(unknown)?;
+            .ok_or_else(|| unknown_in(&plain))?;
         if let Some(i) = index {
             node = node
                 .as_array_mut()
@@ -537,10 +559,17 @@ mod tests {
         );
         let two = apply_overrides(scene.clone(), &["train.arms=2".into()]).unwrap();
         assert_eq!(value_at(&two, "train.arms").unwrap(), serde_json::json!(2));
-        let e = apply_overrides(scene, &["train.arm_lenght_mm=1".into()])
+        let e = apply_overrides(scene.clone(), &["train.arm_lenght_mm=1".into()])
             .unwrap_err()
             .to_string();
         assert!(e.contains("the nearest are train.arm_length_mm"), "{e}");
+        // A key of the table this scene does not have (another curve kind's) is unknown
+        // here, and the suggestions are keys the scene has.
+        let e = apply_overrides(scene.clone(), &["gear.curve.c0_mm=5".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("unknown key 'gear.curve.c0_mm'"), "{e}");
+        assert!(!e.contains("are gear.curve.c0_mm"), "{e}");
     }
 
     #[test]

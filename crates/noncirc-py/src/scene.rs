@@ -213,7 +213,8 @@ impl Scene {
     fn __repr__(&self) -> String {
         format!(
             "Scene(name={:?}, kind={:?})",
-            self.inner.name, self.inner.kind
+            self.inner.name,
+            self.inner.kind.name()
         )
     }
 }

@@ -19,7 +19,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "gear.curve.radii_mm",
         symbol: "r1 … r12",
         unit: "mm",
-        range: Range::above(0.0)
+        range: Range::from_to(1e-9, 1e9)
             .and("; as many as `angles_deg`, at least 4; the curve they give positive everywhere"),
         meaning: "Radii of the control points (spline, bspline, bezier, table).",
         refused: &[
@@ -45,7 +45,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "gear.curve.c0_mm",
         symbol: "",
         unit: "mm",
-        range: Range::above(0.0).and("; the series positive everywhere"),
+        range: Range::from_to(1e-9, 1e9).and("; the series positive everywhere"),
         meaning: "Mean radius of a Fourier curve `ρ = c0 + Σk (cos_k cos kψ + sin_k sin kψ)`.",
         refused: &["gear.curve={kind=\"fourier\",c0_mm=-5.0,cos_mm=[1.0],sin_mm=[0.0]}"],
         number: Some(curve!(Fourier, c0_mm)),

@@ -5,8 +5,8 @@
 //! code); a test holds the table to the scene's fields both ways and probes every
 //! admissible range with a value it must refuse.
 //!
-//! To add a field: the struct field (with its default) and one entry here; nothing else
-//! spells its path.
+//! To add a field: the struct field (with its default) and one entry here (a model's
+//! number is also named by the model's own check, which a test holds to this table).
 
 use crate::scene::Scene;
 
@@ -46,7 +46,8 @@ macro_rules! optional {
 }
 
 /// An integer field, written rounded to the nearest integer. A negative or non-finite value
-/// saturates (Rust's float-to-integer cast) and is then refused by `Scene::validate`.
+/// saturates (Rust's float-to-integer cast): to 0, which the field's check refuses where
+/// 0 is outside its range (`search.seed` and `search.budget` admit it).
 macro_rules! integer {
     ($ty:ty, $($f:ident).+) => {
         $crate::reference::Number::Scalar(|s| Some(s.$($f).+ as f64), |s, v| { s.$($f).+ = v.round() as $ty; true })
@@ -130,8 +131,7 @@ pub struct Field {
     pub symbol: &'static str,
     /// Unit ("" for counts, names and ratios).
     pub unit: &'static str,
-    /// The admissible values: a number's interval, which [`Field::check`] checks, or a
-    /// rule that code checks.
+    /// The admissible values: a number's interval, or a rule that code checks.
     pub range: Range,
     /// What the field means.
     pub meaning: &'static str,

@@ -1,5 +1,5 @@
 //! A field's admissible values as data: the bounds of a number, which the field table
-//! both prints (docs/scenes.md) and checks ([`Field::check`]), and the rules that only
+//! both prints (docs/scenes.md) and, for the scene's own tables, checks (`IntervalCheck`), and the rules that only
 //! code can check (names, lists, several fields at once) as prose.
 
 use super::{Field, Number};
@@ -150,6 +150,11 @@ impl Field {
         matches!(self.number, Some(Number::List(..)))
     }
 
+    /// Whether the field is one number (possibly left unset), a parameter by its key.
+    pub fn is_number(&self) -> bool {
+        matches!(self.number, Some(Number::Scalar(..) | Number::Optional(..)))
+    }
+
     /// The field's admissible values as the reference prints them: an optional number
     /// may also be left unset.
     pub fn admissible(&self) -> String {
@@ -177,49 +182,26 @@ impl Field {
     }
 }
 
-/// One number's interval, compact for the check of every evaluated design (the field
-/// table's entries are large: their texts).
+/// One number's interval, as the per-design check reads it.
 #[derive(Clone, Copy)]
 pub(crate) struct IntervalCheck {
     /// The scene table's index in [`super::TABLES`].
     pub(crate) table: usize,
     field: &'static Field,
     number: Number,
-    low: f64,
-    high: f64,
-    low_included: bool,
-    high_included: bool,
 }
 
 impl IntervalCheck {
     /// The interval of `field`, if it is a number with one.
     fn new(table: usize, field: &'static Field) -> Option<Self> {
-        let (Range::Interval { low, high, .. }, Some(number)) = (field.range, field.number) else {
+        let (Range::Interval { .. }, Some(number)) = (field.range, field.number) else {
             return None;
         };
-        let end = |b: Bound, unbounded: f64| match b {
-            Bound::Unbounded => (unbounded, true),
-            Bound::Included(x) => (x, true),
-            Bound::Excluded(x) => (x, false),
-        };
-        let ((low, low_included), (high, high_included)) =
-            (end(low, f64::NEG_INFINITY), end(high, f64::INFINITY));
         Some(Self {
             table,
             field,
             number,
-            low,
-            high,
-            low_included,
-            high_included,
         })
-    }
-
-    #[inline]
-    fn admits(&self, v: f64) -> bool {
-        v.is_finite()
-            && (v > self.low || self.low_included && v == self.low)
-            && (v < self.high || self.high_included && v == self.high)
     }
 
     /// Checks the field's value in `scene` (each element of a list), naming it (a list's
@@ -227,14 +209,15 @@ impl IntervalCheck {
     /// optional field left unset pass.
     #[inline]
     pub(crate) fn check(&self, scene: &Scene) -> Result<()> {
+        let range = &self.field.range;
         match self.number {
             Number::Scalar(get, _) | Number::Optional(get, _) => match get(scene) {
-                Some(v) if !self.admits(v) => Err(self.field.refuse(None, v)),
+                Some(v) if !range.admits(v) => Err(self.field.refuse(None, v)),
                 _ => Ok(()),
             },
             Number::List(get, _) => {
                 let list = get(scene).unwrap_or_default();
-                match list.iter().position(|&v| !self.admits(v)) {
+                match list.iter().position(|&v| !range.admits(v)) {
                     Some(i) => Err(self.field.refuse(Some(i), list[i])),
                     None => Ok(()),
                 }
