@@ -211,7 +211,8 @@ pub(super) const FIELDS: &[Field] = &[
         symbol: "",
         unit: "",
         range: Range::from_to(2.0, 1e5),
-        meaning: "Segments per flank of the outline (docs/teeth.md).",
+        meaning: "Least segments per flank of the outline; more where the chord tolerance \
+                  needs them (docs/teeth.md).",
         refused: &["gear.teeth.flank_samples=1"],
         number: Some(integer!(usize, gear.teeth.flank_samples)),
     },
@@ -220,9 +221,19 @@ pub(super) const FIELDS: &[Field] = &[
         symbol: "",
         unit: "",
         range: Range::from_to(2.0, 1e5),
-        meaning: "Segments per root fillet.",
+        meaning: "Least segments per root fillet; more where the chord tolerance needs them.",
         refused: &["gear.teeth.fillet_samples=100001"],
         number: Some(integer!(usize, gear.teeth.fillet_samples)),
+    },
+    Field {
+        key: "gear.teeth.chord_tolerance_mm",
+        symbol: "",
+        unit: "mm",
+        range: Range::from_to(1e-6, 0.1),
+        meaning: "Largest distance of an outline chord (flank, fillet, root, tip) from the \
+                  generated curve: the outline's accuracy.",
+        refused: &["gear.teeth.chord_tolerance_mm=0"],
+        number: Some(real!(gear.teeth.chord_tolerance_mm)),
     },
     Field {
         key: "gear.teeth.mesh_steps_per_pitch",

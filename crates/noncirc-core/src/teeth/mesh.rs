@@ -17,7 +17,8 @@ use serde::Serialize;
 /// What the whole-cycle check found.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct MeshReport {
-    /// Rolling positions checked over one turn.
+    /// Rolling positions checked over one turn: the even steps and those of the search for
+    /// the deepest overlaps between them.
     pub positions: usize,
     /// Least signed distance between the tooth bodies over the turn (mm; negative: they
     /// overlap); the check's reach (0.05 m plus the backlash) if nothing comes closer.
@@ -37,12 +38,57 @@ pub struct MeshReport {
     pub contact_ratio_min_at_mm: f64,
 }
 
+/// Which side of the pair a flank faces across: driver right flanks face driven left
+/// flanks (0), driver left flanks face driven right flanks (1).
+fn pair_side(gear: usize, side: Side) -> usize {
+    match (gear, side) {
+        (0, Side::Right) | (1, Side::Left) => 0,
+        _ => 1,
+    }
+}
+
+/// Fractions of a chord probed next to the nearest flank probe: the bottom between
+/// probes is then found to a fifth of their spacing (a 25th of the quadratic error).
+const CHORD_PROBES: [f64; 4] = [0.2, 0.4, 0.6, 0.8];
+
+/// Local minima of the least clearance searched between the steps (the deepest first).
+const REFINED_MINIMA: usize = 3;
+
+/// Golden-section steps of each search: the bracket of two steps shrinks to `0.618^n` of
+/// itself (2e-4 of a pitch at two steps a pitch).
+const GOLDEN_STEPS: usize = 16;
+
+/// The minimum of `f` on `[lo, hi]` by golden section: where, the value, and the calls.
+fn golden_minimum(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> (f64, f64, usize) {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    for _ in 0..GOLDEN_STEPS {
+        if f1 <= f2 {
+            hi = x2;
+            (x2, f2) = (x1, f1);
+            x1 = hi - g * (hi - lo);
+            f1 = f(x1);
+        } else {
+            lo = x1;
+            (x1, f1) = (x2, f2);
+            x2 = lo + g * (hi - lo);
+            f2 = f(x2);
+        }
+    }
+    let (x, v) = if f1 <= f2 { (x1, f1) } else { (x2, f2) };
+    (x, v, GOLDEN_STEPS + 2)
+}
+
 /// Turns the pair through one turn in `teeth · steps_per_pitch + 1` equal steps and
 /// measures distances up to `reach` (mm). The one step more than a whole number per
 /// pitch shifts each tooth's phases by `1/(teeth · steps_per_pitch)` pitch from its
 /// neighbour's: each tooth is met `steps_per_pitch` times a pitch, and the teeth together
 /// sample the mesh cycle at `teeth · steps_per_pitch` phases (for a circle pair, whose
-/// teeth are alike, that is exactly the finer check).
+/// teeth are alike, that is exactly the finer check). Where the bodies overlap by more
+/// than `tolerance` (mm, the outlines' chord tolerance), the deepest overlaps are then
+/// searched between the steps, and so are the backlash's extremes where its range is wider
+/// than four tolerances.
 pub(super) fn check(
     track: &PairTrack,
     gears: &[ToothedGear; 2],
@@ -50,15 +96,13 @@ pub(super) fn check(
     reach: f64,
     sin_cos: (f64, f64),
     steps_per_pitch: usize,
+    tolerance: f64,
 ) -> MeshReport {
     let teeth = gears[0].teeth.len();
     let a = track.centre_distance();
-    let positions = teeth * steps_per_pitch + 1;
-    let step = pitch * teeth as f64 / positions as f64;
-    let mut least = (reach, 0.0);
-    let mut backlash = (f64::INFINITY, f64::NEG_INFINITY);
-    for k in 0..positions {
-        let s = step * k as f64;
+    // The least signed distance between the bodies at rolling position `s` (mm), and the
+    // gap on each side (driver right flanks face driven left flanks, and the other way).
+    let at = |s: f64| -> (f64, [f64; 2]) {
         let psi = track.psi_at(s);
         let chi = track.driven_angle(psi);
         let (e1, e2) = (unit(psi), unit(psi + std::f64::consts::PI - chi));
@@ -68,42 +112,131 @@ pub(super) fn check(
         let e2_inv = Vec2::new(e2.x, -e2.y);
         let to_driver = (e2, centre2);
         let to_driven = (e2_inv, -centre2.rotated(e2_inv));
-        // Per side: driver right flanks face driven left flanks (gap A), driver left
-        // flanks face driven right flanks (gap B).
+        let mut least = reach;
         let mut gap = [f64::INFINITY; 2];
         let mut visit = |g: usize, (turn, shift): (Vec2, Vec2), other: &OutlineGrid| {
             let gear = &gears[g];
             let phase = if g == 0 { 0.0 } else { 0.5 };
             let centre_tooth = (s / pitch - phase).round() as i64;
+            let distance = |p: Vec2| {
+                other
+                    .signed_distance(p.rotated(turn) + shift)
+                    .filter(|&d| d < reach)
+            };
+            // The nearest flank probe on each side of the pair: (distance, probe index).
+            let mut nearest = [(f64::INFINITY, 0); 2];
             for dj in -1..=1 {
                 let j = (centre_tooth + dj).rem_euclid(teeth as i64) as usize;
                 let (start, end) = gear.tooth_probes[j];
-                for probe in &gear.probes[start..end] {
-                    let Some(d) = other.signed_distance(probe.point.rotated(turn) + shift) else {
+                for (k, probe) in gear.probes.iter().enumerate().take(end).skip(start) {
+                    let Some(d) = distance(probe.point) else {
                         continue;
                     };
-                    if d >= reach {
-                        continue;
-                    }
-                    if d < least.0 {
-                        least = (d, s);
-                    }
+                    least = least.min(d);
                     if let Some(side) = probe.side {
-                        let pair_side = match (g, side) {
-                            (0, Side::Right) | (1, Side::Left) => 0,
-                            _ => 1,
-                        };
-                        gap[pair_side] = gap[pair_side].min(d);
+                        let pair_side = pair_side(g, side);
+                        if d < nearest[pair_side].0 {
+                            nearest[pair_side] = (d, k);
+                        }
                     }
                 }
+            }
+            // Two flanks near contact part quadratically along the flank, so the nearest
+            // probe can be farther than the bottom between probes: the chords either side
+            // of it are probed at a few points too (the chords lie within the chord
+            // tolerance of the flank).
+            for (pair_side, &(d, k)) in nearest.iter().enumerate() {
+                if !d.is_finite() {
+                    continue;
+                }
+                let side = gear.probes[k].side;
+                let mut bottom = d;
+                for n in [k.wrapping_sub(1), k + 1] {
+                    let Some(q) = gear.probes.get(n).filter(|q| q.side == side) else {
+                        continue;
+                    };
+                    let p = gear.probes[k].point;
+                    for f in CHORD_PROBES {
+                        if let Some(e) = distance(p + (q.point - p) * f) {
+                            bottom = bottom.min(e);
+                        }
+                    }
+                }
+                least = least.min(bottom);
+                gap[pair_side] = gap[pair_side].min(bottom);
             }
         };
         visit(1, to_driver, &gears[0].grid);
         visit(0, to_driven, &gears[1].grid);
+        (least, gap)
+    };
+    let positions = teeth * steps_per_pitch + 1;
+    let step = pitch * teeth as f64 / positions as f64;
+    // The normal backlash at a position: the two sides' gaps added (NaN where a side is
+    // out of reach).
+    let total = |gap: [f64; 2]| {
         if gap.iter().all(|g| g.is_finite()) {
-            let total = gap[0] + gap[1];
-            backlash = (backlash.0.min(total), backlash.1.max(total));
+            gap[0] + gap[1]
+        } else {
+            f64::NAN
         }
+    };
+    let (mut lows, mut totals) = (Vec::with_capacity(positions), Vec::with_capacity(positions));
+    for k in 0..positions {
+        let (low, gap) = at(step * k as f64);
+        lows.push(low);
+        totals.push(total(gap));
+    }
+    let extreme = |values: &[f64], sign: f64| {
+        (0..positions)
+            .filter(|&k| !values[k].is_nan())
+            .min_by(|&i, &j| (sign * values[i]).total_cmp(&(sign * values[j])))
+    };
+    let k_least = extreme(&lows, 1.0).unwrap_or(0);
+    let mut least = (lows[k_least], step * k_least as f64);
+    let mut evaluated = positions;
+    // An overlap is deepest between positions: the deepest few local minima are searched
+    // for their bottom (golden section over the steps either side), so its depth does not
+    // depend on where the steps fall.
+    let mut minima: Vec<usize> = (0..positions)
+        .filter(|&k| {
+            let (before, after) = ((k + positions - 1) % positions, (k + 1) % positions);
+            lows[k] < -tolerance && lows[k] <= lows[before] && lows[k] <= lows[after]
+        })
+        .collect();
+    minima.sort_by(|&i, &j| lows[i].total_cmp(&lows[j]));
+    for &k in minima.iter().take(REFINED_MINIMA) {
+        let s = step * k as f64;
+        let (bottom, value, calls) = golden_minimum(|x| at(x).0, s - step, s + step);
+        evaluated += calls;
+        if value < least.0 {
+            least = (value, bottom.rem_euclid(pitch * teeth as f64));
+        }
+    }
+    // The backlash's extremes, searched between the steps the same way where its range
+    // is wider than the measurement's own error (four chord tolerances).
+    let mut backlash = match (extreme(&totals, 1.0), extreme(&totals, -1.0)) {
+        (Some(lo), Some(hi)) => Some((totals[lo], totals[hi], lo, hi)),
+        _ => None,
+    };
+    if let Some((lo, hi, k_lo, k_hi)) = backlash.filter(|b| b.1 - b.0 > 4.0 * tolerance) {
+        let search = |k: usize, sign: f64| {
+            let s = step * k as f64;
+            let f = |x: f64| {
+                let t = sign * total(at(x).1);
+                if t.is_nan() {
+                    f64::INFINITY
+                } else {
+                    t
+                }
+            };
+            let (_, value, calls) = golden_minimum(f, s - step, s + step);
+            (sign * value, calls)
+        };
+        let (low, calls_lo) = search(k_lo, 1.0);
+        let (high, calls_hi) = search(k_hi, -1.0);
+        evaluated += calls_lo + calls_hi;
+        backlash = Some((lo.min(low), hi.max(high), k_lo, k_hi));
     }
     // Contact ratio per tooth pair and side, from the active flank heights.
     let (sin, cos) = sin_cos;
@@ -130,10 +263,10 @@ pub(super) fn check(
         }
     }
     MeshReport {
-        positions,
+        positions: evaluated,
         least_clearance_mm: least.0,
         least_clearance_at_mm: least.1,
-        backlash_mm: backlash.0.is_finite().then_some(backlash),
+        backlash_mm: backlash.map(|(lo, hi, _, _)| (lo, hi)),
         contact_ratio_min: ratio_min.0,
         contact_ratio_mean: ratio_sum / (2 * teeth) as f64,
         contact_ratio_min_at_mm: ratio_min.1,

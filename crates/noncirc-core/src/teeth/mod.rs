@@ -58,10 +58,13 @@ pub struct ToothSpec {
     /// opposite, so the centre distance stays.
     pub profile_shift: f64,
     pub cutter: Cutter,
-    /// Segments per flank of the outline (accuracy: see docs/teeth.md).
+    /// Least segments per flank of the outline; more where `chord_tolerance_mm` needs them
+    /// (accuracy: see docs/teeth.md).
     pub flank_samples: usize,
-    /// Segments per root fillet.
+    /// Least segments per root fillet; more where `chord_tolerance_mm` needs them.
     pub fillet_samples: usize,
+    /// Largest distance (mm) of an outline chord from the generated curve.
+    pub chord_tolerance_mm: f64,
     /// Mesh positions per pitch in the whole-cycle check (one more over the turn, so that
     /// the teeth together sample the mesh cycle `teeth` times as finely).
     pub mesh_steps_per_pitch: usize,
@@ -85,6 +88,7 @@ impl Default for ToothSpec {
             cutter: Cutter::Rack,
             flank_samples: 18,
             fillet_samples: 12,
+            chord_tolerance_mm: 0.001,
             mesh_steps_per_pitch: 2,
             arc_panels: 256,
             min_tip_land: 0.25,
@@ -125,6 +129,14 @@ impl ToothSpec {
                 name: "gear.teeth.min_tip_land".into(),
                 value: self.min_tip_land,
                 expected: "zero or more".into(),
+            });
+        }
+        let tol = self.chord_tolerance_mm;
+        if !(1e-6..=0.1).contains(&tol) {
+            return Err(Error::OutOfRange {
+                name: "gear.teeth.chord_tolerance_mm".into(),
+                value: tol,
+                expected: "from 1e-6 to 0.1 mm".into(),
             });
         }
         if !(self.backlash_mm >= 0.0 && self.backlash_mm.is_finite()) {
@@ -271,6 +283,8 @@ impl ToothedPair {
                 teeth: teeth as usize,
                 flank_samples: spec.flank_samples,
                 fillet_samples: spec.fillet_samples,
+                chord_tolerance: spec.chord_tolerance_mm,
+                module: m,
                 reach,
                 fillet_spacing: fillet_spacing.clone(),
                 name,
@@ -288,6 +302,7 @@ impl ToothedPair {
             reach,
             alpha.sin_cos(),
             spec.mesh_steps_per_pitch,
+            spec.chord_tolerance_mm,
         );
         let report = verdict(&track, &gears, &mesh, spec, teeth, m);
         Ok(Self {
@@ -425,7 +440,7 @@ fn verdict(
             mesh.least_clearance_at_mm,
             if concave_near {
                 ", by a concave arc: the mate's tips reach deeper into the root than the \
-                 cutter did (a deeper root, gear.teeth.dedendum, reduces it)"
+                 cutter did"
             } else {
                 ""
             }

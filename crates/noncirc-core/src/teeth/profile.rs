@@ -17,7 +17,7 @@
 //! undercut, and the fillet then cuts across the flank.
 
 use super::cut_gear::{Probe, Side, Tooth, ToothedGear, Undercut};
-use super::polyline::OutlineGrid;
+use super::polyline::{segment_distance, OutlineGrid};
 use super::roots::{cube_root, regula_falsi};
 use super::tool::{Rounding, Tool};
 use super::track::{Frame, Member, PairTrack};
@@ -43,8 +43,13 @@ pub(super) struct Cut<'a> {
     /// Pitch arc of tooth 0's centre (mm).
     pub phase: f64,
     pub teeth: usize,
+    /// Least segments per flank and per fillet; more where the chord tolerance needs them.
     pub flank_samples: usize,
     pub fillet_samples: usize,
+    /// Largest distance (mm) of an outline chord from the generated curve.
+    pub chord_tolerance: f64,
+    /// Module (mm).
+    pub module: f64,
     /// Reach (mm) of the mesh check's distance queries to this gear.
     pub reach: f64,
     /// Fractions of the way along a fillet of its `fillet_samples + 1` points: even in the
@@ -165,16 +170,17 @@ impl Cut<'_> {
     }
 
     /// The flank crossing the pitch curve at `u0` on side `sigma`, from rolling position
-    /// `s0` to `s1`, in `flank_samples` chords of even sag. The flank advances
-    /// `f = sin α + σλκ` mm per mm of rolling and bends with radius `f/κ` (`κ` of the pitch
-    /// curve at `u0`), so a chord over `Δs` of rolling sags `fκΔs²/8`: even sag wants
-    /// `Δs ∝ f^(-1/2)`, even steps in `f^(3/2)` (`f` is linear in `s`). Uniform where `f`
-    /// is not positive at both ends or hardly changes.
+    /// `s0` to `s1`, in chords of even sag. The flank advances `f = sin α + σλκ` mm per mm
+    /// of rolling and bends with radius `f/κ` (`κ` of the pitch curve at `u0`), so a chord
+    /// over `Δs` of rolling sags `fκΔs²/8`: even sag wants `Δs ∝ f^(-1/2)`, even steps in
+    /// `f^(3/2)` (`f` is linear in `s`). Uniform where `f` is not positive at both ends or
+    /// hardly changes. At least `flank_samples` chords, and as many as keep the sag within
+    /// the chord tolerance with the `sharpest` |κ| (1/mm) met over the flank's rolling.
     fn sample_flank(
         &self,
         u0: f64,
         sigma: f64,
-        kappa: f64,
+        (kappa, sharpest): (f64, f64),
         s0: f64,
         s1: f64,
     ) -> Vec<(f64, Frame, Vec2)> {
@@ -182,26 +188,72 @@ impl Cut<'_> {
         let f = |s: f64| t.sin + sigma * self.lambda(s, u0) * kappa;
         let (f0, f1) = (f(s0), f(s1));
         let piece = Piece::Flank { u0, sigma };
-        let n = self.flank_samples;
+        let tol = self.chord_tolerance;
         if f0 > 0.0 && f1 > 0.0 && (f1 - f0).abs() > 1e-6 * (f0 + f1) {
+            // Even steps `Δg` in `g = f^(3/2)` sag `Δg²/(18 κ cos²α)` each.
             let (g0, g1) = (f0 * f0.sqrt(), f1 * f1.sqrt());
+            let needed = (g1 - g0).abs() / (18.0 * sharpest * t.cos * t.cos * tol).sqrt();
+            let n = self.flank_samples.max(segments(needed));
             self.sample_spaced(piece, s0, s1, n, |k| {
                 let x = k as f64 / n as f64;
                 let g = g0 + x * (g1 - g0);
                 (cube_root(g * g) - f0) / (f1 - f0)
             })
         } else {
+            let bend = f0.abs().max(f1.abs()) * sharpest;
+            let n = self
+                .flank_samples
+                .max(segments((s1 - s0).abs() * (bend / (8.0 * tol)).sqrt()));
             self.sample(piece, s0, s1, n)
         }
     }
 
     /// The fillet from the root (`s0`) to `s1`, `fillet_samples` segments spaced evenly in
     /// the angle of the rounding's contact (exactly so for a rack, where `ψ` follows `s`
-    /// linearly over a fillet): uniform spacing would crowd them where the contact hardly
-    /// moves.
+    /// linearly over a fillet: uniform spacing would crowd them where the contact hardly
+    /// moves), each then halved until it is within the chord tolerance.
     fn sample_fillet(&self, piece: Piece, s0: f64, s1: f64) -> Vec<(f64, Frame, Vec2)> {
         let n = self.fillet_samples;
-        self.sample_spaced(piece, s0, s1, n, |k| self.fillet_spacing[k])
+        let points = self.sample_spaced(piece, s0, s1, n, |k| self.fillet_spacing[k]);
+        self.refine(piece, points, self.chord_tolerance)
+    }
+
+    /// Halves every segment of `points` (samples of `piece` in order) whose midpoint in
+    /// rolling lies farther than `tol` (mm) from its chord, until none does or a segment
+    /// has been halved [`MAX_HALVINGS`] times (at a cusp).
+    fn refine(
+        &self,
+        piece: Piece,
+        points: Vec<(f64, Frame, Vec2)>,
+        tol: f64,
+    ) -> Vec<(f64, Frame, Vec2)> {
+        let mut out = Vec::with_capacity(points.len());
+        out.extend(points.first().copied());
+        for pair in points.windows(2) {
+            self.halve(piece, pair[0], pair[1], tol, 0, &mut out);
+        }
+        out
+    }
+
+    /// Pushes `b`, after the points halving `a→b` needs (see [`Self::refine`]).
+    fn halve(
+        &self,
+        piece: Piece,
+        a: (f64, Frame, Vec2),
+        b: (f64, Frame, Vec2),
+        tol: f64,
+        depth: u32,
+        out: &mut Vec<(f64, Frame, Vec2)>,
+    ) {
+        let s = 0.5 * (a.0 + b.0);
+        let f = self.frame(s);
+        let mid = (s, f, self.point(piece, s, &f));
+        if depth < MAX_HALVINGS && segment_distance(mid.2, a.2, b.2) > tol {
+            self.halve(piece, a, mid, tol, depth + 1, out);
+            self.halve(piece, mid, b, tol, depth + 1, out);
+        } else {
+            out.push(b);
+        }
     }
 
     /// Newton on `F(a) = G(b)` from the rolling positions `(a, b)` (mm), stepping in the
@@ -235,6 +287,17 @@ impl Cut<'_> {
             }
         }
         None
+    }
+
+    /// Segments (at least `least`) of the offset of the pitch curve at `height` (mm) from
+    /// rolling position `s0` to `s1` within the chord tolerance: a chord over `Δs` of
+    /// rolling sags `(1 + hκ)κΔs²/8`.
+    fn offset_segments(&self, least: usize, height: f64, s0: f64, s1: f64) -> usize {
+        let kappa = self.frame(0.5 * (s0 + s1)).curvature;
+        let bend = ((1.0 + height * kappa) * kappa).abs();
+        least.max(segments(
+            (s1 - s0).abs() * (bend / (8.0 * self.chord_tolerance)).sqrt(),
+        ))
     }
 
     fn fail(&self, tooth: usize, s: f64, why: String) -> Error {
@@ -276,7 +339,12 @@ impl Cut<'_> {
         })?;
         let factor = |s: f64, f: &Frame| t.sin + sigma * self.lambda(s, u0) * f.curvature;
         let kappa = self.frame(u0).curvature;
-        let flank_pts = self.sample_flank(u0, sigma, kappa, form, s_tip);
+        // The flank bends with the pitch curve where it is generated: the sharpest bend
+        // over its rolling sets the count of samples.
+        let sharpest = [form, s_tip]
+            .into_iter()
+            .fold(kappa.abs(), |a, s| a.max(self.frame(s).curvature.abs()));
+        let flank_pts = self.sample_flank(u0, sigma, (kappa, sharpest), form, s_tip);
         let fillet_pts = self.sample_fillet(fillet, root_end, form);
         // Where the flank is singular (a cusp of the envelope). A singular stretch at the
         // flank's foot is undercut: the fillet then cuts across the regular flank above
@@ -320,34 +388,25 @@ impl Cut<'_> {
                 // The fillet continues the flank's lower branch (form point to cusp); the
                 // regular branch rises from the cusp. Where the two first meet again, seen
                 // from the tip, the cut flank starts.
-                let lower = self.sample(flank, form, cusp, 8);
-                let regular = self.sample(flank, cusp, s_tip, UNDERCUT_SEARCH_SAMPLES);
+                let tol = SEARCH_TOLERANCE_MODULES * self.module;
+                let lower = self.refine(flank, self.sample(flank, form, cusp, 8), tol);
+                let regular = self.refine(
+                    flank,
+                    self.sample(flank, cusp, s_tip, UNDERCUT_SEARCH_SAMPLES),
+                    tol,
+                );
+                let fine_fillet = self.refine(fillet, fillet_pts.clone(), tol);
                 let chain: Vec<(Piece, f64, Vec2)> =
-                    (fillet_pts.iter().map(|x| (fillet, x.0, x.2)))
+                    (fine_fillet.iter().map(|x| (fillet, x.0, x.2)))
                         .chain(lower.iter().skip(1).map(|x| (flank, x.0, x.2)))
                         .collect();
-                let mut found = last_crossing(&chain, &regular, true);
-                if found.is_none() {
-                    // A shallow undercut crosses within the first chords: look closer.
-                    let reach = (cusp - form) * 8.0;
-                    let end = if reach.abs() < (s_tip - cusp).abs() {
-                        cusp + reach
-                    } else {
-                        s_tip
-                    };
-                    let n = CLOSE_UP_SAMPLES;
-                    let lower: Vec<(Piece, f64, Vec2)> = (self.sample(flank, form, cusp, n))
-                        .into_iter()
-                        .map(|x| (flank, x.0, x.2))
-                        .collect();
-                    found = last_crossing(&lower, &self.sample(flank, cusp, end, n), true);
-                }
+                let found = last_crossing(&chain, &regular, true);
                 let converged = found.and_then(|(piece, sa, sb)| {
                     let (sa, sb, _) = self.meet(piece, flank, sa, sb)?;
                     ((sb - cusp) * (s_tip - cusp) > 0.0).then_some((piece, sa, sb))
                 });
-                // No crossing even close up: the swallowtail is thinner than its samples
-                // resolve, and the fillet meets the regular flank at the cusp.
+                // No crossing at the search tolerance: the swallowtail is thinner than that,
+                // and the fillet meets the regular flank at the cusp.
                 let (piece, sa, sb) = converged.unwrap_or((fillet, form, cusp));
                 let start_height = sigma * self.lambda(sb, u0) * t.sin;
                 let undercut = Undercut {
@@ -360,13 +419,15 @@ impl Cut<'_> {
                     Piece::Fillet { .. } => self.sample_fillet(fillet, root_end, sa),
                     _ => {
                         let mut pts = fillet_pts;
-                        pts.extend(self.sample(flank, form, sa, 4).into_iter().skip(1));
+                        let lower = self.sample(flank, form, sa, 4);
+                        let lower = self.refine(flank, lower, self.chord_tolerance);
+                        pts.extend(lower.into_iter().skip(1));
                         pts
                     }
                 };
                 (
                     kept,
-                    self.sample_flank(u0, sigma, kappa, sb, s_tip),
+                    self.sample_flank(u0, sigma, (kappa, sharpest), sb, s_tip),
                     Some(undercut),
                     sb,
                 )
@@ -443,7 +504,7 @@ impl Cut<'_> {
                 let b = right_pts.last().copied().unwrap_or_default();
                 tooth.tip_land_mm = (b - a).hypot();
                 let tip = Piece::Offset { height: t.tip };
-                let n = 4;
+                let n = self.offset_segments(4, t.tip, left.tip_param, right.tip_param);
                 for k in 1..n {
                     let w =
                         left.tip_param + (right.tip_param - left.tip_param) * k as f64 / n as f64;
@@ -510,8 +571,9 @@ impl Cut<'_> {
             );
             if s1 > s0 {
                 let root = Piece::Offset { height: t.root };
-                for k in 1..3 {
-                    let s = s0 + (s1 - s0) * k as f64 / 3.0;
+                let n = self.offset_segments(3, t.root, s0, s1);
+                for k in 1..n {
+                    let s = s0 + (s1 - s0) * k as f64 / n as f64;
                     let f = self.frame(s);
                     if 1.0 + t.root * f.curvature <= 0.0 {
                         return Err(self.fail(j, s, format!(
@@ -573,14 +635,26 @@ impl Cut<'_> {
     }
 }
 
-/// Segments of the regular flank in the search for the fillet's crossing: enough to find
-/// the segment it crosses ([`Cut::meet`] then refines it; a crossing too shallow for them
-/// gets the close look).
+/// Most halvings of one segment in [`Cut::refine`] (a cusp would take them without end).
+const MAX_HALVINGS: u32 = 10;
+
+/// Chord tolerance (× m) of the polylines searched for the fillet's crossing of an undercut
+/// flank: the two curves meet at a small angle, so a coarse polyline can miss the crossing
+/// nearest the tip and pick a lower one.
+const SEARCH_TOLERANCE_MODULES: f64 = 1e-4;
+
+/// Segments of the regular flank in the search for the fillet's crossing before they are
+/// halved to [`SEARCH_TOLERANCE_MODULES`] ([`Cut::meet`] then refines the crossing).
 const UNDERCUT_SEARCH_SAMPLES: usize = 8;
 
-/// Segments of each branch in the close look at a shallow undercut's crossing: enough to
-/// start Newton ([`Cut::meet`]) inside its basin.
-const CLOSE_UP_SAMPLES: usize = 24;
+/// Segments for `x` (a positive estimate; at most 100 000).
+fn segments(x: f64) -> usize {
+    if x.is_finite() {
+        x.ceil().clamp(1.0, 100_000.0) as usize
+    } else {
+        100_000
+    }
+}
 
 /// The crossing of polyline `a` (points tagged with their piece and parameter) with the
 /// polyline `b` nearest `b`'s end, as the piece and the two parameters (interpolated);
