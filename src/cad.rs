@@ -1,9 +1,9 @@
 //! CAD output of closed outlines: lines and arcs fitted to a tolerance, written as DXF
-//! (R12, millimetres, a layer table, closed polylines with bulges) and SVG.
+//! (R2000, millimetres, a layer table, closed LWPOLYLINEs with bulges) and SVG.
 //!
-//! Written by hand: the DXF R12 subset a CAD program needs here (a header, a layer table,
-//! POLYLINE with bulges, LINE, CIRCLE) is small and fixed, and the crates that write DXF
-//! bring far more than that for it.
+//! Written by hand: the DXF R2000 subset a CAD program needs here (a header with the
+//! unit, the required tables, blocks and root dictionary, LWPOLYLINE with bulges, LINE,
+//! CIRCLE) is small and fixed, and the crates that write DXF bring far more than that.
 
 use noncirc_core::{segment_distance, Vec2};
 use std::fmt::Write as _;
@@ -121,9 +121,11 @@ impl Placed<'_> {
     }
 }
 
-/// DXF R12 in millimetres: header (`$INSUNITS` = 4), a layer table, each outline a closed
-/// POLYLINE with bulges, each centre a cross of two LINEs and a small CIRCLE (layer
-/// `CENTRES`), and any closed polylines of points given (`extra`, e.g. pitch curves).
+/// DXF R2000 (AC1015) in millimetres: R12 would be shorter but defines no `$INSUNITS`, so a
+/// reader could not tell the unit. Each outline is one closed LWPOLYLINE with a bulge for
+/// each arc; each centre (mm) a cross of two LINEs `mark_size` (mm) from it each way and a
+/// CIRCLE of that diameter, on layer `CENTRES`; each of `extra` a closed LWPOLYLINE through
+/// its points (mm, e.g. pitch curves) on its layer. Coordinates to 1e-9 mm.
 pub fn dxf(
     outlines: &[Placed],
     marks: &[Vec2],
@@ -143,72 +145,342 @@ pub fn dxf(
             layers.push(l);
         }
     }
-    let mut s = String::new();
-    s += "0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\nAC1009\n9\n$INSUNITS\n70\n4\n9\n$MEASUREMENT\n70\n1\n0\nENDSEC\n";
-    let _ = write!(
-        s,
-        "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n70\n{}\n",
+    // The fixed records take handles 1 to 18 (`FRAME_*`); the layers and entities follow.
+    let mut next = 0x20;
+    let mut layer_table = format!(
+        "0 TABLE\n2 LAYER\n5 9\n330 0\n100 AcDbSymbolTable\n70 {}\n",
         layers.len()
     );
     for (k, l) in layers.iter().enumerate() {
         let _ = write!(
-            s,
-            "0\nLAYER\n2\n{l}\n70\n0\n62\n{}\n6\nCONTINUOUS\n",
+            layer_table,
+            "0 LAYER\n5 {next:X}\n330 9\n100 AcDbSymbolTableRecord\n100 AcDbLayerTableRecord\n\
+             2 {l}\n70 0\n62 {}\n6 Continuous\n",
             1 + k % 7
         );
+        next += 1;
     }
-    s += "0\nENDTAB\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n";
+    let mut entities = String::new();
     for o in outlines {
-        let _ = write!(
-            s,
-            "0\nPOLYLINE\n8\n{}\n66\n1\n70\n1\n10\n0.0\n20\n0.0\n30\n0.0\n",
-            o.layer
-        );
-        for p in o.pieces {
-            let q = o.point(p.start);
-            let _ = write!(
-                s,
-                "0\nVERTEX\n8\n{}\n10\n{:.9}\n20\n{:.9}\n30\n0.0\n",
-                o.layer, q.x, q.y
-            );
-            if p.bulge != 0.0 {
-                let _ = write!(s, "42\n{:.12}\n", p.bulge);
-            }
-        }
-        let _ = write!(s, "0\nSEQEND\n8\n{}\n", o.layer);
+        let vertices = o.pieces.iter().map(|p| (o.point(p.start), p.bulge));
+        lwpolyline(&mut entities, &mut next, o.layer, vertices);
     }
     for c in marks {
         for (dx, dy) in [(mark_size, 0.0), (0.0, mark_size)] {
+            entity(&mut entities, &mut next, "LINE", "CENTRES", "AcDbLine");
             let _ = write!(
-                s,
-                "0\nLINE\n8\nCENTRES\n10\n{:.9}\n20\n{:.9}\n30\n0.0\n11\n{:.9}\n21\n{:.9}\n31\n0.0\n",
-                c.x - dx, c.y - dy, c.x + dx, c.y + dy
+                entities,
+                "10 {:.9}\n20 {:.9}\n30 0.0\n11 {:.9}\n21 {:.9}\n31 0.0\n",
+                c.x - dx,
+                c.y - dy,
+                c.x + dx,
+                c.y + dy
             );
         }
+        entity(&mut entities, &mut next, "CIRCLE", "CENTRES", "AcDbCircle");
         let _ = write!(
-            s,
-            "0\nCIRCLE\n8\nCENTRES\n10\n{:.9}\n20\n{:.9}\n30\n0.0\n40\n{:.9}\n",
+            entities,
+            "10 {:.9}\n20 {:.9}\n30 0.0\n40 {:.9}\n",
             c.x,
             c.y,
             0.5 * mark_size
         );
     }
     for (layer, points) in extra {
-        let _ = write!(
-            s,
-            "0\nPOLYLINE\n8\n{layer}\n66\n1\n70\n1\n10\n0.0\n20\n0.0\n30\n0.0\n"
+        lwpolyline(
+            &mut entities,
+            &mut next,
+            layer,
+            points.iter().map(|&p| (p, 0.0)),
         );
-        for p in points {
-            let _ = write!(
-                s,
-                "0\nVERTEX\n8\n{layer}\n10\n{:.9}\n20\n{:.9}\n30\n0.0\n",
-                p.x, p.y
-            );
-        }
-        let _ = write!(s, "0\nSEQEND\n8\n{layer}\n");
     }
-    s + "0\nENDSEC\n0\nEOF\n"
+    let header = format!(
+        "0 SECTION\n2 HEADER\n9 $ACADVER\n1 AC1015\n9 $HANDSEED\n5 {next:X}\n\
+         9 $INSUNITS\n70 4\n9 $MEASUREMENT\n70 1\n0 ENDSEC\n"
+    );
+    tags(&[
+        &header,
+        FRAME_TABLES,
+        &layer_table,
+        FRAME_BLOCKS,
+        &entities,
+        FRAME_OBJECTS,
+    ])
 }
+
+/// Starts an entity in model space: type, handle (`next`, then counted on), owner (the
+/// `*Model_Space` block record), layer, subclass.
+fn entity(s: &mut String, next: &mut u32, kind: &str, layer: &str, class: &str) {
+    let _ = write!(
+        s,
+        "0 {kind}\n5 {next:X}\n330 13\n100 AcDbEntity\n8 {layer}\n100 {class}\n"
+    );
+    *next += 1;
+}
+
+/// A closed LWPOLYLINE through `vertices` (mm), each with the bulge of the piece it starts
+/// (0: straight).
+fn lwpolyline(
+    s: &mut String,
+    next: &mut u32,
+    layer: &str,
+    vertices: impl ExactSizeIterator<Item = (Vec2, f64)>,
+) {
+    entity(s, next, "LWPOLYLINE", layer, "AcDbPolyline");
+    let _ = write!(s, "90 {}\n70 1\n", vertices.len());
+    for (p, bulge) in vertices {
+        let _ = write!(s, "10 {:.9}\n20 {:.9}\n", p.x, p.y);
+        if bulge != 0.0 {
+            let _ = writeln!(s, "42 {bulge:.12}");
+        }
+    }
+}
+
+/// DXF text from "code value" lines (leading spaces ignored): each a group code on one
+/// line and its value on the next.
+fn tags(parts: &[&str]) -> String {
+    let mut s = String::new();
+    for line in parts.iter().flat_map(|p| p.lines()) {
+        let line = line.trim_start();
+        let (code, value) = line.split_once(' ').unwrap_or((line, ""));
+        let _ = write!(s, "{code}\n{value}\n");
+    }
+    s
+}
+
+// The fixed part of the file, one "code value" tag a line, handles in hex. Required for
+// R2000 (ezdxf's "DXF internals": minimal DXF content): the CLASSES section (empty), the
+// tables VPORT (*Active), LTYPE (ByBlock, ByLayer, Continuous), LAYER (0 and the
+// drawing's), STYLE (Standard), VIEW, UCS, APPID (ACAD), DIMSTYLE (Standard) and
+// BLOCK_RECORD (*Model_Space 13, *Paper_Space 14), their two blocks, and the root
+// dictionary (1) with ACAD_GROUP (2). Each record names its owner (330); tables, 0.
+
+/// CLASSES, then TABLES up to the LAYER table.
+const FRAME_TABLES: &str = "\
+0 SECTION
+2 CLASSES
+0 ENDSEC
+0 SECTION
+2 TABLES
+0 TABLE
+  2 VPORT
+  5 3
+  330 0
+  100 AcDbSymbolTable
+  70 1
+  0 VPORT
+    5 4
+    330 3
+    100 AcDbSymbolTableRecord
+    100 AcDbViewportTableRecord
+    2 *Active
+    70 0
+    10 0.0
+    20 0.0
+    11 1.0
+    21 1.0
+    12 0.0
+    22 0.0
+    16 0.0
+    26 0.0
+    36 1.0
+    40 200.0
+    41 1.5
+0 ENDTAB
+0 TABLE
+  2 LTYPE
+  5 5
+  330 0
+  100 AcDbSymbolTable
+  70 3
+  0 LTYPE
+    5 6
+    330 5
+    100 AcDbSymbolTableRecord
+    100 AcDbLinetypeTableRecord
+    2 ByBlock
+    70 0
+    3
+    72 65
+    73 0
+    40 0.0
+  0 LTYPE
+    5 7
+    330 5
+    100 AcDbSymbolTableRecord
+    100 AcDbLinetypeTableRecord
+    2 ByLayer
+    70 0
+    3
+    72 65
+    73 0
+    40 0.0
+  0 LTYPE
+    5 8
+    330 5
+    100 AcDbSymbolTableRecord
+    100 AcDbLinetypeTableRecord
+    2 Continuous
+    70 0
+    3 Solid line
+    72 65
+    73 0
+    40 0.0
+0 ENDTAB
+";
+
+/// The end of the LAYER table, the other tables, BLOCKS, and the start of ENTITIES.
+const FRAME_BLOCKS: &str = "\
+0 ENDTAB
+0 TABLE
+  2 STYLE
+  5 A
+  330 0
+  100 AcDbSymbolTable
+  70 1
+  0 STYLE
+    5 B
+    330 A
+    100 AcDbSymbolTableRecord
+    100 AcDbTextStyleTableRecord
+    2 Standard
+    70 0
+    40 0.0
+    41 1.0
+    50 0.0
+    71 0
+    42 2.5
+    3 txt
+    4
+0 ENDTAB
+0 TABLE
+  2 VIEW
+  5 C
+  330 0
+  100 AcDbSymbolTable
+  70 0
+0 ENDTAB
+0 TABLE
+  2 UCS
+  5 D
+  330 0
+  100 AcDbSymbolTable
+  70 0
+0 ENDTAB
+0 TABLE
+  2 APPID
+  5 E
+  330 0
+  100 AcDbSymbolTable
+  70 1
+  0 APPID
+    5 F
+    330 E
+    100 AcDbSymbolTableRecord
+    100 AcDbRegAppTableRecord
+    2 ACAD
+    70 0
+0 ENDTAB
+0 TABLE
+  2 DIMSTYLE
+  5 10
+  330 0
+  100 AcDbSymbolTable
+  70 1
+  100 AcDbDimStyleTable
+  0 DIMSTYLE
+    105 11
+    330 10
+    100 AcDbSymbolTableRecord
+    100 AcDbDimStyleTableRecord
+    2 Standard
+    70 0
+0 ENDTAB
+0 TABLE
+  2 BLOCK_RECORD
+  5 12
+  330 0
+  100 AcDbSymbolTable
+  70 2
+  0 BLOCK_RECORD
+    5 13
+    330 12
+    100 AcDbSymbolTableRecord
+    100 AcDbBlockTableRecord
+    2 *Model_Space
+  0 BLOCK_RECORD
+    5 14
+    330 12
+    100 AcDbSymbolTableRecord
+    100 AcDbBlockTableRecord
+    2 *Paper_Space
+0 ENDTAB
+0 ENDSEC
+0 SECTION
+2 BLOCKS
+0 BLOCK
+  5 15
+  330 13
+  100 AcDbEntity
+  8 0
+  100 AcDbBlockBegin
+  2 *Model_Space
+  70 0
+  10 0.0
+  20 0.0
+  30 0.0
+  3 *Model_Space
+  1
+0 ENDBLK
+  5 16
+  330 13
+  100 AcDbEntity
+  8 0
+  100 AcDbBlockEnd
+0 BLOCK
+  5 17
+  330 14
+  100 AcDbEntity
+  8 0
+  100 AcDbBlockBegin
+  2 *Paper_Space
+  70 0
+  10 0.0
+  20 0.0
+  30 0.0
+  3 *Paper_Space
+  1
+0 ENDBLK
+  5 18
+  330 14
+  100 AcDbEntity
+  8 0
+  100 AcDbBlockEnd
+0 ENDSEC
+0 SECTION
+2 ENTITIES
+";
+
+/// The end of ENTITIES and OBJECTS: the root dictionary and its empty ACAD_GROUP.
+const FRAME_OBJECTS: &str = "\
+0 ENDSEC
+0 SECTION
+2 OBJECTS
+0 DICTIONARY
+  5 1
+  330 0
+  100 AcDbDictionary
+  281 1
+  3 ACAD_GROUP
+  350 2
+0 DICTIONARY
+  5 2
+  330 1
+  100 AcDbDictionary
+  281 1
+0 ENDSEC
+0 EOF
+";
 
 /// SVG in mm (y up as in the model), each outline a closed path of lines and arcs.
 pub fn svg(outlines: &[Placed], marks: &[Vec2]) -> String {
@@ -291,5 +563,71 @@ mod tests {
         let pieces = fit(&pts, &[0, 10, 20, 30], 1e-9);
         assert_eq!(pieces.len(), 4);
         assert!(pieces.iter().all(|p| p.bulge == 0.0));
+    }
+
+    #[test]
+    fn the_dxf_is_r2000_in_mm_with_its_handles_owners_and_closed_lwpolylines() {
+        // A half disc (a line, then a half turn counter-clockwise: bulge 1), a centre mark
+        // and a triangle of points.
+        let pieces = [
+            Piece {
+                start: Vec2::new(-10.0, 0.0),
+                bulge: 0.0,
+            },
+            Piece {
+                start: Vec2::new(10.0, 0.0),
+                bulge: 1.0,
+            },
+        ];
+        let placed = [Placed {
+            layer: "DRIVER",
+            pieces: &pieces,
+            centre: Vec2::ZERO,
+            angle: 0.0,
+        }];
+        let triangle = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(0.0, 1.0),
+        ];
+        let text = dxf(&placed, &[Vec2::ZERO], 1.0, &[("PITCH", triangle)]);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len() % 2, 0);
+        let tags: Vec<(i32, &str)> = lines
+            .chunks(2)
+            .map(|t| (t[0].parse().unwrap(), t[1]))
+            .collect();
+        let header = |name: &str| tags[tags.iter().position(|&t| t == (9, name)).unwrap() + 1].1;
+        assert_eq!(header("$ACADVER"), "AC1015");
+        assert_eq!(header("$INSUNITS"), "4");
+        assert_eq!(tags.last(), Some(&(0, "EOF")));
+        // Handles (5, DIMSTYLE's 105) unique and below $HANDSEED; every owner (330) exists.
+        let hex = |h: &str| u32::from_str_radix(h, 16).unwrap();
+        let seed = hex(header("$HANDSEED"));
+        let body = &tags[tags.iter().position(|&t| t == (0, "ENDSEC")).unwrap()..];
+        let mut handles: Vec<u32> = body
+            .iter()
+            .filter(|t| t.0 == 5 || t.0 == 105)
+            .map(|t| hex(t.1))
+            .collect();
+        assert!(handles.iter().all(|&h| 0 < h && h < seed));
+        for t in body.iter().filter(|t| t.0 == 330) {
+            assert!(t.1 == "0" || handles.contains(&hex(t.1)), "owner {}", t.1);
+        }
+        let n = handles.len();
+        handles.sort_unstable();
+        handles.dedup();
+        assert_eq!(handles.len(), n);
+        // The outline and the triangle: each a closed LWPOLYLINE of its vertices.
+        let polylines: Vec<&[(i32, &str)]> = (0..body.len())
+            .filter(|&i| body[i] == (0, "LWPOLYLINE"))
+            .map(|i| &body[i..])
+            .collect();
+        assert_eq!(polylines.len(), 2);
+        for (p, (layer, count)) in polylines.iter().zip([("DRIVER", "2"), ("PITCH", "3")]) {
+            let value = |code: i32| p.iter().find(|t| t.0 == code).unwrap().1;
+            assert_eq!([value(8), value(90), value(70)], [layer, count, "1"]);
+        }
+        assert!(tags.contains(&(42, "1.000000000000")));
     }
 }

@@ -68,8 +68,8 @@ pub fn pitch_points(track: &PairTrack, psi0: f64, tol: f64) -> [Vec<Vec2>; 2] {
     [driver, driven]
 }
 
-/// DXF R12 in millimetres (header, layer table), one closed POLYLINE per outline on a
-/// layer of its name.
+/// DXF R2000 in millimetres (header with `$INSUNITS`, layer table), one closed LWPOLYLINE
+/// per outline on a layer of its name.
 pub fn dxf(outlines: &[Outline]) -> String {
     let polylines: Vec<(&str, Vec<Vec2>)> = outlines
         .iter()

@@ -2,7 +2,8 @@
 //! angle, and the manufacturing exports.
 
 use noncirc_core::{
-    GearPair, Kinematics, Member, ModuleReading, Scene, SceneKind, TeethReport, ToothedPair, Vec2,
+    Cutter, GearPair, Kinematics, Member, ModuleReading, PairTrack, PitchCurve, Scene, SceneKind,
+    TeethReport, ToothSpec, ToothedPair, Vec2,
 };
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -43,51 +44,24 @@ pub struct TeethSummary<'a> {
     pub carrier_deg: Option<f64>,
     pub checks: &'a TeethReport,
     pub layout: &'a [PlacedGear],
+    /// Other settings tried when a check fails ([`Advice::for_scene`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub advice: Option<Advice>,
 }
 
 impl TeethRun {
     /// Cuts the scene's gears (`gear.module.teeth`, or the module rule's tooth count) and
     /// assembles them at carrier angle `carrier_deg` (three-arm scenes).
     pub fn from_scene(scene: &Scene, carrier_deg: f64) -> Result<Self> {
-        scene.validate()?;
-        let curve = scene.gear.curve.build()?;
-        let rule = &scene.gear.module;
-        let train = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
-        let kin = if train {
-            Some(Kinematics::solve(&curve, &scene.train, &scene.resolution)?)
-        } else {
-            None
-        };
-        let solved;
-        let pair: &GearPair = match &kin {
-            Some(k) => k.pair(),
-            None => {
-                solved = GearPair::solve(curve.clone(), scene.resolution)?;
-                &solved
-            }
-        };
-        let (teeth, count_from) = match rule.teeth {
-            Some(z) => (z, "gear.module.teeth"),
-            None => {
-                let m = pair.module(rule);
-                if m.teeth == 0 {
-                    return Err(noncirc_core::Error::Infeasible(
-                        "no tooth count: the module rule admits no module for this curve; set gear.module.teeth".into(),
-                    )
-                    .into());
-                }
-                (
-                    m.teeth,
-                    match rule.rule {
-                        ModuleReading::Undercut => {
-                            "the largest undercut-free module (gear.module.rule = \"undercut\")"
-                        }
-                        _ => "gear.module.teeth",
-                    },
-                )
-            }
-        };
-        let toothed = ToothedPair::cut(&curve, pair.centre_distance(), teeth, &scene.gear.teeth)?;
+        let Prepared {
+            curve,
+            centre_distance,
+            teeth,
+            count_from,
+            kin,
+        } = Prepared::from_scene(scene)?;
+        let train = kin.is_some();
+        let toothed = ToothedPair::cut(&curve, centre_distance, teeth, &scene.gear.teeth)?;
         let a = toothed.track.centre_distance();
         let layout = match &kin {
             None => vec![
@@ -120,6 +94,7 @@ impl TeethRun {
             carrier_deg: self.carrier_deg,
             checks: &self.pair.report,
             layout: &self.layout,
+            advice: None,
         }
     }
 
@@ -241,6 +216,195 @@ impl TeethRun {
                 g.outline().len(),
             )
         })
+    }
+}
+
+/// What cutting a scene's teeth starts from: the sun's pitch curve, the centre distance,
+/// the tooth count and where it came from, and the train's kinematics (three-arm scenes).
+struct Prepared {
+    curve: PitchCurve,
+    centre_distance: f64,
+    teeth: u32,
+    count_from: &'static str,
+    kin: Option<Kinematics>,
+}
+
+impl Prepared {
+    fn from_scene(scene: &Scene) -> Result<Self> {
+        scene.validate()?;
+        let curve = scene.gear.curve.build()?;
+        let rule = &scene.gear.module;
+        let train = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
+        let kin = if train {
+            Some(Kinematics::solve(&curve, &scene.train, &scene.resolution)?)
+        } else {
+            None
+        };
+        let solved;
+        let pair: &GearPair = match &kin {
+            Some(k) => k.pair(),
+            None => {
+                solved = GearPair::solve(curve.clone(), scene.resolution)?;
+                &solved
+            }
+        };
+        let (teeth, count_from) = match rule.teeth {
+            Some(z) => (z, "gear.module.teeth"),
+            None => {
+                let m = pair.module(rule);
+                if m.teeth == 0 {
+                    return Err(noncirc_core::Error::Infeasible(
+                        "no tooth count: the module rule admits no module for this curve; set gear.module.teeth".into(),
+                    )
+                    .into());
+                }
+                (
+                    m.teeth,
+                    match rule.rule {
+                        ModuleReading::Undercut => {
+                            "the largest undercut-free module (gear.module.rule = \"undercut\")"
+                        }
+                        _ => "gear.module.teeth",
+                    },
+                )
+            }
+        };
+        let centre_distance = pair.centre_distance();
+        Ok(Self {
+            curve,
+            centre_distance,
+            teeth,
+            count_from,
+            kin,
+        })
+    }
+}
+
+/// Other cutters, tip roundings and root depths tried on a scene whose teeth fail, each
+/// with what it gave: advice that has been tried.
+#[derive(Debug, Clone, Serialize)]
+pub struct Advice {
+    /// Every setting tried, the scene's own first changed least.
+    pub tried: Vec<Trial>,
+    /// The first trial that passes every check, if one does.
+    pub passes: Option<usize>,
+}
+
+/// One setting tried: its `--set` assignments and its verdict.
+#[derive(Debug, Clone, Serialize)]
+pub struct Trial {
+    pub set: Vec<String>,
+    /// Empty if every check passes; the refusal or the failed checks otherwise.
+    pub failures: Vec<String>,
+}
+
+impl Advice {
+    /// Tries the cutters that fit the pitch curve's concave arcs (a shaper's pitch radius
+    /// below their least radius of curvature; the rack and shapers of 40, 20 and 12 teeth
+    /// if it has none), tip roundings of 0.25 and 0.1 m and a root 0.25 m deeper, alone and
+    /// together: about forty cuts of a millisecond or a few.
+    pub fn for_scene(scene: &Scene) -> Result<Self> {
+        let p = Prepared::from_scene(scene)?;
+        let spec = scene.gear.teeth;
+        let track = PairTrack::new(&p.curve, p.centre_distance, spec.arc_panels)?;
+        let m = track.perimeter() / (PI * f64::from(p.teeth));
+        let least = [Member::Driver, Member::Driven]
+            .map(|member| track.least_curvature(member).0)
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
+        let mut cutters: Vec<Cutter> = if least < 0.0 {
+            let largest = (2.0 / (-least * m)).ceil() as u32 - 1;
+            [largest, 3 * largest / 4, largest / 2, 12, 8, 6]
+                .into_iter()
+                .filter(|&z| (6..=largest).contains(&z))
+                .map(|teeth| Cutter::Shaper { teeth })
+                .collect()
+        } else {
+            [0, 40, 20, 12]
+                .into_iter()
+                .map(|teeth| match teeth {
+                    0 => Cutter::Rack,
+                    _ => Cutter::Shaper { teeth },
+                })
+                .collect()
+        };
+        cutters.dedup();
+        cutters.retain(|c| *c != spec.cutter);
+        let tips: Vec<f64> = [0.25, 0.1]
+            .into_iter()
+            .filter(|&r| r != spec.tip_radius)
+            .collect();
+        let deeper = spec.dedendum + 0.25;
+        let set_cutter = |c: &Cutter| match c {
+            Cutter::Rack => "gear.teeth.cutter={kind=\"rack\"}".to_string(),
+            Cutter::Shaper { teeth } => {
+                format!("gear.teeth.cutter={{kind=\"shaper\",teeth={teeth}}}")
+            }
+        };
+        let mut trials: Vec<(ToothSpec, Vec<String>)> = Vec::new();
+        let cutter_options: Vec<Option<&Cutter>> = std::iter::once(None)
+            .chain(cutters.iter().map(Some))
+            .collect();
+        let tip_options: Vec<Option<f64>> = std::iter::once(None)
+            .chain(tips.iter().copied().map(Some))
+            .collect();
+        for changes in 1..=3 {
+            for &cutter in &cutter_options {
+                for &tip in &tip_options {
+                    for deepen in [false, true] {
+                        let count = usize::from(cutter.is_some())
+                            + usize::from(tip.is_some())
+                            + usize::from(deepen);
+                        if count != changes {
+                            continue;
+                        }
+                        let mut s = spec;
+                        let mut set = Vec::new();
+                        if let Some(c) = cutter {
+                            s.cutter = *c;
+                            set.push(set_cutter(c));
+                        }
+                        if let Some(r) = tip {
+                            s.tip_radius = r;
+                            set.push(format!("gear.teeth.tip_radius={r}"));
+                        }
+                        if deepen {
+                            s.dedendum = deeper;
+                            set.push(format!("gear.teeth.dedendum={deeper}"));
+                        }
+                        trials.push((s, set));
+                    }
+                }
+            }
+        }
+        let tried: Vec<Trial> = trials
+            .into_iter()
+            .map(|(s, set)| Trial {
+                set,
+                failures: match ToothedPair::cut(&p.curve, p.centre_distance, p.teeth, &s) {
+                    Ok(pair) => pair.report.failures,
+                    Err(e) => vec![e.to_string()],
+                },
+            })
+            .collect();
+        let passes = tried.iter().position(|t| t.failures.is_empty());
+        Ok(Self { tried, passes })
+    }
+
+    /// The advice in words, one line.
+    pub fn line(&self) -> String {
+        match self.passes {
+            Some(k) => format!(
+                "tried {} other settings; this one passes every check: --set {}",
+                self.tried.len(),
+                self.tried[k].set.join(" --set ")
+            ),
+            None => format!(
+                "tried {} other settings (other cutters that fit, tip roundings 0.25 and 0.1 m, \
+                 a root 0.25 m deeper, alone and together): none passes every check",
+                self.tried.len()
+            ),
+        }
     }
 }
 

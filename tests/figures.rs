@@ -82,12 +82,18 @@ fn dxf_reads_back_the_pitch_curves() {
     let pair = GearPair::solve(scene.gear.curve.build().unwrap(), scene.resolution).unwrap();
     export_gears(&pair, &dir).unwrap();
     let drawing = dxf::Drawing::load_file(dir.join("pitch_curves.dxf").to_str().unwrap()).unwrap();
+    assert_eq!(drawing.header.version, dxf::enums::AcadVersion::R2000);
+    assert_eq!(
+        drawing.header.default_drawing_units,
+        dxf::enums::Units::Millimeters
+    );
     let mut polylines: Vec<(String, Vec<[f64; 2]>)> = Vec::new();
     for e in drawing.entities() {
-        if let dxf::entities::EntityType::Polyline(p) = &e.specific {
+        if let dxf::entities::EntityType::LwPolyline(p) = &e.specific {
+            assert!(p.is_closed());
             polylines.push((
                 e.common.layer.clone(),
-                p.vertices().map(|v| [v.location.x, v.location.y]).collect(),
+                p.vertices.iter().map(|v| [v.x, v.y]).collect(),
             ));
         }
     }

@@ -157,6 +157,9 @@ pub(crate) struct TeethArgs {
     /// Largest distance of the exported lines and arcs from the computed outline (mm).
     #[arg(long, default_value_t = 1e-3)]
     pub(crate) tolerance_mm: f64,
+    /// Export the gears even when they fail a check (the exit code is still 3).
+    #[arg(long)]
+    pub(crate) force: bool,
 }
 
 #[derive(clap::Args)]

@@ -29,7 +29,21 @@ pub(crate) fn gear(args: GearArgs) -> Result<(), Box<dyn Error>> {
     Ok(())
 }
 
-/// Cut, check and export the train's teeth.
+/// A design whose teeth fail a check or cannot be cut: the command reports it and exits
+/// with [`crate::EXIT_VERDICT`] (docs/reliability.md).
+#[derive(Debug)]
+pub(crate) struct VerdictFailed(pub(crate) String);
+
+impl std::fmt::Display for VerdictFailed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl Error for VerdictFailed {}
+
+/// Cut, check and export the train's teeth. Teeth that fail a check are reported, not
+/// exported unless `--force`, and the command exits with the verdict's code.
 pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
     let scene = load_scene_with(args.scene.input.scene.as_deref(), &args.scene.input.set)?;
     if !(args.tolerance_mm > 0.0 && args.tolerance_mm.is_finite()) {
@@ -39,11 +53,33 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
             expected: "a positive number of mm".into(),
         }));
     }
-    let run = noncirc::teeth::TeethRun::from_scene(&scene, args.carrier_deg)?;
+    let run = match noncirc::teeth::TeethRun::from_scene(&scene, args.carrier_deg) {
+        Ok(run) => run,
+        Err(noncirc::Error::Core(
+            e @ (noncirc::core::Error::Teeth { .. } | noncirc::core::Error::OutlineCrossing { .. }),
+        )) => {
+            eprintln!(
+                "advice: {}",
+                noncirc::teeth::Advice::for_scene(&scene)?.line()
+            );
+            return Err(Box::new(VerdictFailed(format!(
+                "the teeth cannot be cut: {e}"
+            ))));
+        }
+        Err(e) => return Err(e.into()),
+    };
     noncirc::report::check_finite(&run.summary())?;
+    let failures = run.pair.report.failures.len();
     if let Some(dir) = &args.export {
-        for f in run.export(dir, args.tolerance_mm)? {
-            eprintln!("wrote {}", f.display());
+        if failures == 0 || args.force {
+            for f in run.export(dir, args.tolerance_mm)? {
+                eprintln!("wrote {}", f.display());
+            }
+        } else {
+            eprintln!(
+                "not exported: the teeth fail {failures} check{} (--force exports them anyway)",
+                if failures == 1 { "" } else { "s" }
+            );
         }
     }
     if let Some(dir) = &args.scene.plot {
@@ -51,9 +87,26 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
             eprintln!("wrote {}", f.display());
         }
     }
+    let mut summary = run.summary();
+    if failures > 0 {
+        summary.advice = Some(noncirc::teeth::Advice::for_scene(&scene)?);
+    }
     match args.scene.format {
-        Format::Json => out(&json(&run.summary())?)?,
-        Format::Table => out(&run.table())?,
+        Format::Json => out(&json(&summary)?)?,
+        Format::Table => {
+            let mut table = run.table();
+            if let Some(advice) = &summary.advice {
+                table += &format!("ADVICE              {}\n", advice.line());
+            }
+            out(&table)?
+        }
+    }
+    if failures > 0 {
+        return Err(Box::new(VerdictFailed(format!(
+            "the teeth fail {failures} check{}: {}",
+            if failures == 1 { "" } else { "s" },
+            run.pair.report.failures.join("; ")
+        ))));
     }
     Ok(())
 }

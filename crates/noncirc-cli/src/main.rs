@@ -21,6 +21,8 @@ pub(crate) enum Finished {
 /// Exit codes (docs/reliability.md).
 const EXIT_RUNTIME: u8 = 1;
 const EXIT_INPUT: u8 = 2;
+/// The checked design fails: `noncirc teeth`'s teeth fail a check or cannot be cut.
+pub(crate) const EXIT_VERDICT: u8 = 3;
 const EXIT_INTERRUPTED: u8 = 130;
 
 fn main() -> ExitCode {
@@ -30,6 +32,10 @@ fn main() -> ExitCode {
         Ok(Finished::Interrupted) => ExitCode::from(EXIT_INTERRUPTED),
         // A reader that went away (`| head`) is not an error of ours.
         Err(e) if is_broken_pipe(e.as_ref()) => ExitCode::SUCCESS,
+        Err(e) if e.is::<commands::VerdictFailed>() => {
+            eprintln!("fails: {e}");
+            ExitCode::from(EXIT_VERDICT)
+        }
         Err(e) => {
             eprintln!("error: {e}");
             let input = e.downcast_ref::<noncirc::Error>().map_or(

@@ -201,15 +201,45 @@ fn a_checkpoint_never_overwrites_another_file() {
 
 #[test]
 fn teeth_reports_its_checks_and_names_what_it_refuses() {
+    // The largest undercut-free module's 18 teeth, and the undercut the rule misses: the
+    // verdict fails (exit 3), the report is printed with the settings tried, and the
+    // export is refused unless forced.
+    let dir = temp("teeth-verdict");
+    let export = dir.join("out");
     let out = noncirc()
-        .args(["teeth", "ellipse-gear", "--format", "json"])
+        .args(["teeth", "ellipse-gear", "--format", "json", "--export"])
+        .arg(&export)
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(out.status.code(), Some(3));
     let text = String::from_utf8(out.stdout).unwrap();
-    // The largest undercut-free module's 18 teeth, and the undercut the rule misses.
     assert!(text.contains("\"teeth\": 18"), "{text}");
     assert!(text.contains("\"undercut_teeth\": 4"), "{text}");
+    assert!(text.contains("\"advice\""), "{text}");
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("not exported") && err.contains("--force"),
+        "{err}"
+    );
+    assert!(!export.exists());
+    let forced = noncirc()
+        .args(["teeth", "ellipse-gear", "--force", "--export"])
+        .arg(&export)
+        .output()
+        .unwrap();
+    assert_eq!(forced.status.code(), Some(3));
+    assert!(export.join("driver.dxf").exists());
+    // Allowed undercut: every check passes, exit 0.
+    let passes = noncirc()
+        .args([
+            "teeth",
+            "ellipse-gear",
+            "--set",
+            "gear.teeth.allow_undercut=true",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(passes.status.code(), Some(0));
     for (args, named) in [
         (
             &["--set", "gear.teeth.pressure_angle_deg=60"][..],
@@ -231,15 +261,18 @@ fn teeth_reports_its_checks_and_names_what_it_refuses() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(named), "{args:?}: {err}");
     }
-    // The paper's curve: a concave arc of 1.9 mm that no cutter can cut at module 2.5.
+    // The paper's curve: a concave arc of 1.9 mm that no cutter can cut at module 2.5,
+    // named with its tooth; the verdict's exit code.
     let out = noncirc()
         .args(["teeth", "paper", "--set", "gear.module.teeth=40"])
         .output()
         .unwrap();
     let err = String::from_utf8(out.stderr).unwrap();
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(out.status.code(), Some(3), "{err}");
     assert!(
-        err.contains("a rack cannot cut a concave arc") && err.contains("no shaper"),
+        err.contains("a rack cannot cut a concave arc")
+            && err.contains("no shaper")
+            && err.contains("tooth 23 "),
         "{err}"
     );
 }

@@ -253,7 +253,7 @@ impl ToothedPair {
         let track = PairTrack::new(curve, centre_distance_guess, spec.arc_panels)?;
         let pitch = track.perimeter() / f64::from(teeth);
         let m = pitch / std::f64::consts::PI;
-        check_concave(&track, spec, m)?;
+        check_concave(&track, spec, m, teeth)?;
         let alpha = spec.pressure_angle_deg.to_radians();
         let thick =
             |shift: f64| 0.5 * pitch + 2.0 * shift * m * alpha.tan() - 0.5 * spec.backlash_mm;
@@ -318,9 +318,14 @@ impl ToothedPair {
 
 /// A concave pitch arc cannot be cut by a rack (its straight pitch line would cut into the
 /// arc's neighbours), only by a shaper whose pitch radius is below the arc's least radius
-/// of curvature (spec §1.4).
-fn check_concave(track: &PairTrack, spec: &ToothSpec, m: f64) -> Result<()> {
-    for (member, name) in [(Member::Driver, "driver"), (Member::Driven, "driven")] {
+/// of curvature (spec §1.4). The error names the tooth nearest the arc's sharpest point
+/// (the driver's tooth `j` is centred at pitch arc `j·p`, the driven gear's at `(j + ½)·p`).
+fn check_concave(track: &PairTrack, spec: &ToothSpec, m: f64, teeth: u32) -> Result<()> {
+    let pitch = track.perimeter() / f64::from(teeth);
+    for (member, name, phase) in [
+        (Member::Driver, "driver", 0.0),
+        (Member::Driven, "driven", 0.5),
+    ] {
         let (least, at) = track.least_curvature(member);
         if least >= 0.0 {
             continue;
@@ -332,10 +337,12 @@ fn check_concave(track: &PairTrack, spec: &ToothSpec, m: f64) -> Result<()> {
         };
         if !fits {
             let largest = (2.0 * radius / m).ceil() as u32 - 1;
+            let arc = track.arc(at);
+            let tooth = ((arc / pitch - phase).round() as i64).rem_euclid(i64::from(teeth));
             return Err(Error::Teeth {
                 gear: name,
-                tooth: 0,
-                arc_mm: track.arc(at),
+                tooth: tooth as usize,
+                arc_mm: arc,
                 why: format!(
                     "the pitch curve is concave here with |R| = {radius:.3} mm: {}; {}",
                     match spec.cutter {
@@ -345,15 +352,11 @@ fn check_concave(track: &PairTrack, spec: &ToothSpec, m: f64) -> Result<()> {
                     },
                     if largest >= 6 {
                         format!(
-                            "a shaper of at most {largest} teeth (pitch radius below |R| at \
-                             module {m:.4} mm) can cut it (gear.teeth.cutter = \
-                             {{ kind = \"shaper\", teeth = N }})"
+                            "only a shaper of at most {largest} teeth fits in it (its pitch \
+                             radius must stay below |R| at module {m:.4} mm)"
                         )
                     } else {
-                        format!(
-                            "no shaper (6 teeth or more) is that small at module {m:.4} mm: \
-                             more teeth (a smaller module) or a gentler pitch curve"
-                        )
+                        format!("no shaper of 6 teeth or more fits in it at module {m:.4} mm")
                     }
                 ),
             });
