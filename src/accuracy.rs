@@ -2,8 +2,9 @@
 //! resolutions, against a converged reference that is itself checked.
 
 use crate::report::table;
+use crate::teeth::TeethRun;
 use noncirc_core::{observed_order, output_errors, ErrorRow};
-use noncirc_core::{Evaluation, Evaluator, Resolution, Scene};
+use noncirc_core::{Evaluation, Evaluator, Resolution, Scene, TeethReport, ToothSpec};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -35,6 +36,115 @@ pub struct AccuracyReport {
     pub reference_check: ErrorRow,
     pub levels: Vec<Level>,
     pub tolerance_ladder: Vec<Level>,
+    /// The teeth's reported quantities over a ladder of chord tolerances and mesh steps,
+    /// against a run with 16 times the sampling; `Err` with the reason where the scene's
+    /// teeth cannot be cut.
+    pub teeth: Result<Vec<TeethLevel>, String>,
+}
+
+/// One rung of the teeth's ladder.
+#[derive(Debug, Clone, Serialize)]
+pub struct TeethLevel {
+    /// `gear.teeth.chord_tolerance_mm`.
+    pub chord_tolerance_mm: f64,
+    /// `gear.teeth.mesh_steps_per_pitch`.
+    pub mesh_steps_per_pitch: usize,
+    /// Mean wall time of one toothed pair with every check (ms); `None` if it failed.
+    pub time_ms: Option<f64>,
+    /// Differences from the reference; `None` if the cut failed.
+    pub errors: Option<TeethErrors>,
+    /// Why the cut failed.
+    pub error: Option<String>,
+}
+
+/// How far a toothed pair's reported quantities are from the reference's.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct TeethErrors {
+    /// Least contact ratio, relative.
+    pub contact_ratio_rel: f64,
+    /// Largest flank height lost to undercut over both gears (mm).
+    pub flank_lost_mm: f64,
+    /// Least clearance (mm).
+    pub least_clearance_mm: f64,
+    /// Least and largest normal backlash, the worse (mm).
+    pub backlash_mm: f64,
+}
+
+/// Chord tolerances (mm) and mesh steps of the teeth's ladder, coarse to fine; the third is
+/// the default.
+const TEETH_LADDER: [(f64, usize); 4] = [(16e-3, 1), (4e-3, 1), (1e-3, 2), (0.25e-3, 4)];
+
+fn teeth_ladder(scene: &Scene) -> Result<Vec<TeethLevel>, String> {
+    let with = |spec: ToothSpec| {
+        let mut s = scene.clone();
+        s.gear.teeth = spec;
+        s
+    };
+    let spec = scene.gear.teeth;
+    let reference = TeethRun::from_scene(
+        &with(ToothSpec {
+            flank_samples: 16 * spec.flank_samples,
+            fillet_samples: 16 * spec.fillet_samples,
+            mesh_steps_per_pitch: 16 * spec.mesh_steps_per_pitch,
+            chord_tolerance_mm: spec.chord_tolerance_mm / 256.0,
+            ..spec
+        }),
+        0.0,
+    )
+    .map_err(|e| e.to_string())?
+    .pair
+    .report;
+    let lost = |r: &TeethReport| {
+        r.gears
+            .iter()
+            .fold(0.0, |a: f64, g| a.max(g.undercut_lost_height_mm))
+    };
+    Ok(TEETH_LADDER
+        .iter()
+        .map(|&(tol, steps)| {
+            let level = with(ToothSpec {
+                chord_tolerance_mm: tol,
+                mesh_steps_per_pitch: steps,
+                ..spec
+            });
+            let cut = || TeethRun::from_scene(&level, 0.0).map(|run| run.pair.report);
+            match cut() {
+                Ok(r) => {
+                    let start = Instant::now();
+                    let mut runs = 0u32;
+                    while runs < 3 || (start.elapsed().as_secs_f64() < 0.05 && runs < 1000) {
+                        let _ = cut();
+                        runs += 1;
+                    }
+                    let (a, b) = (r.mesh, reference.mesh);
+                    let backlash = match (a.backlash_mm, b.backlash_mm) {
+                        (Some(x), Some(y)) => (x.0 - y.0).abs().max((x.1 - y.1).abs()),
+                        _ => f64::NAN,
+                    };
+                    TeethLevel {
+                        chord_tolerance_mm: tol,
+                        mesh_steps_per_pitch: steps,
+                        time_ms: Some(start.elapsed().as_secs_f64() * 1e3 / f64::from(runs)),
+                        errors: Some(TeethErrors {
+                            contact_ratio_rel: (a.contact_ratio_min / b.contact_ratio_min - 1.0)
+                                .abs(),
+                            flank_lost_mm: (lost(&r) - lost(&reference)).abs(),
+                            least_clearance_mm: (a.least_clearance_mm - b.least_clearance_mm).abs(),
+                            backlash_mm: backlash,
+                        }),
+                        error: None,
+                    }
+                }
+                Err(e) => TeethLevel {
+                    chord_tolerance_mm: tol,
+                    mesh_steps_per_pitch: steps,
+                    time_ms: None,
+                    errors: None,
+                    error: Some(e.to_string()),
+                },
+            }
+        })
+        .collect())
 }
 
 fn timed(scene: &Scene, res: &Resolution) -> Result<(Evaluation, f64), String> {
@@ -111,6 +221,7 @@ pub fn measure(scene: &Scene, probes: usize) -> Result<AccuracyReport, String> {
         reference_check: output_errors(&check, &reference, probes),
         levels,
         tolerance_ladder,
+        teeth: teeth_ladder(scene),
     })
 }
 
@@ -161,6 +272,37 @@ impl AccuracyReport {
                         l.newton_rel_tol,
                         l.error.as_deref().unwrap_or("")
                     )
+                }
+            }
+        }
+        match &self.teeth {
+            Err(e) => out += &format!("\nteeth: not cut ({e})\n"),
+            Ok(levels) => {
+                out += "\nteeth against 16x the sampling (chord tolerance / 256, 16x the mesh steps)\n";
+                out += "chord µm  mesh steps  time/pair  contact ratio  flank lost mm  clearance mm  backlash mm\n";
+                for l in levels {
+                    match (&l.errors, l.time_ms) {
+                        (Some(e), Some(t)) => {
+                            out += &format!(
+                                "{:>8}  {:>10}  {:>6.2} ms  {:>13.1e}  {:>13.1e}  {:>12.1e}  {:>11.1e}\n",
+                                l.chord_tolerance_mm * 1e3,
+                                l.mesh_steps_per_pitch,
+                                t,
+                                e.contact_ratio_rel,
+                                e.flank_lost_mm,
+                                e.least_clearance_mm,
+                                e.backlash_mm
+                            )
+                        }
+                        _ => {
+                            out += &format!(
+                                "{:>8}  {:>10}  failed: {}\n",
+                                l.chord_tolerance_mm * 1e3,
+                                l.mesh_steps_per_pitch,
+                                l.error.as_deref().unwrap_or("")
+                            )
+                        }
+                    }
                 }
             }
         }

@@ -282,7 +282,6 @@ impl ToothedPair {
                 phase,
                 teeth: teeth as usize,
                 flank_samples: spec.flank_samples,
-                fillet_samples: spec.fillet_samples,
                 chord_tolerance: spec.chord_tolerance_mm,
                 module: m,
                 reach,
