@@ -24,7 +24,7 @@ CORE = ROOT / "crates/noncirc-core/src"
 SEARCH = ROOT / "crates/noncirc-search"
 
 LAYERS = [  # lowest first; a module may use its own layer and those below
-    "error vec2 angle quadrature resolution",                                    # util
+    "error vec2 angle quadrature resolution golden",                             # util
     "curve gear planetary teeth moving_box gearbox",                             # model
     "scene check reference messages params agronomy objective_kind measure goal tolerance",  # scene
     "evaluation events anatomy objectives measure_value accuracy",               # evaluate

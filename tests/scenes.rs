@@ -247,6 +247,7 @@ fn every_number_of_a_scene_is_a_parameter() {
                 "gear.teeth.profile_shift" => Some(teeth.profile_shift),
                 "gear.teeth.flank_samples" => Some(teeth.flank_samples as f64),
                 "gear.teeth.fillet_samples" => Some(teeth.fillet_samples as f64),
+                "gear.teeth.chord_tolerance_mm" => Some(teeth.chord_tolerance_mm),
                 "gear.teeth.mesh_steps_per_pitch" => Some(teeth.mesh_steps_per_pitch as f64),
                 "gear.teeth.arc_panels" => Some(teeth.arc_panels as f64),
                 "gear.teeth.min_tip_land" => Some(teeth.min_tip_land),

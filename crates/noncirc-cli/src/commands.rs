@@ -58,10 +58,19 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
         Err(noncirc::Error::Core(
             e @ (noncirc::core::Error::Teeth { .. } | noncirc::core::Error::OutlineCrossing { .. }),
         )) => {
-            eprintln!(
-                "advice: {}",
-                noncirc::teeth::Advice::for_scene(&scene)?.line()
-            );
+            // The refusal is the verdict; advice that cannot be had does not replace it.
+            let advice = noncirc::teeth::Advice::for_scene(&scene).ok();
+            match args.scene.format {
+                Format::Json => out(&json(&serde_json::json!({
+                    "refused": e.to_string(),
+                    "advice": advice,
+                }))?)?,
+                Format::Table => {
+                    if let Some(advice) = &advice {
+                        eprintln!("advice: {}", advice.line());
+                    }
+                }
+            }
             return Err(Box::new(VerdictFailed(format!(
                 "the teeth cannot be cut: {e}"
             ))));

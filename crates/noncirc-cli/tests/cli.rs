@@ -275,6 +275,22 @@ fn teeth_reports_its_checks_and_names_what_it_refuses() {
             && err.contains("tooth 23 "),
         "{err}"
     );
+    // As JSON: the refusal and the settings tried, for a script.
+    let out = noncirc()
+        .args([
+            "teeth",
+            "paper",
+            "--set",
+            "gear.module.teeth=40",
+            "--format",
+            "json",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(3));
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(report["refused"].as_str().unwrap().contains("tooth 23 "));
+    assert!(!report["advice"]["tried"].as_array().unwrap().is_empty());
 }
 
 #[test]

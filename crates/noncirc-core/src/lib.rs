@@ -16,6 +16,7 @@
 // Util: errors, plane vectors, angles, quadrature, resolution.
 mod angle;
 mod error;
+mod golden;
 mod quadrature;
 mod resolution;
 mod vec2;

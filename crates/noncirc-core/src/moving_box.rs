@@ -4,6 +4,7 @@
 use crate::curve::{Ellipse, PitchCurve, TAU};
 use crate::error::{finite, length, positive, Error, Result};
 use crate::gear::GearPair;
+use crate::golden::golden_min;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use crate::vec2::Vec2;
@@ -476,29 +477,6 @@ impl BoxReport {
         }
         Ok(self)
     }
-}
-
-/// Golden-section minimum of a unimodal `f` on `[lo, hi]`.
-fn golden_min(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> f64 {
-    let r = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut x1, mut x2) = (hi - r * (hi - lo), lo + r * (hi - lo));
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    while hi - lo > tol {
-        if f1 < f2 {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - r * (hi - lo);
-            f1 = f(x1);
-        } else {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + r * (hi - lo);
-            f2 = f(x2);
-        }
-    }
-    0.5 * (lo + hi)
 }
 
 #[cfg(test)]

@@ -558,3 +558,18 @@ fn the_defaults_report_what_sixteen_times_the_sampling_reports() {
         );
     }
 }
+
+/// Settings that would need an outline of millions of points are refused, naming the
+/// setting, rather than run out of memory.
+#[test]
+fn an_outline_too_fine_for_memory_is_refused_by_name() {
+    let spec = ToothSpec {
+        flank_samples: 100_000,
+        ..ToothSpec::default()
+    };
+    let err = ToothedPair::cut(&circle(30.0), 60.0, 30, &spec).unwrap_err();
+    assert!(
+        err.to_string().contains("gear.teeth.flank_samples"),
+        "{err}"
+    );
+}

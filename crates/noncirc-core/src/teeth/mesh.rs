@@ -11,6 +11,7 @@ use super::cut_gear::{Side, ToothedGear};
 use super::polyline::OutlineGrid;
 use super::track::PairTrack;
 use crate::angle::unit;
+use crate::golden::golden_min;
 use crate::vec2::Vec2;
 use serde::Serialize;
 
@@ -54,30 +55,24 @@ const CHORD_PROBES: [f64; 4] = [0.2, 0.4, 0.6, 0.8];
 /// Local minima of the least clearance searched between the steps (the deepest first).
 const REFINED_MINIMA: usize = 3;
 
-/// Golden-section steps of each search: the bracket of two steps shrinks to `0.618^n` of
-/// itself (2e-4 of a pitch at two steps a pitch).
-const GOLDEN_STEPS: usize = 16;
+/// Width of the bracket, in steps, at which a search between steps stops (2e-4 of a pitch
+/// at two steps a pitch).
+const GOLDEN_WIDTH_STEPS: f64 = 4e-4;
 
-/// The minimum of `f` on `[lo, hi]` by golden section: where, the value, and the calls.
-fn golden_minimum(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> (f64, f64, usize) {
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..GOLDEN_STEPS {
-        if f1 <= f2 {
-            hi = x2;
-            (x2, f2) = (x1, f1);
-            x1 = hi - g * (hi - lo);
-            f1 = f(x1);
-        } else {
-            lo = x1;
-            (x1, f1) = (x2, f2);
-            x2 = lo + g * (hi - lo);
-            f2 = f(x2);
-        }
-    }
-    let (x, v) = if f1 <= f2 { (x1, f1) } else { (x2, f2) };
-    (x, v, GOLDEN_STEPS + 2)
+/// The least value of `f` on `[lo, hi]` by golden section ([`golden_min`]): where, the
+/// value, and the calls of `f`.
+fn golden_minimum(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> (f64, f64, usize) {
+    let mut calls = 0;
+    let x = golden_min(
+        |x| {
+            calls += 1;
+            f(x)
+        },
+        lo,
+        hi,
+        GOLDEN_WIDTH_STEPS * 0.5 * (hi - lo),
+    );
+    (x, f(x), calls + 1)
 }
 
 /// Turns the pair through one turn in `teeth · steps_per_pitch + 1` equal steps and
@@ -213,8 +208,9 @@ pub(super) fn check(
             least = (value, bottom.rem_euclid(pitch * teeth as f64));
         }
     }
-    // The backlash's extremes, searched between the steps the same way where its range
-    // is wider than the measurement's own error (four chord tolerances).
+    // The backlash's least and largest, searched between the steps around the step of
+    // each (golden section over the steps either side) where its range is wider than the
+    // measurement's own error (four chord tolerances).
     let mut backlash = match (extreme(&totals, 1.0), extreme(&totals, -1.0)) {
         (Some(lo), Some(hi)) => Some((totals[lo], totals[hi], lo, hi)),
         _ => None,

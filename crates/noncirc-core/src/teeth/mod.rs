@@ -97,6 +97,9 @@ impl Default for ToothSpec {
     }
 }
 
+/// Most points of one gear's outline: finer settings are refused, not run out of memory.
+pub(crate) const MAX_OUTLINE_POINTS: usize = 2_000_000;
+
 /// Largest overlap of tooth bodies the mesh check tolerates (mm).
 pub(crate) const OVERLAP_TOLERANCE_MM: f64 = 1e-3;
 
@@ -250,6 +253,17 @@ impl ToothedPair {
                 expected: "at least 3 teeth".into(),
             });
         }
+        let least_points = 2 * teeth as usize * (spec.flank_samples + spec.fillet_samples);
+        if least_points > MAX_OUTLINE_POINTS {
+            return Err(Error::OutOfRange {
+                name: "gear.teeth.flank_samples".into(),
+                value: spec.flank_samples as f64,
+                expected: format!(
+                    "fewer samples: with gear.teeth.fillet_samples and {teeth} teeth the \
+                     outline would have more than {MAX_OUTLINE_POINTS} points"
+                ),
+            });
+        }
         let track = PairTrack::new(curve, centre_distance_guess, spec.arc_panels)?;
         let pitch = track.perimeter() / f64::from(teeth);
         let m = pitch / std::f64::consts::PI;
@@ -301,7 +315,7 @@ impl ToothedPair {
             reach,
             alpha.sin_cos(),
             spec.mesh_steps_per_pitch,
-            spec.chord_tolerance_mm,
+            spec.chord_tolerance_mm.min(OVERLAP_TOLERANCE_MM),
         );
         let report = verdict(&track, &gears, &mesh, spec, teeth, m);
         Ok(Self {

@@ -21,6 +21,7 @@ use super::polyline::{segment_distance, OutlineGrid};
 use super::roots::{cube_root, regula_falsi};
 use super::tool::{Rounding, Tool};
 use super::track::{Frame, Member, PairTrack};
+use super::MAX_OUTLINE_POINTS;
 use crate::error::{Error, Result};
 use crate::vec2::Vec2;
 
@@ -189,9 +190,11 @@ impl Cut<'_> {
         let piece = Piece::Flank { u0, sigma };
         let tol = self.chord_tolerance;
         if f0 > 0.0 && f1 > 0.0 && (f1 - f0).abs() > 1e-6 * (f0 + f1) {
-            // Even steps `Δg` in `g = f^(3/2)` sag `Δg²/(18 κ cos²α)` each.
+            // Even steps `Δg` in `g = f^(3/2)` (`f` with `κ` at `u0`) sag
+            // `κ' Δg²/(18 κ² cos²α)` each where the pitch curve's curvature is `κ'`.
             let (g0, g1) = (f0 * f0.sqrt(), f1 * f1.sqrt());
-            let needed = (g1 - g0).abs() / (18.0 * sharpest * t.cos * t.cos * tol).sqrt();
+            let needed =
+                (g1 - g0).abs() * sharpest.sqrt() / (kappa.abs() * t.cos * (18.0 * tol).sqrt());
             let n = self.flank_samples.max(segments(needed));
             self.sample_spaced(piece, s0, s1, n, |k| {
                 let x = k as f64 / n as f64;
@@ -470,10 +473,23 @@ impl Cut<'_> {
         let centre = |j: usize| self.phase + self.pitch * j as f64;
         let mut sides = Vec::with_capacity(self.teeth);
         let mut tooth_starts = Vec::with_capacity(self.teeth);
+        let mut total = 0;
         for j in 0..self.teeth {
             let c = centre(j);
             let left = self.side(j, c - 0.5 * t.thickness, Side::Left)?;
             let right = self.side(j, c + 0.5 * t.thickness, Side::Right)?;
+            total += left.points.len() + right.points.len();
+            if total > MAX_OUTLINE_POINTS {
+                return Err(Error::OutOfRange {
+                    name: "gear.teeth.chord_tolerance_mm".into(),
+                    value: self.chord_tolerance,
+                    expected: format!(
+                        "a tolerance the {} outline meets in at most {MAX_OUTLINE_POINTS} \
+                         points (it needed more by tooth {j})",
+                        self.name
+                    ),
+                });
+            }
             sides.push((left, right));
         }
         // Every side's points, three tip and two root points a tooth, and the closing
