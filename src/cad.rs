@@ -26,7 +26,7 @@ fn circle(a: Vec2, b: Vec2, c: Vec2) -> Option<(Vec2, f64)> {
     }
     let (l1, l2) = (ab.hypot2(), ac.hypot2());
     let centre = a + Vec2::new(ac.y * l1 - ab.y * l2, ab.x * l2 - ac.x * l1) * (1.0 / d);
-    Some((centre, (a - centre).hypot()))
+    Some((centre, (a - centre).hypot2().sqrt()))
 }
 
 /// The bulge of the arc from `points[0]` to `points[last]` through them all within `tol`
@@ -49,7 +49,13 @@ fn arc_through(points: &[Vec2], tol: f64) -> Option<f64> {
     {
         return None;
     }
-    Some((swept / 4.0).tan())
+    // tan(θ/4) = sagitta / half chord, by arithmetic and a square root alone, which the
+    // native and the WebAssembly builds round alike (their `tan` and `atan2` differ in the
+    // last bit); the points it comes from still may, so the studio's files match the
+    // CLI's to the last printed digit.
+    let half = 0.5 * (b - a).hypot2().sqrt();
+    let bulge = half / (r + ((r - half) * (r + half)).max(0.0).sqrt());
+    Some(bulge.copysign(swept))
 }
 
 /// Fits lines and arcs to a closed outline through every point within `tol` (mm),
