@@ -82,19 +82,10 @@ fn teeth_ladder(scene: &Scene) -> Result<Vec<TeethLevel>, String> {
         s
     };
     let spec = scene.gear.teeth;
-    let reference = TeethRun::from_scene(
-        &with(ToothSpec {
-            flank_samples: (16 * spec.flank_samples).min(100_000),
-            fillet_samples: (16 * spec.fillet_samples).min(100_000),
-            mesh_steps_per_pitch: (16 * spec.mesh_steps_per_pitch).min(100_000),
-            chord_tolerance_mm: (spec.chord_tolerance_mm / 256.0).max(1e-6),
-            ..spec
-        }),
-        0.0,
-    )
-    .map_err(|e| e.to_string())?
-    .pair
-    .report;
+    let reference = TeethRun::from_scene(&with(spec.refined(16)), 0.0)
+        .map_err(|e| e.to_string())?
+        .pair
+        .report;
     let lost = |r: &TeethReport| {
         r.gears
             .iter()
@@ -108,15 +99,8 @@ fn teeth_ladder(scene: &Scene) -> Result<Vec<TeethLevel>, String> {
                 mesh_steps_per_pitch: steps,
                 ..spec
             });
-            let cut = || TeethRun::from_scene(&level, 0.0).map(|run| run.pair.report);
-            match cut() {
-                Ok(r) => {
-                    let start = Instant::now();
-                    let mut runs = 0u32;
-                    while runs < 3 || (start.elapsed().as_secs_f64() < 0.05 && runs < 1000) {
-                        let _ = cut();
-                        runs += 1;
-                    }
+            match timed_runs(|| TeethRun::from_scene(&level, 0.0).map(|run| run.pair.report)) {
+                Ok((r, seconds)) => {
                     let (a, b) = (r.mesh, reference.mesh);
                     let backlash = match (a.backlash_mm, b.backlash_mm) {
                         (Some(x), Some(y)) => (x.0 - y.0).abs().max((x.1 - y.1).abs()),
@@ -125,7 +109,7 @@ fn teeth_ladder(scene: &Scene) -> Result<Vec<TeethLevel>, String> {
                     TeethLevel {
                         chord_tolerance_mm: tol,
                         mesh_steps_per_pitch: steps,
-                        time_ms: Some(start.elapsed().as_secs_f64() * 1e3 / f64::from(runs)),
+                        time_ms: Some(seconds * 1e3),
                         errors: Some(TeethErrors {
                             contact_ratio_rel: (a.contact_ratio_min / b.contact_ratio_min - 1.0)
                                 .abs(),
@@ -141,23 +125,30 @@ fn teeth_ladder(scene: &Scene) -> Result<Vec<TeethLevel>, String> {
                     mesh_steps_per_pitch: steps,
                     time_ms: None,
                     errors: None,
-                    error: Some(e.to_string()),
+                    error: Some(e),
                 },
             }
         })
         .collect())
 }
 
-fn timed(scene: &Scene, res: &Resolution) -> Result<(Evaluation, f64), String> {
-    let mut ev = Evaluator::new();
-    let first = ev.evaluate_at(scene, res).map_err(|e| e.to_string())?;
+/// The first result of `run` and the mean wall time (s) of running it again at least three
+/// times and for 50 ms (at most 10 000 times).
+fn timed_runs<T, E: ToString>(mut run: impl FnMut() -> Result<T, E>) -> Result<(T, f64), String> {
+    let first = run().map_err(|e| e.to_string())?;
     let start = Instant::now();
     let mut runs = 0u32;
     while runs < 3 || (start.elapsed().as_secs_f64() < 0.05 && runs < 10_000) {
-        ev.evaluate_at(scene, res).map_err(|e| e.to_string())?;
+        run().map_err(|e| e.to_string())?;
         runs += 1;
     }
-    Ok((first, start.elapsed().as_secs_f64() * 1e6 / runs as f64))
+    Ok((first, start.elapsed().as_secs_f64() / f64::from(runs)))
+}
+
+fn timed(scene: &Scene, res: &Resolution) -> Result<(Evaluation, f64), String> {
+    let mut ev = Evaluator::new();
+    let (first, seconds) = timed_runs(|| ev.evaluate_at(scene, res))?;
+    Ok((first, seconds * 1e6))
 }
 
 /// Runs the ladder; closure tolerances are relaxed to the largest accepted (1e-2) so that

@@ -347,42 +347,39 @@ impl Advice {
                 format!("gear.teeth.cutter={{kind=\"shaper\",teeth={teeth}}}")
             }
         };
-        let mut trials: Vec<(ToothSpec, Vec<String>)> = Vec::new();
         let cutter_options: Vec<Option<&Cutter>> = std::iter::once(None)
             .chain(cutters.iter().map(Some))
             .collect();
         let tip_options: Vec<Option<f64>> = std::iter::once(None)
             .chain(tips.iter().copied().map(Some))
             .collect();
-        for changes in 1..=3 {
-            for &cutter in &cutter_options {
-                for &tip in &tip_options {
-                    for deepen in [false, true] {
-                        let count = usize::from(cutter.is_some())
-                            + usize::from(tip.is_some())
-                            + usize::from(deepen);
-                        if count != changes {
-                            continue;
-                        }
-                        let mut s = spec;
-                        let mut set = Vec::new();
-                        if let Some(c) = cutter {
-                            s.cutter = *c;
-                            set.push(set_cutter(c));
-                        }
-                        if let Some(r) = tip {
-                            s.tip_radius = r;
-                            set.push(format!("gear.teeth.tip_radius={r}"));
-                        }
-                        if deepen {
-                            s.dedendum = deeper;
-                            set.push(format!("gear.teeth.dedendum={deeper}"));
-                        }
+        // Every combination but the scene's own, the fewest changes first (a stable sort
+        // keeps cutters before tip roundings before the root within a count).
+        let mut trials: Vec<(ToothSpec, Vec<String>)> = Vec::new();
+        for &cutter in &cutter_options {
+            for &tip in &tip_options {
+                for deepen in [false, true] {
+                    let mut s = spec;
+                    let mut set = Vec::new();
+                    if let Some(c) = cutter {
+                        s.cutter = *c;
+                        set.push(set_cutter(c));
+                    }
+                    if let Some(r) = tip {
+                        s.tip_radius = r;
+                        set.push(format!("gear.teeth.tip_radius={r}"));
+                    }
+                    if deepen {
+                        s.dedendum = deeper;
+                        set.push(format!("gear.teeth.dedendum={deeper}"));
+                    }
+                    if !set.is_empty() {
                         trials.push((s, set));
                     }
                 }
             }
         }
+        trials.sort_by_key(|(_, set)| set.len());
         let tried: Vec<Trial> = trials
             .into_iter()
             .map(|(s, set)| Trial {

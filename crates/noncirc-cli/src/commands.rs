@@ -79,16 +79,14 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
     };
     noncirc::report::check_finite(&run.summary())?;
     let failures = run.pair.report.failures.len();
+    let checks = format!("{failures} check{}", if failures == 1 { "" } else { "s" });
     if let Some(dir) = &args.export {
         if failures == 0 || args.force {
             for f in run.export(dir, args.tolerance_mm)? {
                 eprintln!("wrote {}", f.display());
             }
         } else {
-            eprintln!(
-                "not exported: the teeth fail {failures} check{} (--force exports them anyway)",
-                if failures == 1 { "" } else { "s" }
-            );
+            eprintln!("not exported: the teeth fail {checks} (--force exports them anyway)");
         }
     }
     if let Some(dir) = &args.scene.plot {
@@ -112,8 +110,7 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
     }
     if failures > 0 {
         return Err(Box::new(VerdictFailed(format!(
-            "the teeth fail {failures} check{}: {}",
-            if failures == 1 { "" } else { "s" },
+            "the teeth fail {checks}: {}",
             run.pair.report.failures.join("; ")
         ))));
     }

@@ -473,15 +473,9 @@ fn an_overlap_by_a_concave_arc_is_reported_converged_with_its_place() {
 }
 
 /// `spec` with 16 times the flank, fillet and mesh samples and a chord tolerance 256 times
-/// finer (the chords' sag falls with the square of their count).
+/// finer.
 fn sixteen_times(spec: &ToothSpec) -> ToothSpec {
-    ToothSpec {
-        flank_samples: 16 * spec.flank_samples,
-        fillet_samples: 16 * spec.fillet_samples,
-        mesh_steps_per_pitch: 16 * spec.mesh_steps_per_pitch,
-        chord_tolerance_mm: spec.chord_tolerance_mm / 256.0,
-        ..*spec
-    }
+    spec.refined(16)
 }
 
 /// At the default settings the reported quantities are converged: on the Fourier

@@ -114,6 +114,20 @@ impl ToothSpec {
         *self == Self::default()
     }
 
+    /// `factor` times the flank, fillet and mesh samples and a chord tolerance `factor²`
+    /// finer (the chords' sag falls with the square of their count), within the settings'
+    /// ranges: the reference a convergence check compares the settings with.
+    pub fn refined(&self, factor: usize) -> Self {
+        let more = |n: usize| (factor * n).min(100_000);
+        Self {
+            flank_samples: more(self.flank_samples),
+            fillet_samples: more(self.fillet_samples),
+            mesh_steps_per_pitch: more(self.mesh_steps_per_pitch),
+            chord_tolerance_mm: (self.chord_tolerance_mm / (factor * factor) as f64).max(1e-6),
+            ..*self
+        }
+    }
+
     /// Checks every setting, naming the bad one.
     pub fn validate(&self) -> Result<()> {
         let angle = self.pressure_angle_deg;

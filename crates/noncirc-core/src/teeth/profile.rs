@@ -202,10 +202,11 @@ impl Cut<'_> {
                 (cube_root(g * g) - f0) / (f1 - f0)
             })
         } else {
-            let bend = f0.abs().max(f1.abs()) * sharpest;
-            let n = self
-                .flank_samples
-                .max(segments((s1 - s0).abs() * (bend / (8.0 * tol)).sqrt()));
+            let n = self.chords(
+                self.flank_samples,
+                s1 - s0,
+                f0.abs().max(f1.abs()) * sharpest,
+            );
             self.sample(piece, s0, s1, n)
         }
     }
@@ -219,7 +220,7 @@ impl Cut<'_> {
     fn sample_fillet(&self, piece: Piece, s0: f64, s1: f64) -> Vec<(f64, Frame, Vec2)> {
         let spacing = &self.fillet_spacing;
         let points = self.sample_spaced(piece, s0, s1, spacing.len() - 1, |k| spacing[k]);
-        self.refine(piece, points, self.chord_tolerance)
+        self.refine(piece, &points, self.chord_tolerance)
     }
 
     /// Halves every segment of `points` (samples of `piece` in order) whose midpoint in
@@ -228,7 +229,7 @@ impl Cut<'_> {
     fn refine(
         &self,
         piece: Piece,
-        points: Vec<(f64, Frame, Vec2)>,
+        points: &[(f64, Frame, Vec2)],
         tol: f64,
     ) -> Vec<(f64, Frame, Vec2)> {
         let mut out = Vec::with_capacity(points.len());
@@ -298,9 +299,14 @@ impl Cut<'_> {
     /// rolling sags `(1 + hκ)κΔs²/8`.
     fn offset_segments(&self, least: usize, height: f64, s0: f64, s1: f64) -> usize {
         let kappa = self.frame(0.5 * (s0 + s1)).curvature;
-        let bend = ((1.0 + height * kappa) * kappa).abs();
+        self.chords(least, s1 - s0, ((1.0 + height * kappa) * kappa).abs())
+    }
+
+    /// Chords (at least `least`) over `span` mm of rolling of a curve whose chord over `Δs`
+    /// sags `bend·Δs²/8` (`bend` in 1/mm), within the chord tolerance.
+    fn chords(&self, least: usize, span: f64, bend: f64) -> usize {
         least.max(segments(
-            (s1 - s0).abs() * (bend / (8.0 * self.chord_tolerance)).sqrt(),
+            span.abs() * (bend / (8.0 * self.chord_tolerance)).sqrt(),
         ))
     }
 
@@ -393,13 +399,13 @@ impl Cut<'_> {
                 // regular branch rises from the cusp. Where the two first meet again, seen
                 // from the tip, the cut flank starts.
                 let tol = SEARCH_TOLERANCE_MODULES * self.module;
-                let lower = self.refine(flank, self.sample(flank, form, cusp, 8), tol);
+                let lower = self.refine(flank, &self.sample(flank, form, cusp, 8), tol);
                 let regular = self.refine(
                     flank,
-                    self.sample(flank, cusp, s_tip, UNDERCUT_SEARCH_SAMPLES),
+                    &self.sample(flank, cusp, s_tip, UNDERCUT_SEARCH_SAMPLES),
                     tol,
                 );
-                let fine_fillet = self.refine(fillet, fillet_pts.clone(), tol);
+                let fine_fillet = self.refine(fillet, &fillet_pts, tol);
                 let chain: Vec<(Piece, f64, Vec2)> =
                     (fine_fillet.iter().map(|x| (fillet, x.0, x.2)))
                         .chain(lower.iter().skip(1).map(|x| (flank, x.0, x.2)))
@@ -424,7 +430,7 @@ impl Cut<'_> {
                     _ => {
                         let mut pts = fillet_pts;
                         let lower = self.sample(flank, form, sa, 4);
-                        let lower = self.refine(flank, lower, self.chord_tolerance);
+                        let lower = self.refine(flank, &lower, self.chord_tolerance);
                         pts.extend(lower.into_iter().skip(1));
                         pts
                     }
