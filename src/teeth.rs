@@ -117,6 +117,14 @@ impl TeethRun {
                 "{:<7} undercut teeth {:>4} (flank lost up to {:.4} mm), least tip land {:.4} mm, pointed {}, {} outline points",
                 g.name, g.undercut_teeth, g.undercut_lost_height_mm, g.tip_land_min_mm, g.pointed_teeth, g.outline_points
             );
+            let cut = g.mate_roots;
+            if cut.spaces > 0 {
+                let _ = writeln!(
+                    s,
+                    "{:<7} roots cut by the mate's tips in {} tooth spaces (the cutter's left them overlapped), up to {:.4} mm deeper",
+                    g.name, cut.spaces, cut.deepest_mm
+                );
+            }
         }
         let m = &r.mesh;
         let _ = writeln!(

@@ -176,3 +176,59 @@ def test_the_hard_published_cases_are_refused_for_a_rack_and_checked_with_a_shap
         checks = report["checks"]
         assert checks["mesh"]["contact_ratio_min"] > 1.0
         assert all(g["pointed_teeth"] == 0 for g in checks["gears"])
+
+
+def test_the_issue_fourier_pair_meshes_by_default_and_its_teeth_are_ncgears(tmp_path):
+    """r = 30 + 6 cos φ + 3 sin 2φ − 2 cos 3φ mm, 30 teeth, 40-tooth shaper: the shaper's
+    roots by the concave arc are cut again by the mate's tips, so the pair meshes over the
+    whole turn by default. Above the pitch curves (flanks and tip lands, which do not
+    depend on the cutter) the outlines are ncgears' within a micrometre; below, the roots
+    differ by design (ours keep the scene's bottom clearance from the mate's tips)."""
+    scene = fourier_scene(
+        tmp_path, 30.0, [6.0, 0.0, -2.0], [0.0, 3.0], 30,
+        '[gear.teeth]\ncutter = { kind = "shaper", teeth = 40 }\n',
+    )
+    ours = teeth(scene, tmp_path / "ours")
+    checks = ours["checks"]
+    assert checks["mesh"]["least_clearance_mm"] >= -1e-3, checks["mesh"]
+    assert not [f for f in checks["failures"] if "overlap" in f], checks["failures"]
+    assert sum(g["mate_roots"]["spaces"] for g in checks["gears"]) > 0
+    m = checks["module_mm"]
+    # ncgears draws r(φ) at −φ: ours ρ(ψ) = r(−ψ), scaled to the module.
+    expr = "1 + 0.2*cos(phi) - 0.1*sin(2*phi) - 2/30*cos(3*phi)"
+    pair, seconds = ncgears_pair(expr, 30, m, out=tmp_path / "ncg")
+    a = checks["centre_distance_mm"]
+    assert pair.center_distance == pytest.approx(a, abs=1e-6)
+    assert sum(len(g["undercuts"]) for g in checks["gears"]) == pair.metadata[
+        "analytic_undercut_count"
+    ]
+    # The driver's pitch radius at polar angle ψ, and the driven gear's at its own angle
+    # χ(ψ) = −∫ ρ/(a − ρ) dψ (trapezoids on a fine grid).
+    psi = np.linspace(0.0, 2 * np.pi, 200_001)
+    rho = 30 + 6 * np.cos(psi) + 3 * np.sin(2 * psi) - 2 * np.cos(3 * psi)
+    rate = rho / (a - rho)
+    chi = -np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(psi))])
+    assert chi[-1] == pytest.approx(-2 * np.pi, abs=1e-6)
+
+    def driver_pitch(theta):
+        return np.interp(np.mod(theta, 2 * np.pi), psi, rho)
+
+    def driven_pitch(theta):
+        # χ falls from 0 to −2π: angles as −χ, increasing.
+        return np.interp(np.mod(-theta, 2 * np.pi), -chi, a - rho)
+
+    mine = csv_points(tmp_path / "ours" / "driver.csv")
+    driven = csv_points(tmp_path / "ours" / "driven.csv")
+    for name, pts, pitch, theirs in [
+        ("driver", mine, driver_pitch, pair.drive_outline),
+        # Their driven gear is ours turned half a turn.
+        ("driven", driven, driven_pitch, -np.asarray(pair.driven_outline)),
+    ]:
+        radius = np.hypot(pts[:, 0], pts[:, 1])
+        above = pts[radius > pitch(np.arctan2(pts[:, 1], pts[:, 0]))]
+        ring = LineString(np.vstack([theirs, theirs[:1]]))
+        worst = max(ring.distance(Point(p)) for p in above)
+        print(f"{name}: {len(above)} points above the pitch curve, farthest {worst:.2e} mm from ncgears'")
+        assert len(above) > 300
+        assert worst < 1e-3, f"{name}: {worst} mm"
+    print(f"ncgears {seconds:.2f} s")

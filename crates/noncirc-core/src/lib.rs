@@ -84,8 +84,8 @@ pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves
 pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue};
 pub use planetary::{ArmState, Kinematics};
 pub use teeth::{
-    segment_distance, Cutter, Frame, GearTeethReport, Member, MeshReport, PairTrack, Side,
-    TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut,
+    segment_distance, Cutter, Frame, GearTeethReport, MateRoots, Member, MeshReport, PairTrack,
+    Side, TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut,
 };
 pub use vec2::Vec2;
 

@@ -271,4 +271,15 @@ pub(super) const FIELDS: &[Field] = &[
         refused: &["gear.teeth.allow_undercut=1"],
         number: None,
     },
+    Field {
+        key: "gear.teeth.mate_roots",
+        symbol: "",
+        unit: "",
+        range: Range::Rule("`true` or `false`"),
+        meaning: "Whether a tooth space whose root the mate's tips overlap (by a concave arc) \
+                  is cut again by the mate's tips, with the bottom clearance \
+                  (dedendum − addendum)·m below their tip lands (docs/teeth.md).",
+        refused: &["gear.teeth.mate_roots=\"yes\""],
+        number: None,
+    },
 ];

@@ -9,7 +9,8 @@
 
 use super::cut_gear::{Side, ToothedGear};
 use super::polyline::OutlineGrid;
-use super::track::PairTrack;
+use super::track::{Member, PairTrack};
+use super::OVERLAP_TOLERANCE_MM;
 use crate::angle::unit;
 use crate::golden::golden_min;
 use crate::vec2::Vec2;
@@ -55,6 +56,35 @@ const CHORD_PROBES: [f64; 4] = [0.2, 0.4, 0.6, 0.8];
 /// Local minima of the least clearance searched between the steps (the deepest first).
 const REFINED_MINIMA: usize = 3;
 
+/// Divisions of a mesh step near a risky arc (an undercut tooth or a concave arc).
+const RISKY_DIVISIONS: usize = 8;
+
+/// Reach (in pitches) of a risky arc over the mesh steps around it.
+const RISKY_REACH_PITCHES: f64 = 1.5;
+
+/// The pitch arcs (mm) of the teeth that are undercut and of the teeth and spaces where
+/// either pitch curve is concave.
+fn risky_arcs(track: &PairTrack, gears: &[ToothedGear; 2], pitch: f64) -> Vec<f64> {
+    let mut arcs: Vec<f64> = gears
+        .iter()
+        .flat_map(|g| g.teeth.iter())
+        .filter(|t| t.undercut.iter().any(Option::is_some))
+        .map(|t| t.centre_arc_mm)
+        .collect();
+    let teeth = gears[0].teeth.len();
+    for k in 0..2 * teeth {
+        let s = 0.5 * pitch * k as f64;
+        let psi = track.psi_at(s);
+        if [Member::Driver, Member::Driven]
+            .into_iter()
+            .any(|member| track.frame(member, psi).curvature < 0.0)
+        {
+            arcs.push(s);
+        }
+    }
+    arcs
+}
+
 /// Width of the bracket, in steps, at which a search between steps stops (2e-4 of a pitch
 /// at two steps a pitch).
 const GOLDEN_WIDTH_STEPS: f64 = 4e-4;
@@ -75,6 +105,49 @@ fn golden_minimum(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> (f64, f64, usize)
     (x, f(x), calls + 1)
 }
 
+/// The mesh check's findings: the report, and for each gear the rolling positions (mm of
+/// pitch arc) where its mate's probes were inside its body by more than the verdict
+/// tolerates.
+pub(super) struct MeshCheck {
+    pub(super) report: MeshReport,
+    pub(super) overlaps: [Vec<f64>; 2],
+}
+
+/// Where the two gears stand relative to each other at one rolling position: each as a
+/// rotation (a unit vector) and a shift that take its points into the other's frame.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Placement {
+    /// Driven → driver frame: `q ↦ R(e2) q + c`.
+    pub(super) to_driver: (Vec2, Vec2),
+    /// Driver → driven frame: `p ↦ R(e2)⁻¹ (p − c)`.
+    pub(super) to_driven: (Vec2, Vec2),
+}
+
+impl Placement {
+    /// The placement at rolling position `s` (mm of pitch arc).
+    pub(super) fn at(track: &PairTrack, s: f64) -> Self {
+        let psi = track.psi_at(s);
+        let chi = track.driven_angle(psi);
+        let (e1, e2) = (unit(psi), unit(psi + std::f64::consts::PI - chi));
+        let centre2 = e1 * track.centre_distance();
+        let e2_inv = Vec2::new(e2.x, -e2.y);
+        Self {
+            to_driver: (e2, centre2),
+            to_driven: (e2_inv, -centre2.rotated(e2_inv)),
+        }
+    }
+
+    /// The transform that takes gear `g`'s points (0 driver, 1 driven) into its mate's
+    /// frame, as (rotation, shift).
+    pub(super) fn into_mate_of(self, g: usize) -> (Vec2, Vec2) {
+        if g == 0 {
+            self.to_driven
+        } else {
+            self.to_driver
+        }
+    }
+}
+
 /// Turns the pair through one turn in `teeth · steps_per_pitch + 1` equal steps and
 /// measures distances up to `reach` (mm). The one step more than a whole number per
 /// pitch shifts each tooth's phases by `1/(teeth · steps_per_pitch)` pitch from its
@@ -92,21 +165,20 @@ pub(super) fn check(
     sin_cos: (f64, f64),
     steps_per_pitch: usize,
     tolerance: f64,
-) -> MeshReport {
+) -> MeshCheck {
     let teeth = gears[0].teeth.len();
-    let a = track.centre_distance();
     // The least signed distance between the bodies at rolling position `s` (mm), and the
     // gap on each side (driver right flanks face driven left flanks, and the other way).
-    let at = |s: f64| -> (f64, [f64; 2]) {
-        let psi = track.psi_at(s);
-        let chi = track.driven_angle(psi);
-        let (e1, e2) = (unit(psi), unit(psi + std::f64::consts::PI - chi));
-        // Driven → driver frame: `q ↦ c + R(e2) q`; driver → driven: `p ↦ R(e2)⁻¹ (p − c)`,
-        // each as a rotation and a shift.
-        let centre2 = e1 * a;
-        let e2_inv = Vec2::new(e2.x, -e2.y);
-        let to_driver = (e2, centre2);
-        let to_driven = (e2_inv, -centre2.rotated(e2_inv));
+    // The least signed distance between the bodies at rolling position `s` (mm), the gap
+    // on each side (driver right flanks face driven left flanks, and the other way), and
+    // the least distance of each gear's body from its mate's probes (negative: the mate's
+    // tips are inside it).
+    let at = |s: f64| -> (f64, [f64; 2], [f64; 2]) {
+        let Placement {
+            to_driver,
+            to_driven,
+        } = Placement::at(track, s);
+        let mut into = [reach; 2];
         let mut least = reach;
         let mut gap = [f64::INFINITY; 2];
         let mut visit = |g: usize, (turn, shift): (Vec2, Vec2), other: &OutlineGrid| {
@@ -128,6 +200,7 @@ pub(super) fn check(
                         continue;
                     };
                     least = least.min(d);
+                    into[1 - g] = into[1 - g].min(d);
                     if let Some(side) = probe.side {
                         let pair_side = pair_side(g, side);
                         if d < nearest[pair_side].0 {
@@ -158,12 +231,13 @@ pub(super) fn check(
                     }
                 }
                 least = least.min(bottom);
+                into[1 - g] = into[1 - g].min(bottom);
                 gap[pair_side] = gap[pair_side].min(bottom);
             }
         };
         visit(1, to_driver, &gears[0].grid);
         visit(0, to_driven, &gears[1].grid);
-        (least, gap)
+        (least, gap, into)
     };
     let positions = teeth * steps_per_pitch + 1;
     let step = pitch * teeth as f64 / positions as f64;
@@ -177,10 +251,48 @@ pub(super) fn check(
         }
     };
     let (mut lows, mut totals) = (Vec::with_capacity(positions), Vec::with_capacity(positions));
+    // Where each gear's body holds its mate's probes deeper than the verdict tolerates.
+    let mut overlaps: [Vec<f64>; 2] = Default::default();
+    let mut note = |s: f64, into: [f64; 2]| {
+        for (g, depth) in into.into_iter().enumerate() {
+            if depth < -OVERLAP_TOLERANCE_MM {
+                overlaps[g].push(s);
+            }
+        }
+    };
     for k in 0..positions {
-        let (low, gap) = at(step * k as f64);
+        let s = step * k as f64;
+        let (low, gap, into) = at(s);
         lows.push(low);
         totals.push(total(gap));
+        note(s, into);
+    }
+    // Where a tip can reach into a fillet beside an undercut or into a root by a concave
+    // arc, an overlap may last less than a step and hide behind the flanks' contact
+    // (which holds the least distance at zero): there the steps are divided further.
+    let risky = risky_arcs(track, gears, pitch);
+    let perimeter = pitch * teeth as f64;
+    let mut evaluated = positions;
+    let fine_step = step / RISKY_DIVISIONS as f64;
+    let mut fine_least = (f64::INFINITY, 0.0);
+    for k in 0..positions {
+        let s = step * (k as f64 + 0.5);
+        let near = risky.iter().any(|&c| {
+            let d = (c - s).rem_euclid(perimeter);
+            d.min(perimeter - d) <= RISKY_REACH_PITCHES * pitch
+        });
+        if !near {
+            continue;
+        }
+        for i in 1..RISKY_DIVISIONS {
+            let x = step * k as f64 + fine_step * i as f64;
+            let (low, _, into) = at(x);
+            note(x, into);
+            evaluated += 1;
+            if low < fine_least.0 {
+                fine_least = (low, x);
+            }
+        }
     }
     let extreme = |values: &[f64], sign: f64| {
         (0..positions)
@@ -189,7 +301,6 @@ pub(super) fn check(
     };
     let k_least = extreme(&lows, 1.0).unwrap_or(0);
     let mut least = (lows[k_least], step * k_least as f64);
-    let mut evaluated = positions;
     // An overlap is deepest between positions: the deepest few local minima are searched
     // for their bottom (golden section over the steps either side), so its depth does not
     // depend on where the steps fall.
@@ -204,9 +315,22 @@ pub(super) fn check(
         let s = step * k as f64;
         let (bottom, value, calls) = golden_minimum(|x| at(x).0, s - step, s + step);
         evaluated += calls;
+        note(bottom, at(bottom).2);
         if value < least.0 {
             least = (value, bottom.rem_euclid(pitch * teeth as f64));
         }
+    }
+    // The deepest overlap found between the steps, searched for its bottom likewise.
+    if fine_least.0 < least.0.min(-tolerance) {
+        let s = fine_least.1;
+        let (bottom, value, calls) = golden_minimum(|x| at(x).0, s - fine_step, s + fine_step);
+        evaluated += calls;
+        note(bottom, at(bottom).2);
+        least = if value < fine_least.0 {
+            (value, bottom.rem_euclid(pitch * teeth as f64))
+        } else {
+            fine_least
+        };
     }
     // The backlash's least and largest, searched between the steps around the step of
     // each (golden section over the steps either side) where its range is wider than the
@@ -258,7 +382,7 @@ pub(super) fn check(
             }
         }
     }
-    MeshReport {
+    let report = MeshReport {
         positions: evaluated,
         least_clearance_mm: least.0,
         least_clearance_at_mm: least.1,
@@ -266,5 +390,6 @@ pub(super) fn check(
         contact_ratio_min: ratio_min.0,
         contact_ratio_mean: ratio_sum / (2 * teeth) as f64,
         contact_ratio_min_at_mm: ratio_min.1,
-    }
+    };
+    MeshCheck { report, overlaps }
 }

@@ -7,6 +7,7 @@
 //! in modules, as on a drawing.
 
 mod cut_gear;
+mod mate_roots;
 mod mesh;
 mod polyline;
 mod profile;
@@ -15,6 +16,7 @@ mod tool;
 mod track;
 
 pub use cut_gear::{Side, Tooth, ToothedGear, Undercut};
+pub use mate_roots::MateRoots;
 pub use mesh::MeshReport;
 pub use polyline::segment_distance;
 pub use track::{Frame, Member, PairTrack};
@@ -74,6 +76,10 @@ pub struct ToothSpec {
     pub min_tip_land: f64,
     /// Whether undercut is accepted (it weakens the tooth and shortens the contact).
     pub allow_undercut: bool,
+    /// Whether a tooth space whose root the mate's tips overlap (by a concave arc, where
+    /// they reach deeper than the cutter did) is cut again by the mate's tips, with the
+    /// bottom clearance `(dedendum − addendum)·m` below their tip lands.
+    pub mate_roots: bool,
 }
 
 impl Default for ToothSpec {
@@ -93,6 +99,7 @@ impl Default for ToothSpec {
             arc_panels: 256,
             min_tip_land: 0.25,
             allow_undercut: false,
+            mate_roots: true,
         }
     }
 }
@@ -102,6 +109,13 @@ pub(crate) const MAX_OUTLINE_POINTS: usize = 2_000_000;
 
 /// Largest overlap of tooth bodies the mesh check tolerates (mm).
 pub(crate) const OVERLAP_TOLERANCE_MM: f64 = 1e-3;
+
+/// How far the mate's flanks are set back when its tips cut roots, as a share of the mesh
+/// check's tolerance: the real tips may then overlap the cut roots by at most this much.
+const MATE_MARGIN: f64 = 0.25;
+
+/// Rounds of mate-generated roots and mesh checks at most.
+const MATE_ROUNDS: usize = 3;
 
 /// How far (× m, beyond the backlash) the mesh check measures distances between the
 /// gears: clearances and backlash gaps up to this are exact, larger ones are not
@@ -232,6 +246,8 @@ pub struct GearTeethReport {
     pub pointed_teeth: usize,
     /// Points of the closed outline.
     pub outline_points: usize,
+    /// What the mate's tips cut out of the roots the cutter left too shallow.
+    pub mate_roots: MateRoots,
 }
 
 /// The checks of a toothed pair.
@@ -301,11 +317,11 @@ impl ToothedPair {
         let fillet_spacing: Vec<f64> = (0..=n)
             .map(|k| (end * k as f64 / n as f64).tan() / end.tan())
             .collect();
-        let cut = |member, shift: f64, phase: f64, name| -> Result<ToothedGear> {
+        let cut_with = |tool: Tool, member, phase: f64, name| -> Result<ToothedGear> {
             Cut {
                 track: &track,
                 member,
-                tool: Tool::new(spec, m, shift, thick(shift))?,
+                tool,
                 pitch,
                 phase,
                 teeth: teeth as usize,
@@ -318,20 +334,96 @@ impl ToothedPair {
             }
             .run()
         };
-        let gears = [
+        let cut = |member, shift: f64, phase: f64, name| {
+            cut_with(
+                Tool::new(spec, m, shift, thick(shift))?,
+                member,
+                phase,
+                name,
+            )
+        };
+        let mut gears = [
             cut(Member::Driver, x, 0.0, "driver")?,
             cut(Member::Driven, -x, 0.5 * pitch, "driven")?,
         ];
-        let mesh = mesh::check(
-            &track,
-            &gears,
-            pitch,
-            reach,
-            alpha.sin_cos(),
-            spec.mesh_steps_per_pitch,
-            spec.chord_tolerance_mm.min(OVERLAP_TOLERANCE_MM),
-        );
-        let report = verdict(&track, &gears, &mesh, spec, teeth, m);
+        let tolerance = spec.chord_tolerance_mm.min(OVERLAP_TOLERANCE_MM);
+        let check = |gears: &[ToothedGear; 2]| {
+            mesh::check(
+                &track,
+                gears,
+                pitch,
+                reach,
+                alpha.sin_cos(),
+                spec.mesh_steps_per_pitch,
+                tolerance,
+            )
+        };
+        let mut checked = check(&gears);
+        let mut mate_roots = [MateRoots::default(); 2];
+        if spec.mate_roots && checked.overlaps.iter().any(|o| !o.is_empty()) {
+            // Each gear cut as a shaper for its mate's roots: its tips raised by the bottom
+            // clearance (the tool's dedendum for its addendum), its flanks set back by a
+            // margin so that they do not cut the flanks they are conjugate to.
+            let as_shaper = ToothSpec {
+                addendum: spec.dedendum,
+                ..*spec
+            };
+            let margin = MATE_MARGIN * tolerance;
+            let shaper = |member, shift: f64, phase: f64, name| {
+                let thinner = thick(shift) - 2.0 * margin / alpha.cos();
+                cut_with(
+                    Tool::new(&as_shaper, m, shift, thinner)?,
+                    member,
+                    phase,
+                    name,
+                )
+            };
+            let mate_cut = mate_roots::MateCut {
+                track: &track,
+                pitch,
+                module: m,
+                clearance: (spec.dedendum - spec.addendum) * m,
+                depth: (spec.dedendum + spec.addendum + 1.0) * m,
+                tolerance: spec
+                    .chord_tolerance_mm
+                    .max(mate_roots::SWEEP_TOLERANCE_FLOOR_MM),
+            };
+            let mut cutters: [Option<ToothedGear>; 2] = [None, None];
+            let mut done: [Vec<usize>; 2] = Default::default();
+            // A cut can bring the next deepest overlaps to light (the check searches the
+            // deepest few between its steps): a few rounds.
+            for _ in 0..MATE_ROUNDS {
+                let overlaps = std::mem::take(&mut checked.overlaps);
+                let before = done.clone();
+                for (g, overlaps) in overlaps.iter().enumerate() {
+                    if overlaps.is_empty() {
+                        continue;
+                    }
+                    if cutters[g].is_none() {
+                        cutters[g] = Some(if g == 0 {
+                            shaper(Member::Driven, -x, 0.5 * pitch, "driven")?
+                        } else {
+                            shaper(Member::Driver, x, 0.0, "driver")?
+                        });
+                    }
+                    let cutter = cutters[g].as_ref().expect("made above");
+                    mate_cut.cut(
+                        &mut gears,
+                        g,
+                        cutter,
+                        overlaps,
+                        &mut done[g],
+                        &mut mate_roots[g],
+                    )?;
+                }
+                if done == before {
+                    break;
+                }
+                checked = check(&gears);
+            }
+        }
+        let mesh = checked.report;
+        let report = verdict(&track, &gears, &mesh, &mate_roots, spec, teeth, m);
         Ok(Self {
             track,
             spec: *spec,
@@ -396,11 +488,12 @@ fn verdict(
     track: &PairTrack,
     gears: &[ToothedGear; 2],
     mesh: &MeshReport,
+    mate_roots: &[MateRoots; 2],
     spec: &ToothSpec,
     teeth: u32,
     m: f64,
 ) -> TeethReport {
-    let gear_report = |g: &ToothedGear, name: &'static str| {
+    let gear_report = |g: &ToothedGear, name: &'static str, mate_roots: MateRoots| {
         let undercuts: Vec<Undercut> = g
             .teeth
             .iter()
@@ -421,11 +514,12 @@ fn verdict(
                 .fold(f64::INFINITY, |a, t| a.min(t.tip_land_mm)),
             pointed_teeth: g.teeth.iter().filter(|t| t.pointed).count(),
             outline_points: g.outline().len(),
+            mate_roots,
         }
     };
     let reports = [
-        gear_report(&gears[0], "driver"),
-        gear_report(&gears[1], "driven"),
+        gear_report(&gears[0], "driver", mate_roots[0]),
+        gear_report(&gears[1], "driven", mate_roots[1]),
     ];
     let mut violation = 0.0;
     let mut failures = Vec::new();

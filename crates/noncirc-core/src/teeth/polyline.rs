@@ -225,6 +225,11 @@ impl OutlineGrid {
         ]
     }
 
+    /// Distance (mm) up to which [`Self::signed_distance`] answers.
+    pub(super) fn reach(&self) -> f64 {
+        self.reach
+    }
+
     /// The outline's points.
     pub(super) fn points(&self) -> &[Vec2] {
         &self.points[..self.points.len() - 1]
