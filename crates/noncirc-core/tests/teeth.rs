@@ -671,6 +671,10 @@ fn the_mates_tips_cut_the_roots_a_shaper_left_too_shallow_by_a_concave_arc() {
                 .unwrap()
         };
         let middle = arc(centre);
+        let spread = new
+            .iter()
+            .map(|p| (*p - centre).hypot())
+            .fold(0.0, f64::max);
         let steps = (6.0 * pair.module_mm * PI / 0.01) as usize;
         for k in 0..=steps {
             let s = middle - 3.0 * m * PI + 0.01 * k as f64;
@@ -690,13 +694,16 @@ fn the_mates_tips_cut_the_roots_a_shaper_left_too_shallow_by_a_concave_arc() {
             };
             let points: Vec<Vec2> = mate.outline().iter().map(|&q| place(q)).collect();
             let n = points.len();
+            // The mate's segments near the new points.
+            let segments: Vec<(Vec2, Vec2)> = (0..n)
+                .map(|i| (points[i], points[(i + 1) % n]))
+                .filter(|(u, _)| (*u - centre).hypot() < spread + m)
+                .collect();
             for (d, p) in least.iter_mut().zip(&new) {
-                for i in 0..n {
-                    let (u, v) = (points[i], points[(i + 1) % n]);
-                    if (u - *p).hypot() > 3.0 * m {
-                        continue;
+                for &(u, v) in &segments {
+                    if (u - *p).hypot() < 3.0 * m {
+                        *d = d.min(noncirc_core::segment_distance(*p, u, v));
                     }
-                    *d = d.min(noncirc_core::segment_distance(*p, u, v));
                 }
             }
         }

@@ -64,8 +64,9 @@ pub(super) const SWEEP_TOLERANCE_FLOOR_MM: f64 = 2.5e-4;
 /// Most halvings of a step between rolling positions.
 const MAX_HALVINGS: u32 = 8;
 
-/// Depth (× m) below a tip's highest point from which its flanks take part in the sweep:
-/// lower, they only meet the flanks they are conjugate to.
+/// Depth (× m) below the mate's real tip (the shaper's tip less the clearance) from which
+/// the shaper's flanks take part in the sweep: lower, they only meet the flanks they are
+/// conjugate to.
 const TIP_DEPTH_MODULES: f64 = 0.25;
 
 /// Rolling (in pitches) either side of a tooth space's centre over which the mate's tips
@@ -73,8 +74,9 @@ const TIP_DEPTH_MODULES: f64 = 0.25;
 const SWEEP_PITCHES: f64 = 2.0;
 const TIP_REACH_PITCHES: f64 = 1.5;
 
-/// Distance (mm) within which a point of the cut outline is the cutter's point it came
-/// from (the boolean operation rounds coordinates to about 1e-7 mm).
+/// Least distance (mm) within which a point of the new outline is the tool-cut point it came
+/// from (the boolean operation rounds coordinates to about 1e-7 mm on gears of 50 mm; more
+/// on larger ones).
 const SAME_POINT_MM: f64 = 1e-6;
 
 /// Turn (rad) of the outline at a new point above which it is a corner (where the paths of
@@ -169,22 +171,23 @@ impl MateCut<'_> {
         done.extend(&spaces);
         let tips = self.tips(cutter, members[1 - g]);
         let mut cut: Vec<Ring> = Vec::new();
+        let mut windows = Vec::with_capacity(spaces.len());
         for &j in &spaces {
             let c = target.teeth[j].centre_arc_mm + 0.5 * self.pitch;
             let window = self.window(members[g], c);
             let sweep = self.sweep(&tips, g, c, &window);
-            if sweep.is_empty() {
-                continue;
+            if !sweep.is_empty() {
+                let inside = FloatOverlay::<[f64; 2]>::from_subj_and_clip(&window, &sweep)
+                    .overlay(OverlayRule::Intersect, FillRule::NonZero);
+                cut.extend(inside.into_iter().flatten());
             }
-            let inside = FloatOverlay::<[f64; 2]>::from_subj_and_clip(&window, &sweep)
-                .overlay(OverlayRule::Intersect, FillRule::NonZero);
-            cut.extend(inside.into_iter().flatten());
+            windows.push(window);
         }
         if cut.is_empty() {
             return Ok(());
         }
         let old: Vec<Vec2> = target.outline().to_vec();
-        let subject: Ring = old.iter().map(|p| [p.x, p.y]).collect();
+        let subject: Ring = old.iter().map(|&p| p.into()).collect();
         let mut options = OverlayOptions::<f64>::default();
         options.preserve_input_collinear = true;
         options.preserve_output_collinear = true;
@@ -197,13 +200,8 @@ impl MateCut<'_> {
         .overlay(OverlayRule::Difference, FillRule::NonZero);
         // The gear's body: the largest piece's outer contour (chips the cut frees fall away).
         let area = |ring: &Ring| {
-            let n = ring.len();
-            (0..n)
-                .map(|i| {
-                    let (a, b) = (ring[i], ring[(i + 1) % n]);
-                    a[0] * b[1] - a[1] * b[0]
-                })
-                .sum::<f64>()
+            let points: Vec<Vec2> = ring.iter().map(|&p| Vec2::from(p)).collect();
+            signed_area(&points)
         };
         let body = shapes
             .into_iter()
@@ -211,21 +209,25 @@ impl MateCut<'_> {
             .max_by(|a, b| area(a).total_cmp(&area(b)))
             .ok_or_else(|| self.fail(g, "nothing of the gear is left"))?;
         let rebuilt = self.splice(target, &old, &body, g)?;
-        let deepest = rebuilt.deepest;
-        let gear = &mut gears[g];
-        let reach = gear.grid.reach();
-        gear.corners = rebuilt.corners;
-        gear.flank_of = rebuilt.flank_of;
-        gear.grid = OutlineGrid::new(rebuilt.points, reach);
-        if let Some(p) = gear.grid.self_crossing() {
+        // The spaces that lost material: those whose window holds a new point.
+        let cut_spaces = windows
+            .iter()
+            .filter(|w| rebuilt.new_points.iter().any(|&p| inside_ring(w, p)))
+            .count();
+        let grid = OutlineGrid::new(rebuilt.points, target.grid.reach());
+        if let Some(p) = grid.self_crossing() {
             return Err(Error::OutlineCrossing {
                 gear: if g == 0 { "driver" } else { "driven" },
                 x_mm: p.x,
                 y_mm: p.y,
             });
         }
-        cut_so_far.spaces += spaces.len();
-        cut_so_far.deepest_mm = cut_so_far.deepest_mm.max(deepest);
+        let gear = &mut gears[g];
+        gear.corners = rebuilt.corners;
+        gear.flank_of = rebuilt.flank_of;
+        gear.grid = grid;
+        cut_so_far.spaces += cut_spaces;
+        cut_so_far.deepest_mm = cut_so_far.deepest_mm.max(rebuilt.deepest);
         Ok(())
     }
 
@@ -234,7 +236,7 @@ impl MateCut<'_> {
     /// rule); only the pieces that come near `window`.
     fn sweep(&self, tips: &[(f64, Vec<Vec2>)], g: usize, c: f64, window: &Ring) -> Vec<Ring> {
         let perimeter = self.track.perimeter();
-        let (lo, hi) = bounds(window.iter().map(|p| Vec2::new(p[0], p[1])));
+        let (lo, hi) = bounds(window.iter().map(|&p| Vec2::from(p)));
         // The tips that can reach the space while it is in mesh.
         let reach = (SWEEP_PITCHES + TIP_REACH_PITCHES) * self.pitch;
         let tips: Vec<&Vec<Vec2>> = tips
@@ -261,26 +263,27 @@ impl MateCut<'_> {
         let start = c - SWEEP_PITCHES * self.pitch;
         let mut pieces = Vec::new();
         // Each tip at both positions, and the quadrilaterals its leading edges sweep between
-        // them (an edge moving back sweeps what the tip covered already).
+        // them (an edge moving back sweeps what the tip covered already), every piece
+        // counter-clockwise so that the non-zero rule fills their union (a quadrilateral
+        // whose edge turned across itself as two triangles).
         let mut emit = |p: &[Vec2], q: &[Vec2]| {
-            pieces.push(p.iter().map(|v| [v.x, v.y]).collect());
-            pieces.push(q.iter().map(|v| [v.x, v.y]).collect());
+            pieces.push(counter_clockwise(p.to_vec()));
+            pieces.push(counter_clockwise(q.to_vec()));
             let n = p.len();
-            let turning = (0..n)
-                .map(|i| p[i].cross(p[(i + 1) % n]))
-                .sum::<f64>()
-                .signum();
+            let turning = signed_area(p).signum();
             for i in 0..n {
                 let k = (i + 1) % n;
                 let outward = -(p[k] - p[i]).turn_90() * turning;
                 let moved = (q[i] - p[i]) + (q[k] - p[k]);
-                if moved.dot(outward) > 0.0 {
-                    pieces.push(vec![
-                        [p[i].x, p[i].y],
-                        [p[k].x, p[k].y],
-                        [q[k].x, q[k].y],
-                        [q[i].x, q[i].y],
-                    ]);
+                if moved.dot(outward) <= 0.0 {
+                    continue;
+                }
+                let quad = [p[i], p[k], q[k], q[i]];
+                if super::polyline::segments_cross(p[i], q[i], p[k], q[k]).is_some() {
+                    pieces.push(counter_clockwise(vec![p[i], p[k], q[k]]));
+                    pieces.push(counter_clockwise(vec![p[i], q[k], q[i]]));
+                } else {
+                    pieces.push(counter_clockwise(quad.to_vec()));
                 }
             }
         };
@@ -330,16 +333,16 @@ impl MateCut<'_> {
         }
     }
 
-    /// The cut outline `body` in the order and with the attributes of the cutter's outline
-    /// `old` of gear `target`: points that stayed are the cutter's own (exact, with their
-    /// flank and corner marks), new points lie on the tips' paths.
+    /// The new outline `body` in the order and with the marks of gear `target`'s outline as
+    /// the tool cut it (`old`): points that stayed are the tool-cut ones (exact, with their
+    /// flank and corner marks), new points lie on the mate's tip paths.
     fn splice(&self, target: &ToothedGear, old: &[Vec2], body: &Ring, g: usize) -> Result<Spliced> {
-        let key = |p: Vec2| {
-            (
-                (p.x / SAME_POINT_MM).round() as i64,
-                (p.y / SAME_POINT_MM).round() as i64,
-            )
-        };
+        // The boolean operation rounds to a grid of 2^-29 of the half-extent (i_overlay's
+        // conservative budget for 32-bit coordinates).
+        let (lo, hi) = bounds(old.iter().copied());
+        let half = 0.5 * (hi - lo).hypot();
+        let same = SAME_POINT_MM.max(8.0 * half * 2f64.powi(-29));
+        let key = |p: Vec2| ((p.x / same).round() as i64, (p.y / same).round() as i64);
         let mut index: HashMap<(i64, i64), usize> = HashMap::with_capacity(old.len());
         for (i, &p) in old.iter().enumerate() {
             index.insert(key(p), i);
@@ -349,14 +352,14 @@ impl MateCut<'_> {
             (-1..=1)
                 .flat_map(|dx| (-1..=1).map(move |dy| (x + dx, y + dy)))
                 .filter_map(|k| index.get(&k).copied())
-                .find(|&i| (old[i] - p).hypot() < SAME_POINT_MM)
+                .find(|&i| (old[i] - p).hypot() < same)
         };
-        let points: Vec<Vec2> = body.iter().map(|p| Vec2::new(p[0], p[1])).collect();
+        let points: Vec<Vec2> = body.iter().map(|&p| Vec2::from(p)).collect();
         let kept: Vec<Option<usize>> = points.iter().map(|&p| find(p)).collect();
         let n = points.len();
         let first = (0..n)
             .find(|&k| kept[k].is_some())
-            .ok_or_else(|| self.fail(g, "no point of the cutter's outline is left"))?;
+            .ok_or_else(|| self.fail(g, "no point of the tool-cut outline is left"))?;
         let mut is_corner = vec![false; old.len()];
         for &c in &target.corners {
             is_corner[c] = true;
@@ -372,17 +375,21 @@ impl MateCut<'_> {
                 continue;
             };
             if let Some(from) = last {
-                if !run.is_empty() || (i + old.len() - from) % old.len() > 1 {
+                if !run.is_empty() {
                     // The cut: where it leaves and meets the cutter's outline, and the
                     // kinks where the paths of two tips meet, are corners.
                     out.corners.push(out.points.len() - 1);
                     let replaced = cyclic(old, from, i);
                     let mut previous = old[from];
                     for (r, &p) in run.iter().enumerate() {
-                        let depth = replaced
-                            .windows(2)
-                            .map(|w| segment_distance(p, w[0], w[1]))
-                            .fold(f64::INFINITY, f64::min);
+                        let depth = if replaced.len() < 2 {
+                            (p - old[from]).hypot()
+                        } else {
+                            replaced
+                                .windows(2)
+                                .map(|w| segment_distance(p, w[0], w[1]))
+                                .fold(f64::INFINITY, f64::min)
+                        };
                         out.deepest = out.deepest.max(depth);
                         let next = run.get(r + 1).copied().unwrap_or(old[i]);
                         let (u, v) = (p - previous, next - p);
@@ -391,6 +398,7 @@ impl MateCut<'_> {
                         }
                         out.points.push(p);
                         out.flank_of.push(None);
+                        out.new_points.push(p);
                         previous = p;
                     }
                     run.clear();
@@ -411,13 +419,13 @@ impl MateCut<'_> {
         }
         out.corners.sort_unstable();
         out.corners.dedup();
-        // The points that stayed follow the cutter's order, once round.
+        // The points that stayed follow the tool-cut order, once round.
         let order = &out.order;
         let turns = (0..order.len())
             .filter(|&k| order[(k + 1) % order.len()] <= order[k])
             .count();
         if turns != 1 {
-            return Err(self.fail(g, "the cut outline does not follow the cutter's"));
+            return Err(self.fail(g, "the new outline does not follow the tool-cut one"));
         }
         Ok(out)
     }
@@ -436,10 +444,39 @@ struct Spliced {
     points: Vec<Vec2>,
     flank_of: Vec<Option<(usize, super::cut_gear::Side)>>,
     corners: Vec<usize>,
-    /// The cutter's index of each point that stayed.
+    /// The tool-cut outline's index of each point that stayed.
     order: Vec<usize>,
+    /// The points the mate's tips cut.
+    new_points: Vec<Vec2>,
     /// Deepest new point below the cutter's outline (mm).
     deepest: f64,
+}
+
+/// Twice the signed area (mm²) of the closed polygon `points`: positive counter-clockwise.
+fn signed_area(points: &[Vec2]) -> f64 {
+    let n = points.len();
+    (0..n).map(|i| points[i].cross(points[(i + 1) % n])).sum()
+}
+
+/// `points` as a counter-clockwise ring for the boolean operations.
+fn counter_clockwise(mut points: Vec<Vec2>) -> Ring {
+    if signed_area(&points) < 0.0 {
+        points.reverse();
+    }
+    points.into_iter().map(<[f64; 2]>::from).collect()
+}
+
+/// Whether `p` is inside the closed `ring` (crossing number).
+fn inside_ring(ring: &Ring, p: Vec2) -> bool {
+    let n = ring.len();
+    let mut inside = false;
+    for i in 0..n {
+        let (a, b) = (Vec2::from(ring[i]), Vec2::from(ring[(i + 1) % n]));
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (b.x - a.x) * (p.y - a.y) / (b.y - a.y) {
+            inside = !inside;
+        }
+    }
+    inside
 }
 
 /// The points of the closed `ring` from index `from` to `to`, both included, going on.

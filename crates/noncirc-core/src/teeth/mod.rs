@@ -360,7 +360,15 @@ impl ToothedPair {
         };
         let mut checked = check(&gears);
         let mut mate_roots = [MateRoots::default(); 2];
-        if spec.mate_roots && checked.overlaps.iter().any(|o| !o.is_empty()) {
+        // What stopped the mate-generated roots, if anything did (the pair is then reported
+        // with the roots as far as they were cut).
+        let mut mate_failure = None;
+        // With no bottom clearance asked for (dedendum ≤ addendum) the mate's tips are meant
+        // to reach the root: there is nothing to generate.
+        if spec.mate_roots
+            && spec.dedendum > spec.addendum
+            && checked.overlaps.iter().any(|o| !o.is_empty())
+        {
             // Each gear cut as a shaper for its mate's roots: its tips raised by the bottom
             // clearance (the tool's dedendum for its addendum), its flanks set back by a
             // margin so that they do not cut the flanks they are conjugate to.
@@ -369,7 +377,12 @@ impl ToothedPair {
                 ..*spec
             };
             let margin = MATE_MARGIN * tolerance;
-            let shaper = |member, shift: f64, phase: f64, name| {
+            let shaper = |g: usize| {
+                let (member, shift, phase, name) = if g == 0 {
+                    (Member::Driven, -x, 0.5 * pitch, "driven")
+                } else {
+                    (Member::Driver, x, 0.0, "driver")
+                };
                 let thinner = thick(shift) - 2.0 * margin / alpha.cos();
                 cut_with(
                     Tool::new(&as_shaper, m, shift, thinner)?,
@@ -392,29 +405,32 @@ impl ToothedPair {
             let mut done: [Vec<usize>; 2] = Default::default();
             // A cut can bring the next deepest overlaps to light (the check searches the
             // deepest few between its steps): a few rounds.
-            for _ in 0..MATE_ROUNDS {
+            'rounds: for _ in 0..MATE_ROUNDS {
                 let overlaps = std::mem::take(&mut checked.overlaps);
                 let before = done.clone();
                 for (g, overlaps) in overlaps.iter().enumerate() {
                     if overlaps.is_empty() {
                         continue;
                     }
-                    if cutters[g].is_none() {
-                        cutters[g] = Some(if g == 0 {
-                            shaper(Member::Driven, -x, 0.5 * pitch, "driven")?
-                        } else {
-                            shaper(Member::Driver, x, 0.0, "driver")?
-                        });
+                    let outcome = match &cutters[g] {
+                        Some(cutter) => Ok(cutter),
+                        None => shaper(g).map(|c| &*cutters[g].insert(c)),
                     }
-                    let cutter = cutters[g].as_ref().expect("made above");
-                    mate_cut.cut(
-                        &mut gears,
-                        g,
-                        cutter,
-                        overlaps,
-                        &mut done[g],
-                        &mut mate_roots[g],
-                    )?;
+                    .and_then(|cutter| {
+                        mate_cut.cut(
+                            &mut gears,
+                            g,
+                            cutter,
+                            overlaps,
+                            &mut done[g],
+                            &mut mate_roots[g],
+                        )
+                    });
+                    if let Err(e) = outcome {
+                        mate_failure = Some(e.to_string());
+                        checked = check(&gears);
+                        break 'rounds;
+                    }
                 }
                 if done == before {
                     break;
@@ -423,7 +439,15 @@ impl ToothedPair {
             }
         }
         let mesh = checked.report;
-        let report = verdict(&track, &gears, &mesh, &mate_roots, spec, teeth, m);
+        let report = verdict(
+            &track,
+            &gears,
+            &mesh,
+            (&mate_roots, mate_failure.as_deref()),
+            spec,
+            teeth,
+            m,
+        );
         Ok(Self {
             track,
             spec: *spec,
@@ -488,7 +512,7 @@ fn verdict(
     track: &PairTrack,
     gears: &[ToothedGear; 2],
     mesh: &MeshReport,
-    mate_roots: &[MateRoots; 2],
+    (mate_roots, mate_failure): (&[MateRoots; 2], Option<&str>),
     spec: &ToothSpec,
     teeth: u32,
     m: f64,
@@ -568,6 +592,11 @@ fn verdict(
             } else {
                 ""
             }
+        ));
+    }
+    if let Some(why) = mate_failure {
+        failures.push(format!(
+            "the roots could not be cut by the mate's tips: {why}"
         ));
     }
     if mesh.contact_ratio_min < 1.0 {
