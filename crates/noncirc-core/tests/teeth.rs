@@ -721,3 +721,34 @@ fn the_mates_tips_cut_the_roots_a_shaper_left_too_shallow_by_a_concave_arc() {
         );
     }
 }
+
+/// The paper's design at the module its curvature allows (0.189 mm), with a 20-tooth shaper
+/// that fits its sharpest concave arc: the flank, which does not depend on the cutter, folds
+/// back at a cusp of the envelope before it reaches the tip curve (where the pitch curve's
+/// concave radius of curvature falls from 5 to 1.9 mm within the tooth's rolling). The
+/// refusal says so with the shortfall, rather than that Newton did not converge.
+#[test]
+fn the_paper_design_is_refused_where_its_flank_folds_back_below_the_tip() {
+    let curve = CurveSpec::paper().build().unwrap();
+    let perimeter = noncirc_core::PairTrack::new(&curve, 60.0, 256)
+        .unwrap()
+        .perimeter();
+    let teeth = (perimeter / (PI * 0.1888)).round() as u32;
+    let spec = ToothSpec {
+        cutter: noncirc_core::Cutter::Shaper { teeth: 20 },
+        tip_radius: 0.1,
+        ..ToothSpec::default()
+    };
+    let error = ToothedPair::cut(&curve, 60.0, teeth, &spec)
+        .unwrap_err()
+        .to_string();
+    println!("{error}");
+    let short: f64 = error
+        .split("folds back (a cusp of the envelope) ")
+        .nth(1)
+        .and_then(|rest| rest.split(" mm").next())
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("{error}"));
+    assert!(short > 0.01 && short < 0.05, "{error}");
+    assert!(error.contains("whatever the cutter"), "{error}");
+}

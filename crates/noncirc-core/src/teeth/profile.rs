@@ -294,6 +294,64 @@ impl Cut<'_> {
         None
     }
 
+    /// Where the flank meets the tip curve, bracketed where Newton from the circle's guess
+    /// `s_guess` fails (where the pitch curve bends sharply within the tooth): the flank's
+    /// height over the tip curve, measured from its foot point there, is marched from the
+    /// pitch curve (`u0`) past the guess until it changes sign, then the crossing is found
+    /// by regula falsi and polished by Newton. If the flank does not get there within three
+    /// times the guess (it folds back first, at a cusp above the pitch curve, whatever the
+    /// cutter), the highest it got (mm, negative: below the tip curve; NaN if unmeasured).
+    fn tip_crossing(
+        &self,
+        flank: Piece,
+        tip: Piece,
+        u0: f64,
+        s_guess: f64,
+    ) -> std::result::Result<(f64, f64, Vec2), f64> {
+        let cos = self.tool.cos;
+        // The flank point at rolling `a`, its foot on the tip curve (rolling `b`, Newton
+        // from the straight-line guess) and its height over the tip curve there.
+        let above = |a: f64| -> Option<(f64, f64)> {
+            let p = self.at(flank, a);
+            let mut b = a + self.lambda(a, u0) * cos;
+            for _ in 0..30 {
+                let f = self.frame(b);
+                let q = self.point(tip, b, &f);
+                let v = self.velocity(tip, b, &f);
+                let step = (q - p).dot(v) / v.hypot2();
+                b -= step;
+                if step.abs() < 1e-12 * self.pitch {
+                    let f = self.frame(b);
+                    let q = self.point(tip, b, &f);
+                    return Some(((p - q).dot(f.normal), b));
+                }
+            }
+            None
+        };
+        let steps = 24;
+        let span = 3.0 * (s_guess - u0);
+        let mut lo = (u0, above(u0).ok_or(f64::NAN)?.0);
+        let mut highest = lo.1;
+        for k in 1..=steps {
+            let a = u0 + span * k as f64 / steps as f64;
+            let (h, _) = above(a).ok_or(highest)?;
+            if h > 0.0 {
+                let a = super::roots::regula_falsi(
+                    |x| above(x).map_or(f64::NAN, |(h, _)| h),
+                    lo,
+                    (a, h),
+                );
+                let (_, b) = above(a).ok_or(highest)?;
+                return Ok(self
+                    .meet(flank, tip, a, b)
+                    .unwrap_or((a, b, self.at(flank, a))));
+            }
+            lo = (a, h);
+            highest = highest.max(h);
+        }
+        Err(highest)
+    }
+
     /// Segments (at least `least`) of the offset of the pitch curve at `height` (mm) from
     /// rolling position `s0` to `s1` within the chord tolerance: a chord over `Δs` of
     /// rolling sags `(1 + hκ)κΔs²/8`.
@@ -333,15 +391,28 @@ impl Cut<'_> {
         // Where the flank meets the tip curve: from the tool's tip height.
         let s_guess = u0 - sigma * t.tip / (t.sin * t.cos);
         let w_guess = s_guess + self.lambda(s_guess, u0) * t.cos;
-        let (s_tip, w_tip, _) = self.meet(flank, tip, s_guess, w_guess).ok_or_else(|| {
+        let crossing = match self.meet(flank, tip, s_guess, w_guess) {
+            Some(found) => Ok(found),
+            None => self.tip_crossing(flank, tip, u0, s_guess),
+        };
+        let (s_tip, w_tip, _) = crossing.map_err(|highest| {
             let radius = 1.0 / self.frame(u0).curvature;
+            let short = if highest.is_finite() {
+                format!(
+                    ": the flank folds back (a cusp of the envelope) {:.4} mm below it, \
+                     whatever the cutter",
+                    -highest
+                )
+            } else {
+                String::new()
+            };
             self.fail(
                 j,
                 u0,
                 format!(
-                    "the flank does not reach the tip curve {:.3} mm outside the pitch curve, \
-                     whose radius of curvature is {radius:.3} mm here: the pitch curve bends \
-                     too sharply for teeth of module {:.4} mm",
+                    "the flank does not reach the tip curve {:.3} mm outside the pitch curve{short}; \
+                     the pitch curve's radius of curvature is {radius:.3} mm here: it bends too \
+                     sharply for teeth of module {:.4} mm",
                     t.tip,
                     self.pitch / std::f64::consts::PI
                 ),
