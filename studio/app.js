@@ -645,7 +645,15 @@ function wire() {
   });
   const files = (json) => { for (const f of JSON.parse(json)) P.download(f.name, f.text); };
   $('export-pitch').addEventListener('click', () => { try { files(state.design.pitchFiles()); } catch (e) { $('teeth-msg').className = 'msg'; $('teeth-msg').textContent = e.message; } });
-  $('export-teeth').addEventListener('click', () => { try { files(state.design.teethFiles(state.carrier)); } catch (e) { $('teeth-msg').className = 'msg'; $('teeth-msg').textContent = e.message; } });
+  $('export-teeth').addEventListener('click', () => {
+    const msg = $('teeth-msg');
+    const force = $('export-force').checked;
+    try {
+      files(state.design.teethFiles(state.carrier, force));
+      msg.className = 'guide';
+      msg.textContent = force ? 'teeth exported (DXF, SVG, CSV), though a check may fail' : 'teeth exported (DXF, SVG, CSV)';
+    } catch (e) { msg.className = 'msg'; msg.textContent = e.message; }
+  });
   for (const b of document.querySelectorAll('button.fig')) {
     b.addEventListener('click', () => {
       const svg = $(b.dataset.fig);

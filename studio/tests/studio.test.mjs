@@ -258,15 +258,25 @@ test('the cut teeth are drawn and exported as the CLI cuts them', async () => {
   await page.locator('#mechanism').screenshot({ path: join(results, 'mechanism_teeth.png') });
   const downloads = [];
   page.on('download', (d) => downloads.push(d));
-  await page.click('#export-teeth');
-  for (let i = 0; i < 50 && downloads.length < 7; i++) await page.waitForTimeout(100);
   const dir = join(tmp, 'teeth');
-  // --force: the CLI refuses to export teeth that fail a check (exit code 3) unless asked.
+  // --force: the CLI refuses to export teeth that fail a check (exit code 3) unless asked,
+  // and so does the page unless "even if a check fails" is ticked.
+  let fails = false;
   try {
     execFileSync(cli, ['teeth', sceneFile('teeth.toml', await pageScene()), '--export', dir, '--carrier-deg', '0', '--force'], { stdio: 'pipe' });
   } catch (e) {
     if (e.status !== 3) throw e;
+    fails = true;
   }
+  await page.click('#export-teeth');
+  if (fails) {
+    await page.waitForTimeout(300);
+    assert.equal(downloads.length, 0, 'failing teeth exported without asking');
+    assert.match(await page.locator('#teeth-msg').textContent(), /not exported: the teeth fail \d+ check/);
+    await page.check('#export-force');
+    await page.click('#export-teeth');
+  }
+  for (let i = 0; i < 50 && downloads.length < 7; i++) await page.waitForTimeout(100);
   const names = downloads.map((d) => d.suggestedFilename()).sort();
   assert.deepEqual(names, ['driven.csv', 'driven.dxf', 'driver.csv', 'driver.dxf', 'pitch_driver.csv', 'train.dxf', 'train.svg']);
   for (const d of downloads) {
@@ -274,7 +284,33 @@ test('the cut teeth are drawn and exported as the CLI cuts them', async () => {
     await d.saveAs(path);
     sameUpToLastDigit(readFileSync(path, 'utf8'), readFileSync(join(dir, d.suggestedFilename()), 'utf8'), d.suggestedFilename());
   }
+  await page.uncheck('#export-force');
   await page.uncheck('#teeth');
+});
+
+test('teeth that fail a check are exported only when asked, as the CLI exports them only with --force', async () => {
+  const scene = await pageScene();
+  assert.ok(!scene.includes('[gear.teeth]'), 'the page scene already sets the teeth');
+  // Tips taller than the roots are deep: the teeth overlap.
+  const failing = `${scene}\n[gear.teeth]\naddendum = 1.45\n`;
+  const file = sceneFile('failing.toml', failing);
+  assert.throws(() => execFileSync(cli, ['teeth', file], { stdio: 'pipe' }), (e) => e.status === 3);
+  await page.setInputFiles('#open', { name: 'failing.toml', mimeType: 'text/plain', buffer: Buffer.from(failing) });
+  await page.waitForFunction(() => window.studio.state.design.toToml().includes('addendum = 1.45'));
+  const downloads = [];
+  page.on('download', (d) => downloads.push(d));
+  await page.click('#export-teeth');
+  await page.waitForTimeout(300);
+  assert.equal(downloads.length, 0, 'failing teeth exported without asking');
+  assert.match(await page.locator('#teeth-msg').textContent(), /not exported: the teeth fail \d+ checks? \(.*overlap/);
+  await page.check('#export-force');
+  await page.click('#export-teeth');
+  for (let i = 0; i < 50 && downloads.length < 7; i++) await page.waitForTimeout(100);
+  assert.equal(downloads.length, 7);
+  await page.uncheck('#export-force');
+  await page.setInputFiles('#open', { name: 'restored.toml', mimeType: 'text/plain', buffer: Buffer.from(scene) });
+  await page.waitForFunction(() => !window.studio.state.design.toToml().includes('addendum = 1.45'));
+  assert.equal(await pageScene(), scene);
 });
 
 test('a figure downloads as standalone SVG', async () => {

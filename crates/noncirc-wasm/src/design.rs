@@ -324,10 +324,21 @@ impl Design {
     }
 
     /// The toothed gears as `noncirc teeth --export` writes them (assembled at carrier
-    /// angle `carrier_deg`, chord tolerance 1 µm), as JSON `[{name, text}]`.
+    /// angle `carrier_deg`, chord tolerance 1 µm), as JSON `[{name, text}]`. Teeth that
+    /// fail a check are refused, naming the checks, unless `force` (as `--force`).
     #[wasm_bindgen(js_name = teethFiles)]
-    pub fn teeth_files(&self, carrier_deg: f64) -> Result<String, JsError> {
+    pub fn teeth_files(&self, carrier_deg: f64, force: bool) -> Result<String, JsError> {
         let run = TeethRun::from_scene(&self.scene, carrier_deg).map_err(js_error)?;
+        let failures = &run.pair.report.failures;
+        if !failures.is_empty() && !force {
+            return Err(JsError::new(&format!(
+                "not exported: the teeth fail {} check{} ({}); tick \"even if a check fails\" \
+                 to export them anyway",
+                failures.len(),
+                if failures.len() == 1 { "" } else { "s" },
+                failures.join("; ")
+            )));
+        }
         let files: Vec<File> = (run.files(1e-3).into_iter())
             .map(|(name, text)| File {
                 name: name.into(),
