@@ -88,6 +88,13 @@ impl TeethRun {
         })
     }
 
+    /// The failed checks counted in words ("1 check", "3 checks"), as the CLI and the
+    /// studio say why they do not export.
+    pub fn failed_checks(&self) -> String {
+        let n = self.pair.report.failures.len();
+        format!("{n} check{}", if n == 1 { "" } else { "s" })
+    }
+
     pub fn summary(&self) -> TeethSummary<'_> {
         TeethSummary {
             count_from: self.count_from,

@@ -79,7 +79,7 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
     };
     noncirc::report::check_finite(&run.summary())?;
     let failures = run.pair.report.failures.len();
-    let checks = format!("{failures} check{}", if failures == 1 { "" } else { "s" });
+    let checks = run.failed_checks();
     if let Some(dir) = &args.export {
         if failures == 0 || args.force {
             for f in run.export(dir, args.tolerance_mm)? {

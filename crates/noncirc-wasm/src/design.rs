@@ -332,10 +332,9 @@ impl Design {
         let failures = &run.pair.report.failures;
         if !failures.is_empty() && !force {
             return Err(JsError::new(&format!(
-                "not exported: the teeth fail {} check{} ({}); tick \"even if a check fails\" \
-                 to export them anyway",
-                failures.len(),
-                if failures.len() == 1 { "" } else { "s" },
+                "not exported: the teeth fail {} ({}); tick \"even if a check fails\" to export \
+                 them anyway",
+                run.failed_checks(),
                 failures.join("; ")
             )));
         }

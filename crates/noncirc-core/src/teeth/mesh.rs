@@ -63,7 +63,7 @@ const RISKY_DIVISIONS: usize = 4;
 const RISKY_REACH_PITCHES: f64 = 1.5;
 
 /// The pitch arcs (mm) of the teeth that are undercut and of the teeth and spaces where
-/// either pitch curve is concave.
+/// either pitch curve is concave (none to look for where both are convex throughout).
 fn risky_arcs(track: &PairTrack, gears: &[ToothedGear; 2], pitch: f64) -> Vec<f64> {
     let mut arcs: Vec<f64> = gears
         .iter()
@@ -71,6 +71,12 @@ fn risky_arcs(track: &PairTrack, gears: &[ToothedGear; 2], pitch: f64) -> Vec<f6
         .filter(|t| t.undercut.iter().any(Option::is_some))
         .map(|t| t.centre_arc_mm)
         .collect();
+    let convex = [Member::Driver, Member::Driven]
+        .into_iter()
+        .all(|member| track.least_curvature(member).0 >= 0.0);
+    if convex {
+        return arcs;
+    }
     let teeth = gears[0].teeth.len();
     for k in 0..2 * teeth {
         let s = 0.5 * pitch * k as f64;
@@ -89,14 +95,19 @@ fn risky_arcs(track: &PairTrack, gears: &[ToothedGear; 2], pitch: f64) -> Vec<f6
 /// at two steps a pitch).
 const GOLDEN_WIDTH_STEPS: f64 = 4e-4;
 
-/// The least value of `f` on `[lo, hi]` by golden section ([`golden_min`]): where, the
-/// value, and the calls of `f`.
-fn golden_minimum(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> (f64, f64, usize) {
+/// Where `key` of `f` is least on `[lo, hi]` by golden section ([`golden_min`]): there,
+/// `f` there (all of it, not only the key), and the calls of `f`.
+fn golden_minimum<T>(
+    f: impl Fn(f64) -> T,
+    key: impl Fn(&T) -> f64,
+    lo: f64,
+    hi: f64,
+) -> (f64, T, usize) {
     let mut calls = 0;
     let x = golden_min(
         |x| {
             calls += 1;
-            f(x)
+            key(&f(x))
         },
         lo,
         hi,
@@ -237,9 +248,14 @@ pub(super) fn check(
         visit(0, to_driven, &gears[1].grid);
         (least, gap, into)
     };
-    // Each tooth's tip probes: its tip land and the flank ends beside it (all of a pointed
-    // tooth's), the part of a tooth that can reach into its mate's fillets and root.
+    let risky = risky_arcs(track, gears, pitch);
+    // Each tooth's tip probes (where there is a risky arc): its tip land and the flank ends
+    // beside it (all of a pointed tooth's), the part of a tooth that can reach into its
+    // mate's fillets and root.
     let tips: [Vec<(usize, usize)>; 2] = [0, 1].map(|g| {
+        if risky.is_empty() {
+            return Vec::new();
+        }
         let gear = &gears[g];
         gear.tooth_probes
             .iter()
@@ -306,7 +322,6 @@ pub(super) fn check(
     // Where a tip can reach into a fillet beside an undercut or into a root by a concave
     // arc, an overlap may last less than a step and hide behind the flanks' contact
     // (which holds the least distance at zero): there the steps are divided further.
-    let risky = risky_arcs(track, gears, pitch);
     let perimeter = pitch * teeth as f64;
     let mut evaluated = positions;
     let fine_step = step / RISKY_DIVISIONS as f64;
@@ -349,9 +364,9 @@ pub(super) fn check(
     minima.sort_by(|&i, &j| lows[i].total_cmp(&lows[j]));
     for &k in minima.iter().take(REFINED_MINIMA) {
         let s = step * k as f64;
-        let (bottom, value, calls) = golden_minimum(|x| at(x).0, s - step, s + step);
-        evaluated += calls + 1;
-        note(bottom, at(bottom).2);
+        let (bottom, (value, _, into), calls) = golden_minimum(at, |r| r.0, s - step, s + step);
+        evaluated += calls;
+        note(bottom, into);
         if value < least.0 {
             least = (value, bottom.rem_euclid(pitch * teeth as f64));
         }
@@ -359,9 +374,10 @@ pub(super) fn check(
     // The deepest overlap found between the steps, searched for its bottom likewise.
     if fine_least.0 < least.0.min(-tolerance) {
         let s = fine_least.1;
-        let (bottom, value, calls) = golden_minimum(|x| at(x).0, s - fine_step, s + fine_step);
-        evaluated += calls + 1;
-        note(bottom, at(bottom).2);
+        let (bottom, (value, _, into), calls) =
+            golden_minimum(at, |r| r.0, s - fine_step, s + fine_step);
+        evaluated += calls;
+        note(bottom, into);
         least = if value <= fine_least.0 {
             (value, bottom.rem_euclid(pitch * teeth as f64))
         } else {
@@ -386,7 +402,7 @@ pub(super) fn check(
                     t
                 }
             };
-            let (_, value, calls) = golden_minimum(f, s - step, s + step);
+            let (_, value, calls) = golden_minimum(f, |&t| t, s - step, s + step);
             (sign * value, calls)
         };
         let (low, calls_lo) = search(k_lo, 1.0);
