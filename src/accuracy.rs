@@ -73,7 +73,7 @@ pub struct TeethErrors {
 
 /// Chord tolerances (mm) and mesh steps of the teeth's ladder, coarse to fine; the third is
 /// the default.
-const TEETH_LADDER: [(f64, usize); 4] = [(16e-3, 1), (4e-3, 1), (1e-3, 2), (0.25e-3, 4)];
+const TEETH_LADDER: [(f64, usize); 4] = [(16e-3, 1), (4e-3, 1), (2e-3, 1), (0.5e-3, 2)];
 
 fn teeth_ladder(scene: &Scene) -> Result<Vec<TeethLevel>, String> {
     let with = |spec: ToothSpec| {

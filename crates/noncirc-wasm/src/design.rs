@@ -324,7 +324,8 @@ impl Design {
     }
 
     /// The toothed gears as `noncirc teeth --export` writes them (assembled at carrier
-    /// angle `carrier_deg`, chord tolerance 1 µm), as JSON `[{name, text}]`. Teeth that
+    /// angle `carrier_deg`, lines and arcs within 1 µm of every outline point), as JSON
+    /// `[{name, text}]`. Teeth that
     /// fail a check are refused, naming the checks, unless `force` (as `--force`).
     #[wasm_bindgen(js_name = teethFiles)]
     pub fn teeth_files(&self, carrier_deg: f64, force: bool) -> Result<String, JsError> {

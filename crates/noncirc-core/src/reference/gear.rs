@@ -231,7 +231,8 @@ pub(super) const FIELDS: &[Field] = &[
         unit: "mm",
         range: Range::from_to(1e-6, 0.1),
         meaning: "Largest distance of an outline chord (flank, fillet, root, tip) from the \
-                  generated curve: the outline's accuracy.",
+                  generated curve: the outline's accuracy (the mesh check measures to the \
+                  curves the chords stand for, to a fraction of it; docs/teeth.md).",
         refused: &["gear.teeth.chord_tolerance_mm=0"],
         number: Some(real!(gear.teeth.chord_tolerance_mm)),
     },

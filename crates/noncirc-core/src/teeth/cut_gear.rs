@@ -63,7 +63,8 @@ pub struct ToothedGear {
     pub flank_of: Vec<Option<(usize, Side)>>,
     /// The points the mesh check probes, tooth by tooth: the tip and the flank from the
     /// pitch curve up (every contact is at or above the pitch curve of one of the two
-    /// gears); the mate's probes meet the rest.
+    /// gears); the mate's probes meet the rest. In the order of growing pitch arc:
+    /// counter-clockwise round the driver, clockwise round the driven gear.
     pub(super) probes: Vec<Probe>,
     /// Each tooth's probes: the range of `probes` (start, end).
     pub(super) tooth_probes: Vec<(usize, usize)>,

@@ -214,7 +214,13 @@ impl MateCut<'_> {
             .iter()
             .filter(|w| rebuilt.new_points.iter().any(|&p| inside_ring(w, p)))
             .count();
-        let grid = OutlineGrid::new(rebuilt.points, target.grid.reach());
+        // (The new points lie on the tips' paths within the sweep's tolerance.)
+        let grid = OutlineGrid::new(
+            rebuilt.points,
+            target.grid.reach(),
+            target.grid.chord_tolerance().max(self.tolerance),
+            &rebuilt.joints,
+        );
         if let Some(p) = grid.self_crossing() {
             return Err(Error::OutlineCrossing {
                 gear: if g == 0 { "driver" } else { "driven" },
@@ -412,6 +418,9 @@ impl MateCut<'_> {
             if is_corner[i] {
                 out.corners.push(out.points.len());
             }
+            if target.grid.is_joint(i) {
+                out.joints.push(out.points.len());
+            }
             out.points.push(old[i]);
             out.flank_of.push(target.flank_of[i]);
             out.order.push(i);
@@ -419,6 +428,9 @@ impl MateCut<'_> {
         }
         out.corners.sort_unstable();
         out.corners.dedup();
+        out.joints.extend(&out.corners);
+        out.joints.sort_unstable();
+        out.joints.dedup();
         // The points that stayed follow the tool-cut order, once round.
         let order = &out.order;
         let turns = (0..order.len())
@@ -446,6 +458,9 @@ struct Spliced {
     corners: Vec<usize>,
     /// The tool-cut outline's index of each point that stayed.
     order: Vec<usize>,
+    /// The points where pieces meet: the corners, and the joints of the tool-cut outline
+    /// that stayed.
+    joints: Vec<usize>,
     /// The points the mate's tips cut.
     new_points: Vec<Vec2>,
     /// Deepest new point below the cutter's outline (mm).

@@ -8,7 +8,7 @@
 //! meshes over a full carrier turn.
 
 use super::cut_gear::{Side, ToothedGear};
-use super::polyline::OutlineGrid;
+use super::polyline::{chord_bulge, menger_curvature, OutlineGrid};
 use super::track::{Member, PairTrack};
 use super::OVERLAP_TOLERANCE_MM;
 use crate::angle::unit;
@@ -49,9 +49,108 @@ fn pair_side(gear: usize, side: Side) -> usize {
     }
 }
 
-/// Fractions of a chord probed next to the nearest flank probe: the bottom between
-/// probes is then found to a fifth of their spacing (a 25th of the quadratic error).
-const CHORD_PROBES: [f64; 4] = [0.2, 0.4, 0.6, 0.8];
+/// The distance to the mate (by `distance`, mm) of the flank through `gear`'s probe `k`
+/// (at distance `d`, the nearest on its flank) where it comes nearest between the probes
+/// beside it, to a twentieth of `tolerance` (mm): successive parabolic
+/// interpolation along the chords to the neighbours on the flank (or, with one neighbour,
+/// from the midpoint of the chord to it), each point measured with its chord's sag taken
+/// off ([`chord_bulge`]; `turning` is 1 where the probes run counter-clockwise round
+/// their gear, −1 where clockwise). Infinite where no neighbour is within reach.
+fn bottom_beside(
+    gear: &ToothedGear,
+    turning: f64,
+    (k, d): (usize, f64),
+    tolerance: f64,
+    distance: &impl Fn(Vec2) -> Option<f64>,
+) -> f64 {
+    let probes = &gear.probes;
+    let side = probes[k].side;
+    let p = probes[k].point;
+    let neighbour = |n: usize| {
+        let q = probes.get(n).filter(|q| q.side == side)?;
+        Some((q.point, distance(q.point)?))
+    };
+    let (before, after) = (neighbour(k.wrapping_sub(1)), neighbour(k + 1));
+    let kappa = match (before, after) {
+        (Some((a, _)), Some((b, _))) => turning * menger_curvature(a, p, b),
+        _ => 0.0,
+    };
+    // A bow of more than twice the chord tolerance is a corner's turn, not the flank's.
+    let bow = |chord: Vec2, f: f64| {
+        let bow = chord_bulge(kappa, kappa, chord, f);
+        if chord_bulge(kappa, kappa, chord, 0.5).abs() > 2.0 * gear.grid.chord_tolerance() {
+            0.0
+        } else {
+            bow
+        }
+    };
+    // Positions `x` along the flank: `p` at 0, the chord to the point before it on the
+    // negative side, to the point after it on the positive side.
+    let chords = [before.map(|(a, _)| a), after.map(|(b, _)| b)];
+    let length = chords.map(|q| q.map_or(0.0, |q| (q - p).hypot2().sqrt()));
+    let at = |x: f64| -> Option<f64> {
+        let (q, len) = if x < 0.0 {
+            (chords[0]?, length[0])
+        } else {
+            (chords[1]?, length[1])
+        };
+        let f = x.abs() / len;
+        Some(distance(p + (q - p) * f)? - bow(q - p, f))
+    };
+    let mut bracket = match (before, after) {
+        (Some((_, da)), Some((_, db))) => [(-length[0], da), (0.0, d), (length[1], db)],
+        (Some((_, da)), None) => {
+            let x = -0.5 * length[0];
+            let Some(dm) = at(x) else {
+                return f64::INFINITY;
+            };
+            [(-length[0], da), (x, dm), (0.0, d)]
+        }
+        (None, Some((_, db))) => {
+            let x = 0.5 * length[1];
+            let Some(dm) = at(x) else {
+                return f64::INFINITY;
+            };
+            [(0.0, d), (x, dm), (length[1], db)]
+        }
+        (None, None) => return f64::INFINITY,
+    };
+    for _ in 0..BOTTOM_STEPS {
+        let [lo, mid, hi] = bracket;
+        let Some((x, predicted)) = parabola_bottom(bracket) else {
+            break;
+        };
+        let Some(e) = at(x) else { break };
+        bracket = match (e < mid.1, x < mid.0) {
+            (true, true) => [lo, (x, e), mid],
+            (true, false) => [mid, (x, e), hi],
+            (false, true) => [(x, e), mid, hi],
+            (false, false) => [lo, mid, (x, e)],
+        };
+        if (e - predicted).abs() < BOTTOM_PRECISION * tolerance {
+            break;
+        }
+    }
+    bracket.iter().fold(f64::INFINITY, |m, &(_, y)| m.min(y))
+}
+
+/// Precision (in the check's tolerances) to which [`bottom_beside`] finds a bottom.
+const BOTTOM_PRECISION: f64 = 0.05;
+
+/// Most parabolic steps in [`bottom_beside`].
+const BOTTOM_STEPS: usize = 4;
+
+/// Where the parabola through three points `(x, y)` (in growing `x`) is least, if it opens
+/// upward, kept within their span, and its value there.
+fn parabola_bottom([(x0, y0), (x1, y1), (x2, y2)]: [(f64, f64); 3]) -> Option<(f64, f64)> {
+    let (u, v) = ((y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1));
+    let c = (v - u) / (x2 - x0);
+    // y = y0 + u (x − x0) + c (x − x0)(x − x1), least where its slope vanishes.
+    (c > 0.0).then(|| {
+        let x = (0.5 * (x0 + x1) - 0.5 * u / c).clamp(x0, x2);
+        (x, y0 + u * (x - x0) + c * (x - x0) * (x - x1))
+    })
+}
 
 /// Local minima of the least clearance searched between the steps (the deepest first).
 const REFINED_MINIMA: usize = 3;
@@ -194,9 +293,12 @@ pub(super) fn check(
             let gear = &gears[g];
             let phase = if g == 0 { 0.0 } else { 0.5 };
             let centre_tooth = (s / pitch - phase).round() as i64;
+            // The probes run counter-clockwise round the driver, clockwise round the
+            // driven gear.
+            let turning = if g == 0 { 1.0 } else { -1.0 };
             let distance = |p: Vec2| {
                 other
-                    .signed_distance(p.rotated(turn) + shift)
+                    .signed_distance_to_curve(p.rotated(turn) + shift)
                     .filter(|&d| d < reach)
             };
             // The nearest flank probe on each side of the pair: (distance, probe index).
@@ -219,26 +321,12 @@ pub(super) fn check(
                 }
             }
             // Two flanks near contact part quadratically along the flank, so the nearest
-            // probe can be farther than the bottom between probes: the chords either side
-            // of it are probed at a few points too (the chords lie within the chord
-            // tolerance of the flank).
+            // probe can be farther than the bottom between probes: it is measured too.
             for (pair_side, &(d, k)) in nearest.iter().enumerate() {
                 if !d.is_finite() {
                     continue;
                 }
-                let side = gear.probes[k].side;
-                let mut bottom = d;
-                for n in [k.wrapping_sub(1), k + 1] {
-                    let Some(q) = gear.probes.get(n).filter(|q| q.side == side) else {
-                        continue;
-                    };
-                    let p = gear.probes[k].point;
-                    for f in CHORD_PROBES {
-                        if let Some(e) = distance(p + (q.point - p) * f) {
-                            bottom = bottom.min(e);
-                        }
-                    }
-                }
+                let bottom = d.min(bottom_beside(gear, turning, (k, d), tolerance, &distance));
                 least = least.min(bottom);
                 into[1 - g] = into[1 - g].min(bottom);
                 gap[pair_side] = gap[pair_side].min(bottom);
@@ -283,7 +371,8 @@ pub(super) fn check(
                 let j = (centre_tooth + dj).rem_euclid(teeth as i64) as usize;
                 let (start, end) = tips[g][j];
                 for probe in &gears[g].probes[start..end] {
-                    if let Some(d) = other.signed_distance(probe.point.rotated(turn) + shift) {
+                    let point = probe.point.rotated(turn) + shift;
+                    if let Some(d) = other.signed_distance_to_curve(point) {
                         into[1 - g] = into[1 - g].min(d);
                     }
                 }
@@ -444,4 +533,21 @@ pub(super) fn check(
         contact_ratio_min_at_mm: ratio_min.1,
     };
     MeshCheck { report, overlaps }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The parabola through three points of `y = 2 (x − 0.3)² + 1` is that parabola: its
+    /// bottom is found exactly, and kept within the points' span when it lies outside.
+    #[test]
+    fn the_parabolas_bottom_is_exact_and_kept_within_the_span() {
+        let y = |x: f64| 2.0 * (x - 0.3) * (x - 0.3) + 1.0;
+        let (x, bottom) = parabola_bottom([(-0.5, y(-0.5)), (0.1, y(0.1)), (0.8, y(0.8))]).unwrap();
+        assert!((x - 0.3).abs() < 1e-14 && (bottom - 1.0).abs() < 1e-14);
+        let (x, _) = parabola_bottom([(0.5, y(0.5)), (0.6, y(0.6)), (0.9, y(0.9))]).unwrap();
+        assert_eq!(x, 0.5);
+        assert_eq!(parabola_bottom([(0.0, 1.0), (1.0, 2.0), (2.0, 1.0)]), None);
+    }
 }

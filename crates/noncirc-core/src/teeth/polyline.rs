@@ -39,6 +39,40 @@ pub fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f64 {
     (a + d * t - p).hypot2().sqrt()
 }
 
+/// Signed curvature (1/mm; positive turning left) of the circle through `a`, `b`, `c`.
+pub(super) fn menger_curvature(a: Vec2, b: Vec2, c: Vec2) -> f64 {
+    let product = ((b - a).hypot2() * (c - b).hypot2() * (c - a).hypot2()).sqrt();
+    if product > 0.0 {
+        2.0 * (b - a).cross(c - b) / product
+    } else {
+        0.0
+    }
+}
+
+/// How far (mm, to the right of the chord's direction) a curve lies from its chord `chord`
+/// at the fraction `t` of the way along it, where the curve turns with curvatures
+/// `kappa_a`, `kappa_b` (1/mm, positive left) at the chord's ends: `κ L² t(1 − t)/2`
+/// with `κ` interpolated, the parabola through the ends with that curvature. Where one
+/// end turns more than twice as sharply as the other, it is taken for a corner (which
+/// the circle through its neighbours cannot measure) and the other end's curvature for
+/// the chord's; zero where the ends turn different ways (an inflection, or a reflex
+/// corner).
+pub(super) fn chord_bulge(kappa_a: f64, kappa_b: f64, chord: Vec2, t: f64) -> f64 {
+    if kappa_a * kappa_b <= 0.0 {
+        return 0.0;
+    }
+    let (lo, hi) = (
+        kappa_a.abs().min(kappa_b.abs()),
+        kappa_a.abs().max(kappa_b.abs()),
+    );
+    let kappa = if hi > 2.0 * lo {
+        lo.copysign(kappa_a)
+    } else {
+        kappa_a + (kappa_b - kappa_a) * t
+    };
+    0.5 * kappa * chord.hypot2() * t * (1.0 - t)
+}
+
 /// A closed outline (counter-clockwise: material on the left of each segment) with its
 /// segments binned on a uniform grid, for signed distances to points within a reach.
 #[derive(Debug, Clone)]
@@ -50,6 +84,11 @@ pub(super) struct OutlineGrid {
     segments: Vec<Segment>,
     /// Distance (mm) up to which [`Self::signed_distance`] answers.
     reach: f64,
+    /// Largest distance (mm) of a chord from the curve it stands for.
+    chord_tolerance: f64,
+    /// Whether each point is a joint: where two pieces of the outline meet, at an angle or
+    /// with a jump in curvature (the circle through its neighbours belongs to neither).
+    joint: Vec<bool>,
     origin: Vec2,
     /// Inverse of the cell width (1/mm); the width is at least twice the reach, so a
     /// query's square of half-width `reach` overlaps at most two cells a side.
@@ -130,9 +169,15 @@ impl Drop for OutlineGrid {
 const MAX_CELLS_PER_SIDE: f64 = 128.0;
 
 impl OutlineGrid {
-    /// Bins the segments of `points` (closed, counter-clockwise) for distance queries up
-    /// to `reach` (mm).
-    pub(super) fn new(mut points: Vec<Vec2>, reach: f64) -> Self {
+    /// Bins the segments of `points` (closed, counter-clockwise; chords within
+    /// `chord_tolerance` mm of the curve they stand for; pieces meeting at the points
+    /// `joints`) for distance queries up to `reach` (mm).
+    pub(super) fn new(
+        mut points: Vec<Vec2>,
+        reach: f64,
+        chord_tolerance: f64,
+        joints: &[usize],
+    ) -> Self {
         let (mut lo, mut hi) = (points[0], points[0]);
         for p in &points {
             lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
@@ -143,6 +188,10 @@ impl OutlineGrid {
         let cols = ((hi.x - origin.x) / cell).ceil() as usize + 2;
         let rows = ((hi.y - origin.y) / cell).ceil() as usize + 2;
         let n = points.len();
+        let mut joint = vec![false; n];
+        for &k in joints {
+            joint[k] = true;
+        }
         points.push(points[0]);
         let GridBuffers {
             mut segments,
@@ -196,6 +245,8 @@ impl OutlineGrid {
             points,
             segments,
             reach,
+            chord_tolerance,
+            joint,
             origin,
             inv_cell,
             cols,
@@ -230,14 +281,64 @@ impl OutlineGrid {
         self.reach
     }
 
+    /// Largest distance (mm) of a chord from the curve it stands for.
+    pub(super) fn chord_tolerance(&self) -> f64 {
+        self.chord_tolerance
+    }
+
+    /// Whether point `i` is a joint between two pieces.
+    pub(super) fn is_joint(&self, i: usize) -> bool {
+        self.joint[i]
+    }
+
     /// The outline's points.
     pub(super) fn points(&self) -> &[Vec2] {
         &self.points[..self.points.len() - 1]
     }
 
     /// Signed distance (mm) from `p` to the outline, negative inside the material, if the
-    /// outline passes within the reach of `p` (exact then); `None` if it does not.
+    /// outline passes within the reach of `p` (exact then); `None` if it does not. (The
+    /// checks measure to the curves, [`Self::signed_distance_to_curve`]; this is what the
+    /// tests hold that to.)
+    #[cfg(test)]
     pub(super) fn signed_distance(&self, p: Vec2) -> Option<f64> {
+        let nearest = self.nearest(p)?;
+        Some(self.signed(p, nearest))
+    }
+
+    /// As [`Self::signed_distance`], but to the curve the outline's chords stand for: where
+    /// the nearest point lies inside a chord, the chord's sag there (from the circles
+    /// through each end and its neighbours, [`chord_bulge`]; at a joint, the other end's
+    /// alone) is taken off. The chords of a curve cut within a tolerance lie up to that tolerance
+    /// inside it; this leaves a small fraction of it. A chord those circles would bow by
+    /// more than twice the tolerance runs between corners (a tip land): it is the outline.
+    pub(super) fn signed_distance_to_curve(&self, p: Vec2) -> Option<f64> {
+        let nearest = self.nearest(p)?;
+        let (_, i, t) = nearest;
+        let d = self.signed(p, nearest);
+        let n = self.points.len() - 1;
+        if !(t > 0.0 && t < 1.0) {
+            return Some(d);
+        }
+        let at = |k: usize| self.points[(i + k + n - 1) % n];
+        let (a, b, c, e) = (at(0), at(1), at(2), at(3));
+        let turn_b = (!self.joint[i]).then(|| menger_curvature(a, b, c));
+        let turn_c = (!self.joint[(i + 1) % n]).then(|| menger_curvature(b, c, e));
+        let (kappa_b, kappa_c) = match (turn_b, turn_c) {
+            (Some(x), Some(y)) => (x, y),
+            (Some(x), None) | (None, Some(x)) => (x, x),
+            (None, None) => return Some(d),
+        };
+        let chord = c - b;
+        let bow = chord_bulge(kappa_b, kappa_c, chord, 0.5);
+        if bow.abs() > 2.0 * self.chord_tolerance {
+            return Some(d);
+        }
+        Some(d - bow * 4.0 * t * (1.0 - t))
+    }
+
+    /// The nearest segment to `p` within the reach: squared distance, index, parameter.
+    fn nearest(&self, p: Vec2) -> Option<(f64, usize, f64)> {
         // The query's square in cell units, inside the grid or answered at once.
         let inv = self.inv_cell;
         let (x, y) = ((p.x - self.origin.x) * inv, (p.y - self.origin.y) * inv);
@@ -266,10 +367,11 @@ impl OutlineGrid {
                 }
             }
         }
-        if best.0 >= self.reach * self.reach {
-            return None;
-        }
-        let (d2, i, t) = best;
+        (best.0 < self.reach * self.reach).then_some(best)
+    }
+
+    /// The distance of `p` from its nearest segment `(d2, i, t)`, negative inside.
+    fn signed(&self, p: Vec2, (d2, i, t): (f64, usize, f64)) -> f64 {
         let n = self.points.len() - 1;
         let side = |k: usize| {
             let segment = &self.segments[k];
@@ -296,7 +398,11 @@ impl OutlineGrid {
             }
         };
         let d = d2.sqrt();
-        Some(if inside { -d } else { d })
+        if inside {
+            -d
+        } else {
+            d
+        }
     }
 
     /// Where the closed outline crosses itself (the first crossing found), if it does:
@@ -349,7 +455,7 @@ mod tests {
 
     #[test]
     fn signed_distance_is_negative_inside_and_exact_near_edges_and_corners() {
-        let g = OutlineGrid::new(square(), 0.6);
+        let g = OutlineGrid::new(square(), 0.6, 0.01, &[]);
         assert!((g.signed_distance(Vec2::new(1.0, 0.2)).unwrap() + 0.2).abs() < 1e-15);
         assert!((g.signed_distance(Vec2::new(1.0, -0.3)).unwrap() - 0.3).abs() < 1e-15);
         let corner = g.signed_distance(Vec2::new(2.3, 2.4)).unwrap();
@@ -357,6 +463,48 @@ mod tests {
         assert!(g.signed_distance(Vec2::new(1.9, 1.95)).unwrap() < 0.0);
         assert_eq!(g.signed_distance(Vec2::new(9.0, 9.0)), None);
         assert_eq!(g.self_crossing(), None);
+    }
+
+    /// A circle of radius 10 mm as 60 chords (each sagging 13.7 µm): the distance to the
+    /// curve the chords stand for is the circle's own within 50 µm of it, outside and
+    /// inside, to 2 % of the sag, where the plain distance to the chords is off by up to it;
+    /// at the square's corners and along its straight sides nothing is taken off.
+    #[test]
+    fn the_distance_to_the_curve_takes_off_the_chords_sag() {
+        let n = 60;
+        let circle: Vec<Vec2> = (0..n)
+            .map(|k| {
+                let (s, c) = (std::f64::consts::TAU * k as f64 / n as f64).sin_cos();
+                Vec2::new(10.0 * c, 10.0 * s)
+            })
+            .collect();
+        let sag = 10.0 * (1.0 - (std::f64::consts::PI / n as f64).cos());
+        let g = OutlineGrid::new(circle, 1.0, 0.014, &[]);
+        let (mut worst, mut worst_plain) = (0.0f64, 0.0f64);
+        for k in 0..600 {
+            let (s, c) = (0.0173 + std::f64::consts::TAU * k as f64 / 600.0).sin_cos();
+            // (Near the curve, as the mesh check's contacts are: off it by `d`, the
+            // correction's own error grows as `d/R` of the sag.)
+            for r in [9.95, 9.99, 10.01, 10.05] {
+                let p = Vec2::new(r * c, r * s);
+                let exact = r - 10.0;
+                worst = worst.max((g.signed_distance_to_curve(p).unwrap() - exact).abs());
+                worst_plain = worst_plain.max((g.signed_distance(p).unwrap() - exact).abs());
+            }
+        }
+        assert!(worst_plain > 0.9 * sag, "{worst_plain} vs sag {sag}");
+        assert!(worst < 0.02 * sag, "{worst} against a sag of {sag}");
+        let square = OutlineGrid::new(square(), 0.6, 0.01, &[]);
+        for p in [
+            Vec2::new(1.0, 0.2),
+            Vec2::new(2.3, 2.4),
+            Vec2::new(1.3, -0.1),
+        ] {
+            assert_eq!(
+                square.signed_distance_to_curve(p),
+                square.signed_distance(p)
+            );
+        }
     }
 
     #[test]
@@ -367,7 +515,9 @@ mod tests {
             Vec2::new(2.0, 0.0),
             Vec2::new(0.0, 2.0),
         ];
-        let x = OutlineGrid::new(bow, 0.7).self_crossing().unwrap();
+        let x = OutlineGrid::new(bow, 0.7, 0.0, &[])
+            .self_crossing()
+            .unwrap();
         assert!((x - Vec2::new(1.0, 1.0)).hypot() < 1e-12);
     }
     proptest! {
@@ -389,7 +539,7 @@ mod tests {
                     Vec2::new(r * c, r * s)
                 })
                 .collect();
-            let grid = OutlineGrid::new(points.clone(), reach);
+            let grid = OutlineGrid::new(points.clone(), reach, 0.0, &[]);
             prop_assert_eq!(grid.self_crossing(), None);
             for (x, y) in probes {
                 let p = Vec2::new(x, y);

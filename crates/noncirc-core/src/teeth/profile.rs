@@ -18,7 +18,7 @@
 
 use super::cut_gear::{Probe, Side, Tooth, ToothedGear, Undercut};
 use super::polyline::{segment_distance, OutlineGrid};
-use super::roots::{cube_root, regula_falsi};
+use super::roots::{regula_falsi, rough_cube_root};
 use super::tool::{Rounding, Tool};
 use super::track::{Frame, Member, PairTrack};
 use super::MAX_OUTLINE_POINTS;
@@ -210,7 +210,10 @@ impl Cut<'_> {
     /// over `Δs` of rolling sags `fκΔs²/8`: even sag wants `Δs ∝ f^(-1/2)`, even steps in
     /// `f^(3/2)` (`f` is linear in `s`). Uniform where `f` is not positive at both ends or
     /// hardly changes. At least `flank_samples` chords, and as many as keep the sag within
-    /// the chord tolerance with the `sharpest` |κ| (1/mm) met over the flank's rolling.
+    /// the chord tolerance with the `sharpest` |κ| (1/mm) met over the flank's rolling;
+    /// then halved where they still sag more ([`Self::refine`]: the estimate takes the
+    /// pitch curve's curvature for constant, and near the foot of an undercut flank its
+    /// chords sagged up to 1.27 µm at a tolerance of 1 µm).
     fn sample_flank(
         &self,
         u0: f64,
@@ -231,18 +234,23 @@ impl Cut<'_> {
             let needed =
                 (g1 - g0).abs() * sharpest.sqrt() / (kappa.abs() * t.cos * (18.0 * tol).sqrt());
             let n = self.flank_samples.max(segments(needed));
-            self.sample_spaced(piece, s0, s1, n, |k| {
-                let x = k as f64 / n as f64;
-                let g = g0 + x * (g1 - g0);
-                (cube_root(g * g) - f0) / (f1 - f0)
-            })
+            // (The ends exactly, the rest roughly: the halving below holds the tolerance.)
+            let points = self.sample_spaced(piece, s0, s1, n, |k| match k {
+                0 => 0.0,
+                _ if k == n => 1.0,
+                _ => {
+                    let g = g0 + (g1 - g0) * k as f64 / n as f64;
+                    (rough_cube_root(g * g) - f0) / (f1 - f0)
+                }
+            });
+            self.refine(piece, &points, tol)
         } else {
             let n = self.chords(
                 self.flank_samples,
                 s1 - s0,
                 f0.abs().max(f1.abs()) * sharpest,
             );
-            self.sample(piece, s0, s1, n)
+            self.refine(piece, &self.sample(piece, s0, s1, n), tol)
         }
     }
 
@@ -261,7 +269,7 @@ impl Cut<'_> {
     /// Halves (in `ψ`) every segment of `points` (samples of `piece` in order) that lies
     /// farther than `tol` (mm) from the piece, until none does or a segment has been
     /// halved [`MAX_HALVINGS`] times (at a cusp). A segment's sag is that of the cubic
-    /// through its ends with the piece's derivatives there ([`hermite_sag`]), or where
+    /// through its ends with the piece's derivatives there ([`hermite_sag_within`]), or where
     /// that cubic cannot stand for the piece, the distance of the piece's midpoint from
     /// it: a segment kept costs no evaluation of the piece. (Dividing a segment at once
     /// into as many parts as its sag asks for, rather than halving, made more points: the
@@ -293,13 +301,13 @@ impl Cut<'_> {
         out: &mut Vec<Sample>,
     ) {
         let h = b.0.psi - a.0.psi;
-        let sag = hermite_sag(a.0.point, a.1 * h, b.0.point, b.1 * h);
-        if depth >= MAX_HALVINGS || sag.is_some_and(|sag| sag <= tol) {
+        let within = hermite_sag_within(a.0.point, a.1 * h, b.0.point, b.1 * h, tol);
+        if depth >= MAX_HALVINGS || within == Some(true) {
             out.push(b.0);
             return;
         }
         let mid = self.sample_at_psi(piece, a.0.psi + 0.5 * h);
-        if sag.is_none() && segment_distance(mid.point, a.0.point, b.0.point) <= tol {
+        if within.is_none() && segment_distance(mid.point, a.0.point, b.0.point) <= tol {
             out.push(b.0);
             return;
         }
@@ -528,13 +536,20 @@ impl Cut<'_> {
                         .chain(lower.iter().skip(1).map(|x| (flank, x.s, x.point)))
                         .collect();
                 let found = last_crossing(&chain, &regular, true);
+                // Newton from the polylines' crossing, kept if it stays on the branches it
+                // started on (the two flank branches are one curve folded at the cusp:
+                // Newton can slide over the fold to a point of the regular branch, and the
+                // outline then runs past the corner and back); the polylines' crossing
+                // itself otherwise.
                 let converged = found.and_then(|(piece, sa, sb)| {
                     let (sa, sb, _) = self.meet(piece, flank, sa, sb)?;
-                    ((sb - cusp) * (s_tip - cusp) > 0.0).then_some((piece, sa, sb))
+                    let beyond = |s: f64| (s - cusp) * (s_tip - cusp) > 0.0;
+                    let lower = !matches!(piece, Piece::Flank { .. }) || !beyond(sa);
+                    (beyond(sb) && lower).then_some((piece, sa, sb))
                 });
                 // No crossing at the search tolerance: the swallowtail is thinner than that,
                 // and the fillet meets the regular flank at the cusp.
-                let (piece, sa, sb) = converged.unwrap_or((fillet, form, cusp));
+                let (piece, sa, sb) = converged.or(found).unwrap_or((fillet, form, cusp));
                 let start_height = sigma * self.lambda(sb, u0) * t.sin;
                 let undercut = Undercut {
                     side,
@@ -590,6 +605,9 @@ impl Cut<'_> {
         let t = &self.tool;
         let mut outline: Vec<Vec2> = Vec::new();
         let mut corners = Vec::new();
+        // Where pieces meet (root and fillet, fillet and flank, flank and tip): the corners
+        // and the joints without an angle, where the curvature jumps.
+        let mut joints = Vec::new();
         let mut flank_of: Vec<Option<(usize, Side)>> = Vec::new();
         let mut probes: Vec<bool> = Vec::new();
         let mut teeth = Vec::with_capacity(self.teeth);
@@ -681,6 +699,7 @@ impl Cut<'_> {
                 corners.push(base + left.flank_start);
             }
             corners.push(outline.len() - 1);
+            joints.extend([base, base + left.flank_start, outline.len() - 1]);
             flank_of.extend(tip_pts.iter().map(|_| None));
             probes.extend(tip_pts.iter().map(|_| true));
             outline.extend(tip_pts);
@@ -698,6 +717,11 @@ impl Cut<'_> {
             if right.undercut.is_some() {
                 corners.push(right_start + (rn - 1 - right.flank_start));
             }
+            joints.extend([
+                right_start,
+                right_start + (rn - 1 - right.flank_start),
+                right_start + rn - 1,
+            ]);
             // The root to the next tooth's left fillet.
             let next = &sides[(j + 1) % self.teeth].0;
             let (s0, s1) = (
@@ -751,12 +775,12 @@ impl Cut<'_> {
         if self.member == Member::Driven {
             outline.reverse();
             flank_of.reverse();
-            for c in &mut corners {
+            for c in corners.iter_mut().chain(&mut joints) {
                 *c = n - 1 - *c;
             }
             corners.sort_unstable();
         }
-        let grid = OutlineGrid::new(outline, self.reach);
+        let grid = OutlineGrid::new(outline, self.reach, self.chord_tolerance, &joints);
         if let Some(p) = grid.self_crossing() {
             return Err(Error::OutlineCrossing {
                 gear: self.name,
@@ -779,53 +803,42 @@ impl Cut<'_> {
 const MAX_HALVINGS: u32 = 10;
 
 /// Largest ratio of an end's speed `|dP/dψ|·Δψ` to the chord (or of the chord to it) at
-/// which [`hermite_sag`] measures a segment: beyond it a cusp is near.
+/// which [`hermite_sag_within`] measures a segment: beyond it a cusp is near.
 const HERMITE_SPEED_RATIO: f64 = 1.5;
 
-/// Least cosine of the turn between a segment's end tangents at which [`hermite_sag`]
-/// measures it (45°).
-const HERMITE_COS_TURN: f64 = std::f64::consts::FRAC_1_SQRT_2;
-
-/// The largest distance (mm) from the chord `a→b` of the cubic Hermite curve from `a` to
-/// `b` with end derivatives `da`, `db` (mm per unit of the segment's parameter): the sag
-/// of a smooth piece between two of its points, to fourth order in their spacing (second
+/// Whether the cubic Hermite curve from `a` to `b` with end derivatives `da`, `db` (mm per
+/// unit of the segment's parameter) lies within `tol` (mm) of the chord `a→b`: the sag of
+/// a smooth piece between two of its points, to fourth order in their spacing (second
 /// order is the chord's own error). `None` where the ends' derivatives do not let the
 /// cubic stand for the piece: a speed unlike the chord's (a cusp near) or a turn of more
-/// than 45°.
-fn hermite_sag(a: Vec2, da: Vec2, b: Vec2, db: Vec2) -> Option<f64> {
+/// than 45°. (In squares and scaled by the chord's length: no square root but one.)
+fn hermite_sag_within(a: Vec2, da: Vec2, b: Vec2, db: Vec2, tol: f64) -> Option<bool> {
     let chord = b - a;
-    // (Square roots, not `hypot`: a library call, and these are far from overflow.)
-    let len = chord.hypot2().sqrt();
-    let (speed_a, speed_b) = (da.hypot2().sqrt(), db.hypot2().sqrt());
-    let like = |v: f64| v * HERMITE_SPEED_RATIO > len && v < len * HERMITE_SPEED_RATIO;
-    if !(len > 0.0 && like(speed_a) && like(speed_b))
-        || da.dot(db) < HERMITE_COS_TURN * speed_a * speed_b
-    {
+    let (len2, speed2_a, speed2_b) = (chord.hypot2(), da.hypot2(), db.hypot2());
+    let ratio2 = HERMITE_SPEED_RATIO * HERMITE_SPEED_RATIO;
+    let like = |v2: f64| v2 * ratio2 > len2 && v2 < len2 * ratio2;
+    let turn = da.dot(db);
+    let smooth = len2 > 0.0 && like(speed2_a) && like(speed2_b);
+    if !(smooth && turn > 0.0 && 2.0 * turn * turn >= speed2_a * speed2_b) {
         return None;
     }
-    // Off the chord, the cubic is `d(t) = p t − (2p + q) t² + (p + q) t³` with `p`, `q`
-    // the end derivatives' normal parts; its extremes are at the roots of `d'`.
-    let normal = chord.turn_90() * (1.0 / len);
-    let (p, q) = (da.dot(normal), db.dot(normal));
-    let d = |t: f64| t * (p - t * ((2.0 * p + q) - t * (p + q)));
-    let (c2, c1, c0) = (3.0 * (p + q), -2.0 * (2.0 * p + q), p);
-    let mut sag = d(0.5).abs();
-    let mut consider = |t: f64| {
-        if t > 0.0 && t < 1.0 {
-            sag = sag.max(d(t).abs());
-        }
+    // Off the chord, the cubic is `d(t) = t (1 − t)(p − (p + q) t)` with `p`, `q` the end
+    // derivatives' normal parts (here times the chord's length). It vanishes at both
+    // ends, so it is largest where `d' = p − 2(2p + q) t + 3(p + q) t²` vanishes: with
+    // `u = p + q`, at `t = (p + u ± r)/(3u)`, `r² = p² − pu + u²` (never negative).
+    let (p, q) = (chord.cross(da), chord.cross(db));
+    let u = p + q;
+    let d = |t: f64| t * (1.0 - t) * (p - u * t);
+    let sag = if u.abs() > 1e-9 * p.abs() {
+        let r = (p * p - p * u + u * u).sqrt();
+        let scale = 1.0 / (3.0 * u);
+        let at = |t: f64| if t > 0.0 && t < 1.0 { d(t).abs() } else { 0.0 };
+        at((p + u + r) * scale).max(at((p + u - r) * scale))
+    } else {
+        // A symmetric bow: largest midway.
+        d(0.5).abs()
     };
-    if c2.abs() > 1e-12 * (c1.abs() + c0.abs()) {
-        let disc = c1 * c1 - 4.0 * c2 * c0;
-        if disc >= 0.0 {
-            let root = disc.sqrt();
-            consider((-c1 + root) / (2.0 * c2));
-            consider((-c1 - root) / (2.0 * c2));
-        }
-    } else if c1 != 0.0 {
-        consider(-c0 / c1);
-    }
-    Some(sag)
+    Some(sag * sag <= tol * tol * len2)
 }
 
 /// Chord tolerance (× m) of the polylines searched for the fillet's crossing of an undercut
@@ -980,6 +993,71 @@ mod tests {
                     println!("{cutter:?} {teeth} {member:?} {tol}: {worst:.3} of the tolerance, {added} added");
                     assert!(worst <= 1.01, "{cutter:?} {member:?} {tol}: {worst}");
                     assert!(added > 0);
+                }
+            }
+        }
+    }
+}
+#[cfg(test)]
+mod tmp_flank {
+    use super::*;
+    use crate::curve::{Ellipse, PitchCurve};
+    use crate::teeth::ToothSpec;
+    #[test]
+    fn tmp_flank_sag() {
+        let curve = PitchCurve::Ellipse(Ellipse::new(30.0, 0.3).unwrap());
+        let teeth = 12;
+        let track = PairTrack::new(&curve, 60.0, 256).unwrap();
+        let pitch = track.perimeter() / teeth as f64;
+        let module = pitch / std::f64::consts::PI;
+        let spec = ToothSpec::default();
+        let tool = Tool::new(&spec, module, 0.0, 0.5 * pitch).unwrap();
+        for member in [Member::Driver, Member::Driven] {
+            let cut = Cut {
+                track: &track,
+                member,
+                tool,
+                pitch,
+                phase: 0.0,
+                teeth,
+                flank_samples: 18,
+                chord_tolerance: 1e-3,
+                module,
+                reach: 0.05 * module,
+                fillet_spacing: (0..=12).map(|k| k as f64 / 12.0).collect(),
+                name: "t",
+            };
+            for j in 0..teeth {
+                for side in [Side::Left, Side::Right] {
+                    let sigma = side.sign();
+                    let u0 = pitch * j as f64 + sigma * 0.25 * pitch;
+                    let chain = cut.side(j, u0, side).unwrap();
+                    // flank part: recompute flank samples to measure: use the chain's flank points vs dense flank
+                    let piece = Piece::Flank { u0, sigma };
+                    let pts = &chain.points[chain.flank_start..];
+                    // dense: find s of each point by ... approximate: sample densely and take distance from polyline
+                    let (s0, s1) = (cut.track.arc(cut.track.psi_at(u0)) - 3.0 * pitch, 0.0);
+                    let _ = (s0, s1);
+                    let mut worst: f64 = 0.0;
+                    let lo = chain.active.0;
+                    let hi = chain.active.1;
+                    for k in 0..2000 {
+                        // flank height h = sigma*lambda*sin → lambda = h/(sigma sin) → s = u0 - lambda/cos
+                        let h = lo + (hi - lo) * k as f64 / 1999.0;
+                        let lambda = h / (sigma * tool.sin);
+                        let s = u0 - lambda / tool.cos;
+                        let p = cut.at(piece, s);
+                        let dmin = pts
+                            .windows(2)
+                            .map(|w| segment_distance(p, w[0], w[1]))
+                            .fold(f64::INFINITY, f64::min);
+                        worst = worst.max(dmin);
+                    }
+                    println!(
+                        "{member:?} tooth {j} {side:?}: flank worst {:.3} µm, points {}",
+                        worst * 1e3,
+                        pts.len()
+                    );
                 }
             }
         }

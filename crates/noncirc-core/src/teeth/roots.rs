@@ -1,11 +1,12 @@
 //! Roots of one variable for the cut: a fast cube root and the Illinois regula falsi.
 
-/// The cube root of `c` (positive, finite) to a few units in the last place: Kahan's guess
-/// from the bits (a third of the exponent, good to about a tenth) and four Newton steps.
-/// The library's `cbrt` (a software routine here) cost a fortieth of a toothed pair.
-pub(super) fn cube_root(c: f64) -> f64 {
+/// The cube root of `c` (positive, finite) to about 1e-6 relative: Kahan's guess from
+/// the bits (a third of the exponent, good to about a tenth) and two Newton steps, enough
+/// to place samples (the library's `cbrt`, a software routine here, cost a fortieth of a
+/// toothed pair).
+pub(super) fn rough_cube_root(c: f64) -> f64 {
     let mut y = f64::from_bits(c.to_bits() / 3 + 0x2A9F_7893_0000_0000);
-    for _ in 0..4 {
+    for _ in 0..2 {
         y = (2.0 * y + c / (y * y)) * (1.0 / 3.0);
     }
     y
@@ -48,16 +49,19 @@ pub(super) fn regula_falsi(f: impl Fn(f64) -> f64, mut lo: (f64, f64), mut hi: (
 
 #[cfg(test)]
 mod tests {
-    use super::{cube_root, regula_falsi};
+    use super::{regula_falsi, rough_cube_root};
     use std::cell::Cell;
 
     #[test]
-    fn cube_root_matches_the_library_over_the_positive_range() {
+    fn rough_cube_root_is_within_2e6_of_the_library_over_the_positive_range() {
+        let mut worst = 0.0f64;
         for k in 0..20_000 {
             let c = 10f64.powf(-12.0 + 24.0 * k as f64 / 20_000.0) * (1.0 + 0.37 * (k % 7) as f64);
-            let (ours, libm) = (cube_root(c), c.cbrt());
-            assert!((ours - libm).abs() <= 1e-15 * libm, "{c}: {ours} vs {libm}");
+            let (ours, libm) = (rough_cube_root(c), c.cbrt());
+            worst = worst.max((ours - libm).abs() / libm);
         }
+        println!("worst relative error {worst:e}");
+        assert!(worst <= 2e-6, "{worst}");
     }
 
     #[test]

@@ -251,16 +251,21 @@ impl PairTrack {
     #[inline]
     pub fn frame(&self, member: Member, psi: f64) -> Frame {
         let p = self.curve.eval(psi);
+        // Both gears' points move at `ds/dψ = √(ρ² + ρ'²)` (no slip): one square root
+        // for the tangent and, through it, the curvature's `(ρ² + ρ'²)^(3/2)`.
+        let inv_rate = 1.0 / (p.rho * p.rho + p.d1 * p.d1).sqrt();
+        let bend = |q: Polar, inv: f64| {
+            (q.rho * q.rho + 2.0 * q.d1 * q.d1 - q.rho * q.d2) * inv * inv * inv
+        };
         match member {
             Member::Driver => {
                 let e = unit(psi);
-                let d = e * p.d1 + e.turn_90() * p.rho;
-                let tangent = d * (1.0 / d.hypot2().sqrt());
+                let tangent = (e * p.d1 + e.turn_90() * p.rho) * inv_rate;
                 Frame {
                     point: e * p.rho,
                     tangent,
                     normal: -tangent.turn_90(),
-                    curvature: p.curvature(),
+                    curvature: bend(p, inv_rate),
                 }
             }
             Member::Driven => {
@@ -269,13 +274,15 @@ impl PairTrack {
                 let e = unit(chi);
                 let gap = self.a - p.rho;
                 // dP/dψ = −ρ' e(χ) + (a − ρ) χ' e⊥(χ), χ' = −ρ/(a − ρ).
-                let d = e * (-p.d1) - e.turn_90() * p.rho;
-                let tangent = d * (1.0 / d.hypot2().sqrt());
+                let tangent = (e * (-p.d1) - e.turn_90() * p.rho) * inv_rate;
+                // In its own angle χ the conjugate's `√(ρ₂² + ρ₂'²)` is `(a − ρ)/ρ` times
+                // the driver's.
+                let conjugate = conjugate_polar(p, self.a);
                 Frame {
                     point: e * gap,
                     tangent,
                     normal: tangent.turn_90(),
-                    curvature: conjugate_polar(p, self.a).curvature(),
+                    curvature: bend(conjugate, inv_rate * p.rho / gap),
                 }
             }
         }
