@@ -136,11 +136,14 @@ impl TeethRun {
         let m = &r.mesh;
         let _ = writeln!(
             s,
-            "mesh over one turn  {} positions: least clearance {:.4} mm (at pitch arc {:.3} mm)",
-            m.positions, m.least_clearance_mm, m.least_clearance_at_mm
+            "mesh over one turn  {} positions: least clearance {} mm (at pitch arc {:.3} mm)",
+            m.positions,
+            tenth_micrometres(m.least_clearance_mm),
+            m.least_clearance_at_mm
         );
         if let Some((lo, hi)) = m.backlash_mm {
-            let _ = writeln!(s, "normal backlash     {lo:.4} … {hi:.4} mm");
+            let (lo, hi) = (tenth_micrometres(lo), tenth_micrometres(hi));
+            let _ = writeln!(s, "normal backlash     {lo} … {hi} mm");
         }
         let _ = writeln!(
             s,
@@ -463,4 +466,15 @@ pub fn train_layout(kin: &Kinematics, toothed: &ToothedPair, theta: f64) -> Vec<
         });
     }
     layout
+}
+
+/// `mm` to four decimals (a tenth of a micrometre), without a sign where that rounds to
+/// zero: the mesh check measures contacts to a fraction of that, either side of zero.
+fn tenth_micrometres(mm: f64) -> String {
+    let text = format!("{mm:.4}");
+    if text == "-0.0000" {
+        "0.0000".into()
+    } else {
+        text
+    }
 }
