@@ -916,6 +916,39 @@ mod tests {
     use crate::curve::{CurveSpec, Ellipse, PitchCurve};
     use crate::teeth::{Cutter, ToothSpec};
 
+    /// A cut of `member` of the pair on `track` with `teeth` teeth by `cutter`, its chords
+    /// within `tol` (mm).
+    fn cut_of(
+        track: &PairTrack,
+        member: Member,
+        teeth: usize,
+        cutter: Cutter,
+        tol: f64,
+    ) -> Cut<'_> {
+        let pitch = track.perimeter() / teeth as f64;
+        let module = pitch / std::f64::consts::PI;
+        let spec = ToothSpec {
+            cutter,
+            ..ToothSpec::default()
+        };
+        Cut {
+            track,
+            member,
+            tool: Tool::new(&spec, module, 0.0, 0.5 * pitch).unwrap(),
+            pitch,
+            phase: 0.0,
+            teeth,
+            flank_samples: spec.flank_samples,
+            chord_tolerance: tol,
+            module,
+            reach: 0.05 * module,
+            fillet_spacing: (0..=spec.fillet_samples)
+                .map(|k| k as f64 / spec.fillet_samples as f64)
+                .collect(),
+            name: "test",
+        }
+    }
+
     /// The largest distance (mm) of the piece from the chords of `points`, measured at 64
     /// points of the piece within each chord's span of `ψ`.
     fn largest_sag(cut: &Cut, piece: Piece, points: &[Sample]) -> f64 {
@@ -953,31 +986,10 @@ mod tests {
             (&ellipse, 12, Cutter::Rack),
         ] {
             let track = PairTrack::new(curve, 60.0, 256).unwrap();
-            let pitch = track.perimeter() / teeth as f64;
-            let module = pitch / std::f64::consts::PI;
-            let spec = ToothSpec {
-                cutter,
-                ..ToothSpec::default()
-            };
-            let tool = Tool::new(&spec, module, 0.0, 0.5 * pitch).unwrap();
             for tol in [4e-3, 1e-3, 2.5e-4] {
                 for member in [Member::Driver, Member::Driven] {
-                    let cut = Cut {
-                        track: &track,
-                        member,
-                        tool,
-                        pitch,
-                        phase: 0.0,
-                        teeth,
-                        flank_samples: spec.flank_samples,
-                        chord_tolerance: tol,
-                        module,
-                        reach: 0.05 * module,
-                        fillet_spacing: (0..=spec.fillet_samples)
-                            .map(|k| k as f64 / spec.fillet_samples as f64)
-                            .collect(),
-                        name: "test",
-                    };
+                    let cut = cut_of(&track, member, teeth, cutter, tol);
+                    let (tool, pitch) = (cut.tool, cut.pitch);
                     let (mut worst, mut added) = (0.0f64, 0);
                     for j in 0..teeth {
                         for sigma in [-1.0, 1.0] {
@@ -997,69 +1009,42 @@ mod tests {
             }
         }
     }
-}
-#[cfg(test)]
-mod tmp_flank {
-    use super::*;
-    use crate::curve::{Ellipse, PitchCurve};
-    use crate::teeth::ToothSpec;
+
+    /// Every side's flank, as cut (from where the undercut leaves it to the tip), lies
+    /// within the chord tolerance of its polyline, measured at 2 000 heights: on the
+    /// ellipse e = 0.3 at 12 teeth, where the even-sag count (the pitch curve's curvature
+    /// taken for constant) left chords sagging 1.27 µm at a tolerance of 1 µm.
     #[test]
-    fn tmp_flank_sag() {
+    fn cut_flanks_lie_within_the_tolerance_of_their_polylines() {
         let curve = PitchCurve::Ellipse(Ellipse::new(30.0, 0.3).unwrap());
-        let teeth = 12;
         let track = PairTrack::new(&curve, 60.0, 256).unwrap();
-        let pitch = track.perimeter() / teeth as f64;
-        let module = pitch / std::f64::consts::PI;
-        let spec = ToothSpec::default();
-        let tool = Tool::new(&spec, module, 0.0, 0.5 * pitch).unwrap();
+        let tol = 1e-3;
+        let mut worst = 0.0f64;
         for member in [Member::Driver, Member::Driven] {
-            let cut = Cut {
-                track: &track,
-                member,
-                tool,
-                pitch,
-                phase: 0.0,
-                teeth,
-                flank_samples: 18,
-                chord_tolerance: 1e-3,
-                module,
-                reach: 0.05 * module,
-                fillet_spacing: (0..=12).map(|k| k as f64 / 12.0).collect(),
-                name: "t",
-            };
-            for j in 0..teeth {
+            let cut = cut_of(&track, member, 12, Cutter::Rack, tol);
+            let (tool, pitch) = (cut.tool, cut.pitch);
+            for j in 0..12 {
                 for side in [Side::Left, Side::Right] {
                     let sigma = side.sign();
                     let u0 = pitch * j as f64 + sigma * 0.25 * pitch;
                     let chain = cut.side(j, u0, side).unwrap();
-                    // flank part: recompute flank samples to measure: use the chain's flank points vs dense flank
-                    let piece = Piece::Flank { u0, sigma };
-                    let pts = &chain.points[chain.flank_start..];
-                    // dense: find s of each point by ... approximate: sample densely and take distance from polyline
-                    let (s0, s1) = (cut.track.arc(cut.track.psi_at(u0)) - 3.0 * pitch, 0.0);
-                    let _ = (s0, s1);
-                    let mut worst: f64 = 0.0;
-                    let lo = chain.active.0;
-                    let hi = chain.active.1;
+                    let polyline = &chain.points[chain.flank_start..];
+                    let (lo, hi) = chain.active;
                     for k in 0..2000 {
-                        // flank height h = sigma*lambda*sin → lambda = h/(sigma sin) → s = u0 - lambda/cos
+                        // The flank point at height `h`: `λ = h/(σ sin α)`, `s = u0 − λ/cos α`.
                         let h = lo + (hi - lo) * k as f64 / 1999.0;
-                        let lambda = h / (sigma * tool.sin);
-                        let s = u0 - lambda / tool.cos;
-                        let p = cut.at(piece, s);
-                        let dmin = pts
+                        let s = u0 - h / (sigma * tool.sin) / tool.cos;
+                        let p = cut.at(Piece::Flank { u0, sigma }, s);
+                        let d = polyline
                             .windows(2)
                             .map(|w| segment_distance(p, w[0], w[1]))
                             .fold(f64::INFINITY, f64::min);
-                        worst = worst.max(dmin);
+                        worst = worst.max(d / tol);
                     }
-                    println!(
-                        "{member:?} tooth {j} {side:?}: flank worst {:.3} µm, points {}",
-                        worst * 1e3,
-                        pts.len()
-                    );
                 }
             }
         }
+        println!("flanks: {worst:.4} of the tolerance");
+        assert!(worst <= 1.01, "{worst}");
     }
 }
