@@ -241,7 +241,8 @@ pub(super) const FIELDS: &[Field] = &[
         symbol: "",
         unit: "",
         range: Range::from_to(1.0, 1e5),
-        meaning: "Mesh positions per pitch in the whole-turn mesh check.",
+        meaning: "Mesh positions per pitch in the whole-turn mesh check (8 times as many \
+                  for a pair whose roots the mate cuts).",
         refused: &["gear.teeth.mesh_steps_per_pitch=0"],
         number: Some(integer!(usize, gear.teeth.mesh_steps_per_pitch)),
     },

@@ -69,7 +69,8 @@ pub struct ToothSpec {
     /// measures to the curves the chords stand for, to a fraction of it).
     pub chord_tolerance_mm: f64,
     /// Mesh positions per pitch in the whole-cycle check (one more over the turn, so that
-    /// the teeth together sample the mesh cycle `teeth` times as finely).
+    /// the teeth together sample the mesh cycle `teeth` times as finely); a pair whose
+    /// roots the mate cuts is checked at 8 times as many (`MATE_CHECK_STEPS`).
     pub mesh_steps_per_pitch: usize,
     /// Panels per turn of the arc-length tables.
     pub arc_panels: usize,
