@@ -150,6 +150,16 @@ impl TeethRun {
             "contact ratio       least {:.3} (at pitch arc {:.3} mm), mean {:.3}",
             m.contact_ratio_min, m.contact_ratio_min_at_mm, m.contact_ratio_mean
         );
+        let a = r.accuracy;
+        let _ = writeln!(
+            s,
+            "accuracy            outline chords within {:.2} µm of the generated curves; flank lost \
+             and contact ratio from flank heights to {:.0e} µm (Newton); clearance and backlash \
+             measured to the curves, between probes to {:.2} µm",
+            a.chord_mm * 1e3,
+            a.flank_height_mm * 1e3,
+            a.gap_bottom_mm * 1e3
+        );
         if r.failures.is_empty() {
             let _ = writeln!(s, "verdict             every check passes");
         } else {

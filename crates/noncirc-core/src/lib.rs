@@ -85,7 +85,7 @@ pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue}
 pub use planetary::{ArmState, Kinematics};
 pub use teeth::{
     segment_distance, Cutter, Frame, GearTeethReport, MateRoots, Member, MeshReport, PairTrack,
-    Side, TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut,
+    Side, TeethAccuracy, TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut,
 };
 pub use vec2::Vec2;
 

@@ -107,16 +107,25 @@ fn circle_pair_contact_ratio_is_the_classical_one_and_the_mesh_is_tight() {
     let (ra, rb) = (r + m, r * alpha.cos());
     let classical =
         (2.0 * (ra * ra - rb * rb).sqrt() - 2.0 * r * alpha.sin()) / (PI * m * alpha.cos());
-    let mesh = pair.report.mesh;
+    let (mesh, accuracy) = (pair.report.mesh, pair.report.accuracy);
+    // Within what the report says of its flank heights (two of them a contact).
+    let ratio_error = 2.0 * accuracy.flank_height_mm / (PI * m * alpha.cos());
+    println!(
+        "contact ratio off by {:e} (accuracy {ratio_error:e}); {mesh:?}",
+        mesh.contact_ratio_min - classical
+    );
     assert!(
-        (mesh.contact_ratio_min - classical).abs() < 1e-6,
+        (mesh.contact_ratio_min - classical).abs() < ratio_error,
         "{} vs {classical}",
         mesh.contact_ratio_min
     );
-    // Zero backlash: the flanks touch and nothing overlaps beyond the chords' sag.
-    assert!(mesh.least_clearance_mm.abs() < 2e-3, "{mesh:?}");
+    // Zero backlash: the flanks touch and nothing overlaps. Measured to the curves, both
+    // are zero to a fifth of the chord tolerance (between the chords themselves they were
+    // off by up to two tolerances).
+    let fifth = 0.2 * accuracy.chord_mm;
+    assert!(mesh.least_clearance_mm.abs() < fifth, "{mesh:?}");
     let (lo, hi) = mesh.backlash_mm.unwrap();
-    assert!(lo > -2e-3 && hi < 5e-3, "{mesh:?}");
+    assert!(lo.abs() < fifth && hi.abs() < fifth, "{mesh:?}");
     assert!(
         pair.report.failures.is_empty(),
         "{:?}",

@@ -135,7 +135,7 @@ fn bottom_beside(
 }
 
 /// Precision (in the check's tolerances) to which [`bottom_beside`] finds a bottom.
-const BOTTOM_PRECISION: f64 = 0.05;
+pub(super) const BOTTOM_PRECISION: f64 = 0.05;
 
 /// Most parabolic steps in [`bottom_beside`].
 const BOTTOM_STEPS: usize = 4;

@@ -269,6 +269,21 @@ pub struct TeethReport {
     pub violation: f64,
     /// What fails, in words (empty: every check passes).
     pub failures: Vec<String>,
+    /// How closely the quantities above are computed.
+    pub accuracy: TeethAccuracy,
+}
+
+/// How closely a pair's reported quantities are computed, from its settings (mm).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TeethAccuracy {
+    /// Largest distance of an outline chord from the generated curve.
+    pub chord_mm: f64,
+    /// The flank heights (the flank lost to undercut, the contact ratio's active flank):
+    /// Newton's last step, in rolling.
+    pub flank_height_mm: f64,
+    /// The bottom of a gap or overlap between a flank's probes, measured to the curves the
+    /// chords stand for.
+    pub gap_bottom_mm: f64,
 }
 
 impl ToothedPair {
@@ -635,6 +650,12 @@ fn verdict(
         mesh: *mesh,
         violation,
         failures,
+        accuracy: TeethAccuracy {
+            chord_mm: spec.chord_tolerance_mm,
+            flank_height_mm: profile::NEWTON_STEP_PITCHES * track.perimeter() / f64::from(teeth),
+            gap_bottom_mm: mesh::BOTTOM_PRECISION
+                * spec.chord_tolerance_mm.min(OVERLAP_TOLERANCE_MM),
+        },
     }
 }
 

@@ -341,7 +341,7 @@ impl Cut<'_> {
             // micrometre) the error is of the order of its square, and the step's linear
             // update is as good as evaluating there again.
             let (move_a, move_b) = (step_a * rate_a, step_b * rate_b);
-            if move_a.abs().max(move_b.abs()) < 1e-7 * self.pitch {
+            if move_a.abs().max(move_b.abs()) < NEWTON_STEP_PITCHES * self.pitch {
                 let p = point + da * step_a;
                 return p.is_finite().then_some((sa + move_a, sb + move_b, p));
             }
@@ -798,6 +798,9 @@ impl Cut<'_> {
         })
     }
 }
+
+/// Newton's last step (in pitches of rolling) where two pieces meet ([`Cut::meet`]).
+pub(super) const NEWTON_STEP_PITCHES: f64 = 1e-7;
 
 /// Most halvings of one segment in [`Cut::refine`] (a cusp would take them without end).
 const MAX_HALVINGS: u32 = 10;
