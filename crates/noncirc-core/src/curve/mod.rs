@@ -26,7 +26,14 @@ impl Polar {
     #[inline]
     pub fn curvature(self) -> f64 {
         let s = self.rho * self.rho + self.d1 * self.d1;
-        (self.rho * self.rho + 2.0 * self.d1 * self.d1 - self.rho * self.d2) / (s * s.sqrt())
+        self.curvature_numerator() / (s * s.sqrt())
+    }
+
+    /// The curvature's numerator `ρ² + 2ρ'² − ρρ''` (mm²), for a caller that has
+    /// `(ρ² + ρ'²)^{-1/2}` at hand.
+    #[inline]
+    pub fn curvature_numerator(self) -> f64 {
+        self.rho * self.rho + 2.0 * self.d1 * self.d1 - self.rho * self.d2
     }
 
     /// Arc length per radian of ψ, `ds/dψ = √(ρ² + ρ'²)` (mm/rad).

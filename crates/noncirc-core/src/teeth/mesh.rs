@@ -8,7 +8,7 @@
 //! meshes over a full carrier turn.
 
 use super::cut_gear::{Side, ToothedGear};
-use super::polyline::{chord_bulge, menger_curvature, OutlineGrid};
+use super::polyline::{chord_bow, menger_curvature, OutlineGrid};
 use super::track::{Member, PairTrack};
 use super::OVERLAP_TOLERANCE_MM;
 use crate::angle::unit;
@@ -54,7 +54,7 @@ fn pair_side(gear: usize, side: Side) -> usize {
 /// beside it, to a twentieth of `tolerance` (mm): successive parabolic
 /// interpolation along the chords to the neighbours on the flank (or, with one neighbour,
 /// from the midpoint of the chord to it), each point measured with its chord's sag taken
-/// off ([`chord_bulge`]; `turning` is 1 where the probes run counter-clockwise round
+/// off ([`chord_bow`]; `turning` is 1 where the probes run counter-clockwise round
 /// their gear, −1 where clockwise). Infinite where no neighbour is within reach.
 fn bottom_beside(
     gear: &ToothedGear,
@@ -75,15 +75,6 @@ fn bottom_beside(
         (Some((a, _)), Some((b, _))) => turning * menger_curvature(a, p, b),
         _ => 0.0,
     };
-    // A bow of more than twice the chord tolerance is a corner's turn, not the flank's.
-    let bow = |chord: Vec2, f: f64| {
-        let bow = chord_bulge(kappa, kappa, chord, f);
-        if chord_bulge(kappa, kappa, chord, 0.5).abs() > 2.0 * gear.grid.chord_tolerance() {
-            0.0
-        } else {
-            bow
-        }
-    };
     // Positions `x` along the flank: `p` at 0, the chord to the point before it on the
     // negative side, to the point after it on the positive side.
     let chords = [before.map(|(a, _)| a), after.map(|(b, _)| b)];
@@ -95,7 +86,8 @@ fn bottom_beside(
             (chords[1]?, length[1])
         };
         let f = x.abs() / len;
-        Some(distance(p + (q - p) * f)? - bow(q - p, f))
+        let bow = chord_bow(kappa, kappa, q - p, gear.grid.chord_tolerance());
+        Some(distance(p + (q - p) * f)? - bow * 4.0 * f * (1.0 - f))
     };
     let mut bracket = match (before, after) {
         (Some((_, da)), Some((_, db))) => [(-length[0], da), (0.0, d), (length[1], db)],

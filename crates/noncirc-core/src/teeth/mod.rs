@@ -133,6 +133,12 @@ impl ToothSpec {
         *self == Self::default()
     }
 
+    /// The mesh check's tolerance (mm): the chord tolerance, or the verdict's overlap
+    /// tolerance where that is finer.
+    fn check_tolerance_mm(&self) -> f64 {
+        self.chord_tolerance_mm.min(OVERLAP_TOLERANCE_MM)
+    }
+
     /// `factor` times the flank, fillet and mesh samples and a chord tolerance `factor²`
     /// finer (the chords' sag falls with the square of their count), within the settings'
     /// ranges: the reference a convergence check compares the settings with.
@@ -368,7 +374,7 @@ impl ToothedPair {
             cut(Member::Driver, x, 0.0, "driver")?,
             cut(Member::Driven, -x, 0.5 * pitch, "driven")?,
         ];
-        let tolerance = spec.chord_tolerance_mm.min(OVERLAP_TOLERANCE_MM);
+        let tolerance = spec.check_tolerance_mm();
         let check = |gears: &[ToothedGear; 2], steps_per_pitch: usize| {
             mesh::check(
                 &track,
@@ -404,9 +410,7 @@ impl ToothedPair {
             // coarser cut leaves in the roots overlaps the real tips by up to its
             // tolerance. (Half of it cost the failing pair's advice four times as
             // long, 12.5 s against 3.4 s, and changed none of its verdicts.)
-            let mate_tolerance = OVERLAP_TOLERANCE_MM
-                .min(spec.chord_tolerance_mm)
-                .max(mate_roots::SWEEP_TOLERANCE_FLOOR_MM);
+            let mate_tolerance = tolerance.max(mate_roots::SWEEP_TOLERANCE_FLOOR_MM);
             let shaper = |g: usize| {
                 let (member, shift, phase, name) = if g == 0 {
                     (Member::Driven, -x, 0.5 * pitch, "driven")
@@ -653,8 +657,7 @@ fn verdict(
         accuracy: TeethAccuracy {
             chord_mm: spec.chord_tolerance_mm,
             flank_height_mm: profile::NEWTON_STEP_PITCHES * track.perimeter() / f64::from(teeth),
-            gap_bottom_mm: mesh::BOTTOM_PRECISION
-                * spec.chord_tolerance_mm.min(OVERLAP_TOLERANCE_MM),
+            gap_bottom_mm: mesh::BOTTOM_PRECISION * spec.check_tolerance_mm(),
         },
     }
 }
@@ -705,7 +708,7 @@ mod tests {
                 reach,
                 sin_cos,
                 4 * MATE_CHECK_STEPS * spec.mesh_steps_per_pitch,
-                spec.chord_tolerance_mm.min(OVERLAP_TOLERANCE_MM),
+                spec.check_tolerance_mm(),
             )
             .report;
             println!(

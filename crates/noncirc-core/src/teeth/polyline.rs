@@ -50,14 +50,15 @@ pub(super) fn menger_curvature(a: Vec2, b: Vec2, c: Vec2) -> f64 {
 }
 
 /// How far (mm, to the right of the chord's direction) a curve lies from its chord `chord`
-/// at the fraction `t` of the way along it, where the curve turns with curvatures
-/// `kappa_a`, `kappa_b` (1/mm, positive left) at the chord's ends: `κ L² t(1 − t)/2`
-/// with `κ` interpolated, the parabola through the ends with that curvature. Where one
-/// end turns more than twice as sharply as the other, it is taken for a corner (which
-/// the circle through its neighbours cannot measure) and the other end's curvature for
-/// the chord's; zero where the ends turn different ways (an inflection, or a reflex
-/// corner).
-pub(super) fn chord_bulge(kappa_a: f64, kappa_b: f64, chord: Vec2, t: f64) -> f64 {
+/// at the chord's middle, where the curve turns with curvatures `kappa_a`, `kappa_b` (1/mm,
+/// positive left) at the chord's ends: `κ L²/8`, the parabola through the ends with the
+/// mean curvature (at the fraction `t` of the way along, `4t(1 − t)` times this). Where one
+/// end turns more than twice as sharply as the other, it is taken for a corner (which the
+/// circle through its neighbours cannot measure) and the other end's curvature for the
+/// chord's. Zero where the ends turn different ways (an inflection, or a reflex corner),
+/// and where the bow would be more than twice the `chord_tolerance` (mm) the chords were
+/// cut to: the chord then runs between corners (a tip land) and is the outline itself.
+pub(super) fn chord_bow(kappa_a: f64, kappa_b: f64, chord: Vec2, chord_tolerance: f64) -> f64 {
     if kappa_a * kappa_b <= 0.0 {
         return 0.0;
     }
@@ -68,9 +69,14 @@ pub(super) fn chord_bulge(kappa_a: f64, kappa_b: f64, chord: Vec2, t: f64) -> f6
     let kappa = if hi > 2.0 * lo {
         lo.copysign(kappa_a)
     } else {
-        kappa_a + (kappa_b - kappa_a) * t
+        0.5 * (kappa_a + kappa_b)
     };
-    0.5 * kappa * chord.hypot2() * t * (1.0 - t)
+    let bow = 0.125 * kappa * chord.hypot2();
+    if bow.abs() > 2.0 * chord_tolerance {
+        0.0
+    } else {
+        bow
+    }
 }
 
 /// A closed outline (counter-clockwise: material on the left of each segment) with its
@@ -306,12 +312,12 @@ impl OutlineGrid {
         Some(self.signed(p, nearest))
     }
 
-    /// As [`Self::signed_distance`], but to the curve the outline's chords stand for: where
+    /// The signed distance (mm) from `p` to the curve the outline's chords stand for,
+    /// negative inside, if the outline passes within the reach of `p`: where
     /// the nearest point lies inside a chord, the chord's sag there (from the circles
-    /// through each end and its neighbours, [`chord_bulge`]; at a joint, the other end's
-    /// alone) is taken off. The chords of a curve cut within a tolerance lie up to that tolerance
-    /// inside it; this leaves a small fraction of it. A chord those circles would bow by
-    /// more than twice the tolerance runs between corners (a tip land): it is the outline.
+    /// through each end and its neighbours, [`chord_bow`]; at a joint, the other end's
+    /// alone) is taken off. The chords of a curve cut within a tolerance lie up to that
+    /// tolerance inside it; this leaves a small fraction of it.
     pub(super) fn signed_distance_to_curve(&self, p: Vec2) -> Option<f64> {
         let nearest = self.nearest(p)?;
         let (_, i, t) = nearest;
@@ -329,11 +335,7 @@ impl OutlineGrid {
             (Some(x), None) | (None, Some(x)) => (x, x),
             (None, None) => return Some(d),
         };
-        let chord = c - b;
-        let bow = chord_bulge(kappa_b, kappa_c, chord, 0.5);
-        if bow.abs() > 2.0 * self.chord_tolerance {
-            return Some(d);
-        }
+        let bow = chord_bow(kappa_b, kappa_c, c - b, self.chord_tolerance);
         Some(d - bow * 4.0 * t * (1.0 - t))
     }
 

@@ -254,9 +254,7 @@ impl PairTrack {
         // Both gears' points move at `ds/dψ = √(ρ² + ρ'²)` (no slip): one square root
         // for the tangent and, through it, the curvature's `(ρ² + ρ'²)^(3/2)`.
         let inv_rate = 1.0 / (p.rho * p.rho + p.d1 * p.d1).sqrt();
-        let bend = |q: Polar, inv: f64| {
-            (q.rho * q.rho + 2.0 * q.d1 * q.d1 - q.rho * q.d2) * inv * inv * inv
-        };
+        let bend = |q: Polar, inv: f64| q.curvature_numerator() * inv * inv * inv;
         match member {
             Member::Driver => {
                 let e = unit(psi);
