@@ -480,7 +480,7 @@ pub fn train_layout(kin: &Kinematics, toothed: &ToothedPair, theta: f64) -> Vec<
 
 /// `mm` to four decimals (a tenth of a micrometre), without a sign where that rounds to
 /// zero: the mesh check measures contacts to a fraction of that, either side of zero.
-fn tenth_micrometres(mm: f64) -> String {
+pub(crate) fn tenth_micrometres(mm: f64) -> String {
     let text = format!("{mm:.4}");
     if text == "-0.0000" {
         "0.0000".into()

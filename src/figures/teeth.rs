@@ -2,7 +2,7 @@
 //! the first mesh.
 
 use super::*;
-use crate::teeth::TeethRun;
+use crate::teeth::{tenth_micrometres, TeethRun};
 use noncirc_core::Member;
 
 /// The assembled toothed gears and a close view of a mesh.
@@ -71,10 +71,10 @@ impl Figure for TeethFigure<'_> {
             (pitch.y - half, pitch.y + half),
         );
         let caption = format!(
-            "The {} – {} mesh: least clearance {:.4} mm, contact ratio ≥ {:.2}",
+            "The {} – {} mesh: least clearance {} mm, contact ratio ≥ {:.2}",
             run.layout[0].name,
             run.layout[other].name,
-            r.mesh.least_clearance_mm,
+            tenth_micrometres(r.mesh.least_clearance_mm),
             r.mesh.contact_ratio_min
         );
         let (wx, wy) = window;
