@@ -24,10 +24,10 @@ CORE = ROOT / "crates/noncirc-core/src"
 SEARCH = ROOT / "crates/noncirc-search"
 
 LAYERS = [  # lowest first; a module may use its own layer and those below
-    "error vec2 angle quadrature resolution golden",                             # util
+    "error vec2 angle quadrature resolution golden segment_tree",                          # util
     "curve gear planetary teeth moving_box gearbox",                             # model
-    "scene check reference messages params agronomy objective_kind measure goal tolerance",  # scene
-    "evaluation events anatomy objectives measure_value accuracy",               # evaluate
+    "scene check reference messages params agronomy objective_kind measure goal tolerance target",  # scene
+    "evaluation events anatomy objectives measure_value accuracy fit",           # evaluate
     "robustness sensitivity problem checkpoint serial",                          # study
 ]
 NAMES = ["util", "model", "scene", "evaluate", "study"]

@@ -75,6 +75,7 @@ fn checked(scene: Scene, origin: &str, text: Option<&str>) -> Result<Scene, Scen
         .validate()
         .and_then(|()| scene.validate_search())
         .and_then(|()| scene.gear.curve.build().map(drop))
+        .and_then(|()| scene.validate_target())
         .map_err(|source| SceneError::Invalid {
             origin: origin.to_string(),
             line: text.and_then(|t| line_of(t, error_key(&source)?)),
@@ -90,7 +91,9 @@ fn error_key(e: &noncirc_core::Error) -> Option<&str> {
     let name = match e {
         Error::NonFinite { name, .. }
         | Error::OutOfRange { name, .. }
-        | Error::Missing { name, .. } => name.as_str(),
+        | Error::Missing { name, .. }
+        | Error::OpenTarget { name, .. }
+        | Error::TargetCrossing { name, .. } => name.as_str(),
         Error::BadList { list, .. } => list,
         _ => return None,
     };
@@ -393,6 +396,8 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
         top.entry("tolerances").or_insert_with(|| {
             serde_json::to_value(noncirc_core::Tolerances::default()).expect("serialises")
         });
+        // No target: `--set target={…}` gives one.
+        top.entry("target").or_insert(serde_json::Value::Null);
     }
     tree
 }

@@ -63,6 +63,12 @@ fn scenes() -> Vec<noncirc_core::Scene> {
         ],
         &["tolerances.samples=32"],
         &["train.arms=2", "train.picks_per_minute=180"],
+        &[
+            "target={kind=\"spline\",x_mm=[200.0,0.0,-200.0,0.0],y_mm=[0.0,150.0,0.0,-300.0],\
+           tolerance_mm=0.5,samples=128,counts=true,poses=[{name=\"picking\",at=\"picking\",\
+           x_mm=200.0,y_mm=0.0,attitude_deg=10.0,carrier_deg=20.0,position_tolerance_mm=0.5,\
+           attitude_tolerance_deg=0.5,carrier_tolerance_deg=2.0,counts=true}]}",
+        ],
     ];
     for edit in edits {
         let edit: Vec<String> = edit.iter().map(|s| s.to_string()).collect();
@@ -154,6 +160,7 @@ fn checks(scene: &noncirc_core::Scene) -> Result<(), String> {
         .validate()
         .and_then(|()| scene.validate_search())
         .and_then(|()| scene.gear.curve.build().map(drop))
+        .and_then(|()| scene.validate_target())
         .map_err(|e| e.to_string())
 }
 

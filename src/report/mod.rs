@@ -1,9 +1,9 @@
 //! Reports: what the CLI prints, as serialisable structs and readable tables.
 
-use noncirc_core::BoxReport;
 use noncirc_core::GearSummary;
 use noncirc_core::Measure;
 use noncirc_core::{Anatomy, SectionMeasures};
+use noncirc_core::{BoxReport, FitReport};
 use noncirc_core::{Evaluation, Evaluator, GearPair, ObjectiveValue, Result, Scene, SceneKind};
 use noncirc_core::{Events, PickingCheck};
 use serde::Serialize;
@@ -273,6 +273,60 @@ pub struct EvaluationReport {
     pub measures: Vec<MeasureRow>,
     pub gear: Option<GearSummary>,
     pub moving_box: Option<BoxReport>,
+    /// The fit to the scene's target, with the target's tolerances (a scene with a
+    /// `[target]`).
+    pub fit: Option<FitRow>,
+}
+
+/// The fit to the target as `noncirc evaluate` reports it: the measures and the
+/// tolerances they are held to.
+#[derive(Debug, Clone, Serialize)]
+pub struct FitRow {
+    /// The path's tolerance (mm).
+    pub tolerance_mm: f64,
+    /// Whether the path counts.
+    pub path_counts: bool,
+    #[serde(flatten)]
+    pub report: FitReport,
+}
+
+impl FitRow {
+    /// The fit's lines: the path's distances, then a row per pose.
+    pub fn table(&self) -> String {
+        let r = &self.report;
+        let mut out = format!(
+            "
+fit to the target: path Hausdorff {:.3} mm (at ({:.1}, {:.1}) mm), RMS {:.3} mm, tolerance {:.3} mm{}; cost {:.4}: {}\n",
+            r.path_hausdorff_mm,
+            r.hausdorff_at_mm.x,
+            r.hausdorff_at_mm.y,
+            r.path_rms_mm,
+            self.tolerance_mm,
+            if self.path_counts { "" } else { " (reported, not counted)" },
+            r.cost,
+            if r.met { "met" } else { "NOT met" }
+        );
+        if !r.poses.is_empty() {
+            out += "pose           carrier         tip (mm)        attitude   position  attitude  carrier\n";
+            for p in &r.poses {
+                let opt = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:+.3}°"));
+                out += &format!(
+                    "{:<12} {:8.2}° ({:8.2}, {:8.2}) {:7.2}°  {:7.3} mm {:>9} {:>9}  {}{}\n",
+                    p.name,
+                    p.carrier_deg,
+                    p.tip_mm.x,
+                    p.tip_mm.y,
+                    p.attitude_deg,
+                    p.position_error_mm,
+                    opt(p.attitude_error_deg),
+                    opt(p.carrier_error_deg),
+                    if p.met { "met" } else { "NOT met" },
+                    if p.counts { "" } else { " (not counted)" }
+                );
+            }
+        }
+        out
+    }
 }
 
 impl EvaluationReport {
@@ -300,6 +354,15 @@ impl EvaluationReport {
             measures: measure_rows(eval, anatomy.as_ref()),
             gear: eval.gear,
             moving_box: eval.moving_box,
+            fit: eval
+                .fit
+                .clone()
+                .zip(scene.target.as_ref())
+                .map(|(report, t)| FitRow {
+                    tolerance_mm: t.tolerance_mm,
+                    path_counts: t.counts,
+                    report,
+                }),
         }
     }
 
@@ -389,6 +452,9 @@ impl EvaluationReport {
         if let Some(b) = &self.moving_box {
             out += "\n";
             out += &box_table(b);
+        }
+        if let Some(f) = &self.fit {
+            out += &f.table();
         }
         if !self.objectives.is_empty() {
             out += &format!(

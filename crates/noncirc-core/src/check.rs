@@ -86,6 +86,19 @@ impl Scene {
                 });
             }
         }
+        if let Some(target) = &self.target {
+            if !mechanism {
+                return Err(Error::BadList {
+                    list: "target",
+                    problem: format!(
+                        "a {} scene has no tip path: a target needs a three_arm or \
+                         transplanter scene",
+                        self.kind.name()
+                    ),
+                });
+            }
+            target.validate()?;
+        }
         if mechanism && self.objectives.is_empty() {
             return Err(Error::BadList {
                 list: "objectives",
@@ -117,6 +130,15 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    /// The target whole, as [`Target::prepare`](crate::target::Target::prepare) checks it
+    /// (closed, distinct points, no crossing): once when a scene is read, not per design
+    /// (an evaluation prepares it once and keeps it).
+    pub fn validate_target(&self) -> Result<()> {
+        self.target
+            .as_ref()
+            .map_or(Ok(()), |t| t.prepare().map(drop))
     }
 
     /// The search settings: goals this scene can compute, each once; free parameters that
@@ -159,6 +181,17 @@ impl Scene {
                 format!("'{name}' is listed twice")
             } else if goal.needs_moving_box() && self.kind != SceneKind::Transplanter {
                 format!("'{name}' needs a moving box: only a transplanter scene computes it")
+            } else if goal.needs_target() && self.target.is_none() {
+                format!("'{name}' measures the fit to a target: the scene has no [target]")
+            } else if let Some(slot) = goal
+                .pose_slot()
+                .filter(|&k| self.target.as_ref().is_some_and(|t| k >= t.poses.len()))
+            {
+                format!(
+                    "'{name}' reads key pose {}: the target has {}",
+                    slot + 1,
+                    self.target.as_ref().map_or(0, |t| t.poses.len())
+                )
             } else if goal.is_robust()
                 && !matches!(self.kind, SceneKind::Mechanism | SceneKind::Transplanter)
             {

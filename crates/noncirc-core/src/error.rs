@@ -72,6 +72,21 @@ pub enum Error {
     },
     /// A design that cannot be manufactured (e.g. a module of zero).
     Infeasible(String),
+    /// A target path that does not close: `name` is its last point, `gap_mm` the distance
+    /// from it to the first, `spacing_mm` the path's median spacing.
+    OpenTarget {
+        name: String,
+        gap_mm: f64,
+        spacing_mm: f64,
+    },
+    /// A target path that crosses itself: the points that start the two crossing pieces,
+    /// and where.
+    TargetCrossing {
+        name: String,
+        other: String,
+        x_mm: f64,
+        y_mm: f64,
+    },
 }
 
 /// The optimiser's errors as the core's variants of the same names and messages.

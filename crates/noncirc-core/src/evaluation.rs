@@ -6,6 +6,7 @@ use crate::anatomy::{anatomy, Anatomy};
 use crate::curve::PitchCurve;
 use crate::error::{Error, Result};
 use crate::events::{events, Events};
+use crate::fit::{fit_report, FitReport};
 use crate::gear::ModuleReading;
 use crate::gear::{GearPair, ModuleReport};
 use crate::moving_box::{evaluate_box_with, BoxReport};
@@ -15,8 +16,10 @@ use crate::planetary::Kinematics;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use crate::scene::{Scene, SceneKind};
+use crate::target::{PreparedTarget, Target};
 use crate::teeth::{TeethReport, ToothedPair};
 use serde::Serialize;
+use std::sync::Arc;
 
 /// How many times each stage ran.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -30,6 +33,8 @@ pub struct StageCounts {
     pub moving_box: u64,
     /// Toothed pairs cut and checked (the module rule `teeth`).
     pub teeth: u64,
+    /// Fits to the scene's target measured.
+    pub fit: u64,
 }
 
 /// A gear pair's summary.
@@ -57,6 +62,8 @@ pub struct Evaluation {
     pub gear_pair: Option<GearPair>,
     /// The teeth's checks, when the module rule is `teeth`.
     pub teeth: Option<TeethReport>,
+    /// The fit to the scene's target, when it has one.
+    pub fit: Option<FitReport>,
 }
 
 impl Evaluation {
@@ -73,6 +80,7 @@ impl Evaluation {
             kinematics: None,
             gear_pair: None,
             teeth: None,
+            fit: None,
         }
     }
 
@@ -109,6 +117,9 @@ impl Evaluation {
 pub struct Evaluator {
     counts: StageCounts,
     integrator: Option<SpectralIntegrator>,
+    /// The last target prepared, and what its preparation gave: kept while scenes bring
+    /// the same target.
+    target: Option<(Arc<Target>, Result<Arc<PreparedTarget>>)>,
 }
 
 impl Evaluator {
@@ -126,6 +137,7 @@ impl Evaluator {
                 .validate()
                 .is_ok()
                 .then(|| SpectralIntegrator::new(resolution.samples_per_turn)),
+            target: None,
         }
     }
 
@@ -133,6 +145,16 @@ impl Evaluator {
     fn integrator(&mut self, n: usize) -> &mut SpectralIntegrator {
         self.integrator
             .get_or_insert_with(|| SpectralIntegrator::new(n))
+    }
+
+    /// `target` prepared (once for a run of scenes that share it, by pointer or value).
+    fn prepared(&mut self, target: &Arc<Target>) -> Result<Arc<PreparedTarget>> {
+        let cached =
+            (self.target.as_ref()).is_some_and(|(t, _)| Arc::ptr_eq(t, target) || **t == **target);
+        if !cached {
+            self.target = Some((target.clone(), target.prepare().map(Arc::new)));
+        }
+        self.target.as_ref().expect("just prepared").1.clone()
     }
 
     /// Stage executions so far.
@@ -215,7 +237,12 @@ impl Evaluator {
         let resolution = &kin.resolution();
         out.centre_distance_mm = Some(kin.centre_distance());
         let coupled = scene.kind == SceneKind::Transplanter;
-        let ev = if coupled || scene.objectives.iter().any(|o| o.needs_events()) {
+        let target = match &scene.target {
+            Some(t) => Some((t.clone(), self.prepared(t)?)),
+            None => None,
+        };
+        let target_events = target.as_ref().is_some_and(|(t, _)| t.needs_events());
+        let ev = if coupled || target_events || scene.objectives.iter().any(|o| o.needs_events()) {
             self.counts.events += 1;
             Some(events(&kin, &scene.agronomy))
         } else {
@@ -264,6 +291,10 @@ impl Evaluator {
             perimeter_mm: kin.pair().perimeter(),
             module,
         });
+        if let Some((target, prepared)) = &target {
+            self.counts.fit += 1;
+            out.fit = Some(fit_report(&kin, ev.as_ref(), target, prepared, None));
+        }
         out.events = ev;
         out.kinematics = Some(kin);
         // Safety net: a value that broke down numerically is an error, never a NaN.
@@ -330,6 +361,45 @@ impl Evaluator {
 mod tests {
     use super::*;
     use crate::events::housing_radius;
+
+    #[test]
+    fn a_fit_is_measured_once_per_evaluation_of_a_scene_with_a_target() {
+        let mut scene = Scene::default();
+        let mut evaluator = Evaluator::new();
+        let plain = evaluator.evaluate(&scene).unwrap();
+        assert!(plain.fit.is_none());
+        assert_eq!(evaluator.counts().fit, 0);
+        // The design's own path as its target: met, at the Hermite path's accuracy.
+        let kin = plain.kinematics.unwrap();
+        let tips: Vec<_> = (0..4000)
+            .map(|i| kin.state_at(std::f64::consts::TAU * i as f64 / 4000.0).tip)
+            .collect();
+        let target = Target {
+            kind: crate::target::TargetKind::Points,
+            x_mm: tips.iter().map(|p| p.x).collect(),
+            y_mm: tips.iter().map(|p| p.y).collect(),
+            tolerance_mm: 0.5,
+            samples: 128,
+            counts: true,
+            poses: Vec::new(),
+        };
+        scene.target = Some(Arc::new(target));
+        for k in 1..=3 {
+            let eval = evaluator.evaluate(&scene).unwrap();
+            let fit = eval.fit.unwrap();
+            assert!(fit.met && fit.path_hausdorff_mm < 0.05, "{fit:?}");
+            assert_eq!(evaluator.counts().fit, k);
+        }
+        // A bad target never evaluates.
+        let mut bad = (**scene.target.as_ref().unwrap()).clone();
+        bad.x_mm.truncate(2000);
+        bad.y_mm.truncate(2000);
+        scene.target = Some(Arc::new(bad));
+        assert!(matches!(
+            evaluator.evaluate(&scene),
+            Err(Error::OpenTarget { .. })
+        ));
+    }
 
     #[test]
     fn the_paper_design_picks_outside_the_housing() {

@@ -2,7 +2,7 @@
 //! each means in physical terms. Their values for an evaluation are the problem's.
 
 use crate::error::{Error, Result};
-use crate::measure::Measure;
+use crate::measure::{FitMeasure, Measure};
 use crate::objective_kind::{scale, Bounds, ObjectiveKind};
 use noncirc_search::nearest;
 use serde::{Deserialize, Serialize};
@@ -71,6 +71,9 @@ pub enum Goal {
     /// Maximise the least normalised margin at quantile `q` of the tolerance samples
     /// (`margin_quantile:0.05`: the margin 95 % of the built machines exceed).
     MarginQuantile(f64),
+    /// Minimise the fit's cost to the scene's target (`fit`): half the squared norm of
+    /// the path's and the counting poses' residuals, each over its tolerance.
+    Fit,
 }
 
 impl Goal {
@@ -82,6 +85,7 @@ impl Goal {
             "picking_tip_speed" => Ok(Goal::PickingTipSpeed),
             "box_travel" => Ok(Goal::BoxTravel),
             "probability" => Ok(Goal::Probability),
+            "fit" => Ok(Goal::Fit),
             other if other.starts_with("margin_quantile:") => {
                 let text = &other["margin_quantile:".len()..];
                 match text.parse::<f64>() {
@@ -108,6 +112,7 @@ impl Goal {
                         "picking_tip_speed",
                         "box_travel",
                         "probability",
+                        "fit",
                     ]
                     .map(String::from)
                     .to_vec();
@@ -147,6 +152,7 @@ impl Goal {
             Goal::MarginQuantile(q) => {
                 (format!("least_normalised_margin_p{}", q * 100.0), "", true)
             }
+            Goal::Fit => ("fit_cost".to_string(), "", false),
         };
         GoalQuantity {
             name,
@@ -172,7 +178,7 @@ impl Goal {
                     _ => margin,
                 }
             }
-            Goal::PickingTipSpeed | Goal::BoxTravel => f,
+            Goal::PickingTipSpeed | Goal::BoxTravel | Goal::Fit => f,
             // `0 − f`: a probability of 0 reads 0, not −0.
             Goal::Probability | Goal::MarginQuantile(_) => 0.0 - f,
             Goal::Measure { maximise, .. } => {
@@ -201,7 +207,31 @@ impl Goal {
             }
             Goal::Probability => "probability".into(),
             Goal::MarginQuantile(q) => format!("margin_quantile:{q}"),
+            Goal::Fit => "fit".into(),
         }
+    }
+
+    /// The key pose (0-based) a `min:poseK_…` goal reads.
+    pub fn pose_slot(self) -> Option<usize> {
+        match self {
+            Goal::Measure {
+                measure: Measure::Fit(FitMeasure::Pose { slot: Some(k), .. }),
+                ..
+            } => Some(k as usize),
+            _ => None,
+        }
+    }
+
+    /// Whether only a scene with a target can compute it (the fit, a fit measure).
+    pub fn needs_target(self) -> bool {
+        matches!(
+            self,
+            Goal::Fit
+                | Goal::Measure {
+                    measure: Measure::Fit(_),
+                    ..
+                }
+        )
     }
 
     /// Whether the goal reads the design's tolerance samples (a robust goal).
@@ -244,6 +274,7 @@ mod tests {
             Goal::BoxTravel,
             Goal::Probability,
             Goal::MarginQuantile(0.05),
+            Goal::Fit,
         ];
         goals.extend(ObjectiveKind::ALL.iter().map(|&k| Goal::Margin(k)));
         for m in Measure::all() {

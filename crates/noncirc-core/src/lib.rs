@@ -19,6 +19,7 @@ mod error;
 mod golden;
 mod quadrature;
 mod resolution;
+mod segment_tree;
 mod vec2;
 
 // Model: pitch curves, gear pairs, the train's motion, teeth, the moving box, the gearbox.
@@ -40,6 +41,7 @@ mod objective_kind;
 mod params;
 mod reference;
 mod scene;
+mod target;
 mod tolerance;
 
 // Evaluate: a scene's evaluation, its events, objectives, sections and measures.
@@ -47,6 +49,7 @@ mod accuracy;
 mod anatomy;
 mod evaluation;
 mod events;
+mod fit;
 mod measure_value;
 mod objectives;
 
@@ -64,7 +67,9 @@ pub use curve::{
     PeriodicSpline, PitchCurve, Polar,
 };
 pub use goal::{Goal, GoalQuantity, INVALID_CV};
-pub use measure::{Measure, MeasureCost, Scalar, Section, SectionQuantity};
+pub use measure::{
+    FitMeasure, Measure, MeasureCost, PoseQuantity, Scalar, Section, SectionQuantity,
+};
 pub use moving_box::BoxSpec;
 pub use objective_kind::{scale, Bounds, ObjectiveKind};
 pub use params::Param;
@@ -72,6 +77,7 @@ pub use planetary::{PusherSide, SunFrame, TrainSpec, ARM_NAMES};
 pub use reference::{field, fields, symbol, Bound, Field, Range};
 pub use resolution::Resolution;
 pub use scene::{FreeParam, GearSpec, Scene, SceneKind, SearchSpec};
+pub use target::{Pose, PoseAt, PreparedTarget, Target, TargetKind};
 
 // The model: gear pairs, the train's motion, events, sections, measures.
 pub use anatomy::{anatomy, Anatomy, SectionMeasures};
@@ -93,6 +99,7 @@ pub use vec2::Vec2;
 pub use accuracy::{observed_order, output_errors, ErrorRow};
 pub use error::{Error, Result};
 pub use evaluation::{Evaluation, Evaluator, GearSummary, StageCounts};
+pub use fit::{FitReport, PoseFit};
 
 // Tolerances, robustness and global sensitivity.
 pub use robustness::{

@@ -172,6 +172,88 @@ impl Scalar {
     }
 }
 
+/// A quantity of a key pose's fit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PoseQuantity {
+    /// Distance of the tip from the pose's position (mm).
+    Position,
+    /// Difference of the arm's attitude from the pose's (deg).
+    Attitude,
+    /// Difference of the carrier angle from the pose's (deg, wrapped to ±180).
+    Carrier,
+}
+
+impl PoseQuantity {
+    const ALL: [PoseQuantity; 3] = [
+        PoseQuantity::Position,
+        PoseQuantity::Attitude,
+        PoseQuantity::Carrier,
+    ];
+
+    /// Name with its unit, and what it is.
+    fn describe(self) -> (&'static str, &'static str) {
+        match self {
+            PoseQuantity::Position => ("position_mm", "tip's distance from the pose's position"),
+            PoseQuantity::Attitude => ("attitude_deg", "arm attitude's difference from the pose's"),
+            PoseQuantity::Carrier => ("carrier_deg", "carrier angle's difference from the pose's"),
+        }
+    }
+}
+
+/// A measure of the fit to the scene's target (`[target]`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FitMeasure {
+    /// Hausdorff distance between the tip path and the target path (mm).
+    PathHausdorff,
+    /// RMS distance between them, each sampled by arc length (mm).
+    PathRms,
+    /// A pose's error: of pose `slot` (0-based, in `target.poses`), or the largest over the
+    /// counting poses (`None`).
+    Pose {
+        slot: Option<u8>,
+        quantity: PoseQuantity,
+    },
+}
+
+impl FitMeasure {
+    /// Every fit measure: the path's, the worst pose's, then each pose slot's.
+    fn all() -> impl Iterator<Item = FitMeasure> {
+        let slots = std::iter::once(None).chain((0..4u8).map(Some));
+        [FitMeasure::PathHausdorff, FitMeasure::PathRms]
+            .into_iter()
+            .chain(slots.flat_map(|slot| {
+                (PoseQuantity::ALL.iter()).map(move |&quantity| FitMeasure::Pose { slot, quantity })
+            }))
+    }
+
+    /// Name (with its unit) and description.
+    fn describe(self) -> (String, String) {
+        match self {
+            FitMeasure::PathHausdorff => (
+                "path_hausdorff_mm".into(),
+                "largest distance between the tip path and the target path (Hausdorff)".into(),
+            ),
+            FitMeasure::PathRms => (
+                "path_rms_mm".into(),
+                "RMS distance between the tip path and the target path, both by arc length".into(),
+            ),
+            FitMeasure::Pose { slot, quantity } => {
+                let (name, what) = quantity.describe();
+                match slot {
+                    None => (
+                        format!("pose_{name}"),
+                        format!("largest over the counting key poses: {what}"),
+                    ),
+                    Some(k) => (
+                        format!("pose{}_{name}", k + 1),
+                        format!("key pose {} (target.poses[{k}]): {what}", k + 1),
+                    ),
+                }
+            }
+        }
+    }
+}
+
 /// What a measure costs beyond the evaluation that it is read from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MeasureCost {
@@ -182,6 +264,9 @@ pub enum MeasureCost {
     /// Places every gear's pitch curve at every node to check the gearbox
     /// (`gearbox::gear_sets_overlap`): several evaluations' time.
     Gearbox,
+    /// Read from the fit to the scene's target, which an evaluation computes when the
+    /// scene has one (about a third of an evaluation's time); none without.
+    Target,
 }
 
 /// A named measure.
@@ -190,10 +275,12 @@ pub enum Measure {
     Objective(ObjectiveKind),
     Section(Section, SectionQuantity),
     Scalar(Scalar),
+    Fit(FitMeasure),
 }
 
 impl Measure {
-    /// Every measure, objectives first, then the events and shape, then the sections.
+    /// Every measure, objectives first, then the events and shape, then the sections, then
+    /// the fit to a target.
     pub fn all() -> Vec<Measure> {
         let objectives = ObjectiveKind::ALL.iter().map(|&k| Measure::Objective(k));
         let scalars = Scalar::ALL.iter().map(|&s| Measure::Scalar(s));
@@ -202,7 +289,12 @@ impl Measure {
                 .iter()
                 .map(move |&q| Measure::Section(s, q))
         });
-        objectives.chain(scalars).chain(sections).collect()
+        let fits = FitMeasure::all().map(Measure::Fit);
+        objectives
+            .chain(scalars)
+            .chain(sections)
+            .chain(fits)
+            .collect()
     }
 
     /// Stable name, ending in its unit (`loop_height_mm`); an objective's is its own name.
@@ -210,6 +302,7 @@ impl Measure {
         match self {
             Measure::Objective(k) => k.name().to_string(),
             Measure::Scalar(s) => s.describe().0.to_string(),
+            Measure::Fit(m) => m.describe().0,
             Measure::Section(s, q) => format!(
                 "{}_{}",
                 s.name(),
@@ -236,6 +329,11 @@ impl Measure {
                 Scalar::PickingCarrier | Scalar::PlantingCarrier | Scalar::PickingWindow,
             ) => "deg",
             Measure::Scalar(_) => "mm",
+            Measure::Fit(FitMeasure::Pose {
+                quantity: PoseQuantity::Attitude | PoseQuantity::Carrier,
+                ..
+            }) => "deg",
+            Measure::Fit(_) => "mm",
         }
     }
 
@@ -244,6 +342,7 @@ impl Measure {
         match self {
             Measure::Objective(k) => format!("objective: {}", k.label()),
             Measure::Scalar(s) => s.describe().1.to_string(),
+            Measure::Fit(m) => format!("fit: {}", m.describe().1),
             Measure::Section(s, q) => format!(
                 "{} section: {}",
                 s.label(),
@@ -283,6 +382,7 @@ impl Measure {
                 | Scalar::LoopHeight,
             ) => MeasureCost::Anatomy,
             Measure::Scalar(Scalar::GearOverlap) => MeasureCost::Gearbox,
+            Measure::Fit(_) => MeasureCost::Target,
             _ => MeasureCost::Read,
         }
     }
@@ -294,7 +394,8 @@ impl Measure {
 
     /// The measures a batch returns by default: every one besides the objectives that is
     /// read from the evaluation at no cost (the events' carrier angles, picking window,
-    /// tip speed, branch gaps and heights, the box's travel).
+    /// tip speed, branch gaps and heights, the box's travel); not the fit's, which only a
+    /// scene with a target has.
     pub fn batch_default() -> Vec<Measure> {
         (Measure::all().into_iter())
             .filter(|m| !matches!(m, Measure::Objective(_)) && m.cost() == MeasureCost::Read)

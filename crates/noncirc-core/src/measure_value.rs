@@ -1,5 +1,5 @@
 //! A measure's value for an evaluation: read from its objectives, events, moving box or
-//! gearbox, or from the trajectory's sections.
+//! gearbox, or from the trajectory's sections, or from the fit to a target.
 
 use crate::anatomy::Anatomy;
 use crate::evaluation::Evaluation;
@@ -13,6 +13,7 @@ impl Measure {
         let ev = eval.events.as_ref();
         match self {
             Measure::Objective(k) => eval.objective(k).map(|o| o.value),
+            Measure::Fit(m) => eval.fit.as_ref()?.value(m),
             Measure::Section(s, q) => anatomy.map(|a| {
                 let m = a.section(s);
                 match q {

@@ -69,6 +69,14 @@ impl fmt::Display for Error {
                 f,
                 "{message}"
             ),
+            Error::OpenTarget { name, gap_mm, spacing_mm } => write!(
+                f,
+                "{name}: the target path is open: its last point is {gap_mm:.3} mm from its first, more than three times its median spacing {spacing_mm:.3} mm (close it, or end it where it starts)"
+            ),
+            Error::TargetCrossing { name, other, x_mm, y_mm } => write!(
+                f,
+                "{name}: the target path crosses itself at ({x_mm:.3}, {y_mm:.3}) mm: the piece from this point meets the piece from {other}"
+            ),
         }
     }
 }

@@ -347,6 +347,7 @@ impl Goal {
                 .as_ref()
                 .map_or(f64::INFINITY, |b| b.elliptic_delta_h_mm),
             Goal::Probability | Goal::MarginQuantile(_) => f64::NAN,
+            Goal::Fit => eval.fit.as_ref().map_or(f64::INFINITY, |f| f.cost),
             Goal::Measure { measure, maximise } => {
                 let anatomy = if measure.needs_anatomy() {
                     eval.anatomy(&scene.agronomy)

@@ -8,10 +8,12 @@ use crate::moving_box::BoxSpec;
 use crate::objective_kind::{Bounds, ObjectiveKind};
 use crate::planetary::TrainSpec;
 use crate::resolution::Resolution;
+use crate::target::Target;
 use crate::teeth::ToothSpec;
 use crate::tolerance::Tolerances;
 use noncirc_search::Algorithm;
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 /// A gear pair's specification: the driver's pitch curve and the tooth-cutting rules.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -189,6 +191,10 @@ pub struct Scene {
     /// out of a written scene while they are the defaults.
     #[serde(default, skip_serializing_if = "Tolerances::is_default")]
     pub tolerances: Tolerances,
+    /// The tip path and key poses a fit aims at (`noncirc fit`, the fit measures). Shared
+    /// between a scene's copies.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target: Option<Arc<Target>>,
 }
 
 impl Default for Scene {
@@ -206,6 +212,7 @@ impl Default for Scene {
             moving_box: BoxSpec::default(),
             search: SearchSpec::default(),
             tolerances: Tolerances::default(),
+            target: None,
         }
     }
 }

@@ -156,7 +156,9 @@ fn core_kind(e: &noncirc::core::Error, message: String) -> Error {
         | E::ControlAngles { .. }
         | E::TooFewPoints { .. }
         | E::Missing { .. }
-        | E::BadList { .. } => ParameterError::new_err(message),
+        | E::BadList { .. }
+        | E::OpenTarget { .. }
+        | E::TargetCrossing { .. } => ParameterError::new_err(message),
         E::NonPositiveRadius { .. }
         | E::NotStarShaped { .. }
         | E::UnderResolved { .. }

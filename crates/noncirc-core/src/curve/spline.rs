@@ -40,7 +40,7 @@ impl PeriodicSpline {
             }
         }
         check_angles(&psi)?;
-        // Knot spacings and cyclic neighbours, without an integer division each.
+        // Knot spacings, without an integer division each.
         let h = |i: usize| {
             if i + 1 < n {
                 psi[i + 1] - psi[i]
@@ -48,32 +48,7 @@ impl PeriodicSpline {
                 psi[0] + TAU - psi[n - 1]
             }
         };
-        let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
-        let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
-        // Second derivatives M from the cyclic tridiagonal system.
-        let m = solve_cyclic_tridiagonal(
-            n,
-            |i| h(prev(i)),
-            |i| 2.0 * (h(prev(i)) + h(i)),
-            h,
-            |i| {
-                let (up, down) = (rho[next(i)], rho[prev(i)]);
-                6.0 * ((up - rho[i]) / h(i) - (rho[i] - down) / h(prev(i)))
-            },
-        );
-        let coeffs = (0..n)
-            .map(|i| {
-                let (m0, m1, hi) = (m[i], m[next(i)], h(i));
-                let y0 = rho[i];
-                let y1 = rho[next(i)];
-                [
-                    y0,
-                    (y1 - y0) / hi - hi * (2.0 * m0 + m1) / 6.0,
-                    m0 / 2.0,
-                    (m1 - m0) / (6.0 * hi),
-                ]
-            })
-            .collect();
+        let coeffs = periodic_cubic(h, rho);
         let mut spline = Self {
             knots: psi,
             coeffs,
@@ -198,6 +173,38 @@ impl PeriodicSpline {
         }
         [least, most]
     }
+}
+
+/// The periodic C² cubic through `values` with knot spacings `h(i)` (from knot `i` to the
+/// next; the last to the first closes the period): per segment `[a, b, c, d]`, the value
+/// `a + b t + c t² + d t³` at `t` past its knot.
+pub(crate) fn periodic_cubic(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f64; 4]> {
+    let n = values.len();
+    let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+    let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+    // Second derivatives M from the cyclic tridiagonal system.
+    let m = solve_cyclic_tridiagonal(
+        n,
+        |i| h(prev(i)),
+        |i| 2.0 * (h(prev(i)) + h(i)),
+        &h,
+        |i| {
+            let (up, down) = (values[next(i)], values[prev(i)]);
+            6.0 * ((up - values[i]) / h(i) - (values[i] - down) / h(prev(i)))
+        },
+    );
+    (0..n)
+        .map(|i| {
+            let (m0, m1, hi) = (m[i], m[next(i)], h(i));
+            let (y0, y1) = (values[i], values[next(i)]);
+            [
+                y0,
+                (y1 - y0) / hi - hi * (2.0 * m0 + m1) / 6.0,
+                m0 / 2.0,
+                (m1 - m0) / (6.0 * hi),
+            ]
+        })
+        .collect()
 }
 
 /// Checks that angles are strictly increasing and span less than one turn.

@@ -114,6 +114,7 @@ mod gear;
 mod moving_box;
 mod range;
 mod search;
+mod target;
 mod tolerances;
 mod top;
 mod train;
@@ -184,7 +185,7 @@ pub(crate) enum Checker {
 /// The field tables, in the order of a scene file, each with the scene table it
 /// describes (its first key's part: "" for the top level and `[resolution]`) and what
 /// checks its numbers.
-pub(crate) const TABLES: [(&str, Checker, &[Field]); 8] = [
+pub(crate) const TABLES: [(&str, Checker, &[Field]); 9] = [
     ("", Checker::Code, top::FIELDS),
     ("gear", Checker::Code, gear::FIELDS),
     ("train", Checker::Code, train::FIELDS),
@@ -193,6 +194,7 @@ pub(crate) const TABLES: [(&str, Checker, &[Field]); 8] = [
     ("moving_box", Checker::Code, moving_box::FIELDS),
     ("search", Checker::Code, search::FIELDS),
     ("tolerances", Checker::Code, tolerances::FIELDS),
+    ("target", Checker::Code, target::FIELDS),
 ];
 
 /// Every field of a scene, in the order of a scene file: one table per scene table.

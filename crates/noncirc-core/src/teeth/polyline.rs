@@ -1,19 +1,8 @@
 //! Plane polylines: segment intersection, signed distance to a closed outline through a
 //! uniform grid of its segments, and the simplicity check of a closed outline.
 
+pub(super) use crate::segment_tree::segments_cross;
 use crate::vec2::Vec2;
-
-/// Where segments `p0→p1` and `q0→q1` cross: the parameters `(t, u)` in `[0, 1]` of each.
-pub(super) fn segments_cross(p0: Vec2, p1: Vec2, q0: Vec2, q1: Vec2) -> Option<(f64, f64)> {
-    let (d, e) = (p1 - p0, q1 - q0);
-    let den = d.cross(e);
-    if den == 0.0 {
-        return None;
-    }
-    let w = q0 - p0;
-    let (t, u) = (w.cross(e) / den, w.cross(d) / den);
-    ((0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u)).then_some((t, u))
-}
 
 /// The first crossing of two open polylines, as fractional indices `(i + t, j + u)`.
 pub(super) fn first_crossing(a: &[Vec2], b: &[Vec2]) -> Option<(f64, f64)> {
