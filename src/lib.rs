@@ -12,6 +12,7 @@ pub mod export;
 #[cfg(feature = "figures")]
 pub mod figures;
 pub mod files;
+pub mod fit;
 #[cfg(feature = "figures")]
 pub mod plots;
 pub mod report;

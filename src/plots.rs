@@ -2,7 +2,8 @@
 
 use crate::export::{export_gears, export_trajectory};
 use crate::figures::{
-    evaluation_figures, save, ConvergenceFigure, FigureOptions, LinesFigure, FIGURE_SAMPLES,
+    evaluation_figures, save, ConvergenceFigure, FigureOptions, FitFigure, LinesFigure,
+    FIGURE_SAMPLES,
 };
 use crate::search::Outcome;
 use crate::sweep::SweepRow;
@@ -31,6 +32,19 @@ pub fn evaluation_outputs(
 
 /// Search convergence, the Pareto set (two goals or more), and the best design's figures.
 pub fn search_figures(
+    outcome: &Outcome,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
+    let mut files = progress_figures(outcome, dir, options)?;
+    if let Some((scene, Some(eval))) = &outcome.confirmed.best {
+        files.extend(evaluation_outputs(scene, eval, &dir.join("best"), options)?);
+    }
+    Ok(files)
+}
+
+/// Search convergence and the Pareto set (two goals or more).
+fn progress_figures(
     outcome: &Outcome,
     dir: &Path,
     options: &FigureOptions,
@@ -74,8 +88,67 @@ pub fn search_figures(
             options,
         )?);
     }
-    if let Some((scene, Some(eval))) = &outcome.confirmed.best {
+    Ok(files)
+}
+
+/// A fit's figures: the search's convergence, the fitted design's figures (`best/`), and
+/// the fit: target and fitted path overlaid with the pose errors (`fit.*`), and each
+/// target sample's distance to the path (`fit_distance.*`).
+pub fn fit_figures(
+    outcome: &crate::fit::FitOutcome,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
+    create_dir(dir)?;
+    let mut files = progress_figures(&outcome.search, dir, options)?;
+    if let Some((scene, eval)) = &outcome.best {
         files.extend(evaluation_outputs(scene, eval, &dir.join("best"), options)?);
+        if let (Some(target), Some(fit), Some(kin)) = (&scene.target, &eval.fit, &eval.kinematics) {
+            let prepared = target.prepare()?;
+            files.extend(save(
+                &FitFigure {
+                    kin,
+                    target,
+                    prepared: &prepared,
+                    fit,
+                },
+                &dir.join("fit"),
+                options,
+            )?);
+            // Each target sample's distance to the path drawn densely (every 0.05° of
+            // carrier angle: chords far shorter than any tolerance shown).
+            let path: Vec<noncirc_core::Vec2> = (0..7200)
+                .map(|i| kin.state_at(std::f64::consts::TAU * i as f64 / 7200.0).tip)
+                .collect();
+            let samples = prepared.samples();
+            let step = prepared.length_mm() / samples.len() as f64;
+            let distances: Vec<(f64, f64)> = (samples.iter().enumerate())
+                .map(|(i, &q)| {
+                    let d = (0..path.len())
+                        .map(|k| {
+                            noncirc_core::segment_distance(q, path[k], path[(k + 1) % path.len()])
+                        })
+                        .fold(f64::INFINITY, f64::min);
+                    (i as f64 * step, d)
+                })
+                .collect();
+            files.extend(save(
+                &LinesFigure {
+                    title: format!(
+                        "Distance of the fitted tip path from the target (Hausdorff {:.3} mm)",
+                        fit.path_hausdorff_mm
+                    ),
+                    x_desc: "arc length along the target path from its first point (mm)".into(),
+                    y_desc: "distance to the tip path (mm)".into(),
+                    series: vec![("target samples".into(), distances)],
+                    points_only: false,
+                    markers: true,
+                    band: Some((None, Some(target.tolerance_mm))),
+                },
+                &dir.join("fit_distance"),
+                options,
+            )?);
+        }
     }
     Ok(files)
 }

@@ -93,6 +93,7 @@ fn error_key(e: &noncirc_core::Error) -> Option<&str> {
         | Error::OutOfRange { name, .. }
         | Error::Missing { name, .. }
         | Error::OpenTarget { name, .. }
+        | Error::OutOfReach { name, .. }
         | Error::TargetCrossing { name, .. } => name.as_str(),
         Error::BadList { list, .. } => list,
         _ => return None,

@@ -103,6 +103,9 @@ pub fn map_batch<T: Sync, R: Send>(
     f: impl Fn(&mut (Evaluator, Scene), &T) -> R + Sync + Send,
 ) -> Vec<R> {
     let piece = batch_piece(items.len(), pool.current_num_threads());
+    // The scene's target prepared once for the batch, not once per piece.
+    let mut planned = planned.clone();
+    planned.prepare_target(base);
     pool.install(|| {
         items
             .par_iter()

@@ -18,6 +18,7 @@ use crate::files::create_dir;
 use crate::{Error, Result};
 
 mod convergence;
+mod fit;
 mod gears;
 mod ground;
 mod lines;
@@ -30,6 +31,7 @@ mod teeth;
 mod trajectory;
 
 pub use convergence::ConvergenceFigure;
+pub use fit::FitFigure;
 pub use gears::{animate, GearsFigure, MAX_FRAMES};
 pub use ground::GroundFigure;
 pub use lines::LinesFigure;

@@ -135,6 +135,28 @@ pub(crate) struct OptimiseArgs {
 }
 
 #[derive(clap::Args)]
+pub(crate) struct FitArgs {
+    #[command(flatten)]
+    pub(crate) search: OptimiseArgs,
+    /// The target: a CSV of `x_mm,y_mm` points (machine frame, a closed path in the order
+    /// of motion) or a TOML file with a `[target]` table (docs/inverse.md).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) target: Option<std::path::PathBuf>,
+    /// The target path's tolerance (mm): met when the Hausdorff distance is at most this.
+    #[arg(long)]
+    pub(crate) tolerance_mm: Option<f64>,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct TargetArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneSource,
+    /// Points of the path, equally spaced in carrier angle.
+    #[arg(long, default_value_t = 512)]
+    pub(crate) points: usize,
+}
+
+#[derive(clap::Args)]
 pub(crate) struct GearArgs {
     #[command(flatten)]
     pub(crate) scene: SceneArgs,
@@ -214,6 +236,14 @@ pub(crate) enum Command {
     /// Search the scene's design space for designs that meet every objective.
     /// With no scene: the built-in `paper-search` scene.
     Optimise(OptimiseArgs),
+    /// Find the design whose tip path and key poses come nearest a target (the scene's
+    /// `[target]` or --target FILE) while it meets every objective: the scene's search with
+    /// the goal `fit`, then Levenberg–Marquardt. With no scene: `paper-search`.
+    /// docs/inverse.md
+    Fit(FitArgs),
+    /// Print the scene's own tip path and its picking and planting poses as a `[target]`
+    /// table (TOML): a start for a target to edit, or a design to fit again.
+    Target(TargetArgs),
     /// The response of every objective to one parameter (three-arm paper §4.2).
     Sweep(SweepArgs),
     /// Cut teeth on the scene's gears (every gear of the train), check them over a full

@@ -2,6 +2,7 @@
 
 mod args;
 mod commands;
+mod fit;
 mod optimise;
 mod output;
 mod studio;
@@ -51,6 +52,8 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
     match cli.command {
         Command::Optimise(args) => return optimise::optimise(args),
+        Command::Fit(args) => return fit::fit(args),
+        Command::Target(args) => fit::target(args)?,
         Command::Gear(args) => commands::gear(args)?,
         Command::Teeth(args) => commands::teeth(args)?,
         Command::Animate(args) => commands::animate(args)?,

@@ -3,15 +3,15 @@
 use crate::args::{Format, OptimiseArgs};
 use crate::output::{json, out};
 use crate::Finished;
-use noncirc::core::{Control, Observer, SearchState};
+use noncirc::core::{Control, Observer, Scene, SearchState};
 use noncirc::scene_file::load_scene_with;
 use noncirc::search::{RunOptions, SearchSettings};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 /// The search's progress bar (indicatif), an observer of the core's executor.
-struct ProgressBar {
-    bar: Option<indicatif::ProgressBar>,
+pub(crate) struct ProgressBar {
+    pub(crate) bar: Option<indicatif::ProgressBar>,
     show: bool,
 }
 
@@ -49,9 +49,13 @@ impl Observer for ProgressBar {
     }
 }
 
-/// Search the scene's design space; a signal stops it after the current generation with
-/// its results written.
-pub(crate) fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> {
+/// A search as the flags ask for it: the scene (`default` without one) with the flags'
+/// settings, the run's options with a stop flag that SIGINT, SIGTERM and SIGHUP set, and
+/// the progress bar. A resume refuses the flags it would ignore.
+pub(crate) fn prepare_search(
+    args: &OptimiseArgs,
+    default: &str,
+) -> Result<(Scene, RunOptions, Arc<AtomicBool>, ProgressBar), Box<dyn std::error::Error>> {
     let settings = SearchSettings {
         algorithm: args.algorithm,
         budget: args.budget,
@@ -85,7 +89,7 @@ pub(crate) fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::erro
             .into());
         }
     }
-    let name = args.scene.input.scene.as_deref().unwrap_or("paper-search");
+    let name = args.scene.input.scene.as_deref().unwrap_or(default);
     let mut scene = load_scene_with(Some(name), &args.scene.input.set)?;
     settings.apply(&mut scene)?;
     let checkpoint_every = noncirc::search::checkpoint_interval(args.checkpoint_every)?;
@@ -94,17 +98,24 @@ pub(crate) fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::erro
     let flag = stop.clone();
     ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))?;
     let opts = RunOptions {
-        checkpoint: args.checkpoint,
+        checkpoint: args.checkpoint.clone(),
         checkpoint_every,
-        resume: args.resume,
+        resume: args.resume.clone(),
         resume_budget: args.budget,
         stop: stop.clone(),
         ..RunOptions::new(args.threads)?
     };
-    let mut progress = ProgressBar {
+    let progress = ProgressBar {
         bar: None,
         show: !args.quiet && args.scene.format == Format::Table,
     };
+    Ok((scene, opts, stop, progress))
+}
+
+/// Search the scene's design space; a signal stops it after the current generation with
+/// its results written.
+pub(crate) fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> {
+    let (scene, opts, stop, mut progress) = prepare_search(&args, "paper-search")?;
     let outcome = noncirc::search::run(&scene, &opts, &mut [&mut progress])?;
     if let Some(bar) = progress.bar {
         bar.finish_and_clear();

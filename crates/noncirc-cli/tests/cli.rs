@@ -383,3 +383,65 @@ fn compare_reports_both_arm_counts_and_names_what_it_refuses() {
         assert!(err.contains(named), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn fit_refuses_bad_targets_by_name_with_exit_2_and_writes_nothing() {
+    let dir = temp("fit-targets");
+    let circle = |n: usize, r: f64, keep: usize| -> String {
+        (0..keep)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                format!("{},{}\n", r * a.cos(), r * a.sin() - 100.0)
+            })
+            .collect()
+    };
+    let cases: [(&str, String, &str); 6] = [
+        (
+            "open.csv",
+            circle(40, 150.0, 30),
+            "target.x_mm[29]: the target path is open",
+        ),
+        (
+            "few.csv",
+            "0,0\n10,0\n10,10\n".into(),
+            "needs at least 4 points, got 3",
+        ),
+        (
+            "nan.csv",
+            circle(40, 150.0, 40).replacen("150,", "NaN,", 1),
+            "target.x_mm[0] must be a finite number",
+        ),
+        (
+            "crossing.csv",
+            "0,0\n100,100\n100,0\n0,100\n".into(),
+            "the target path crosses itself at (50.000, 50.000) mm",
+        ),
+        // In tenths of a millimetre: 1.5 m from the carrier axis.
+        ("far.csv", circle(40, 1500.0, 40), "out of the arm's reach"),
+        (
+            "words.csv",
+            "x_mm,y_mm\n1,2\nthree,4\n".into(),
+            "line 3: expected two numbers",
+        ),
+    ];
+    for (name, text, says) in cases {
+        let file = dir.join(name);
+        std::fs::write(&file, text).unwrap();
+        let out_dir = dir.join(format!("out-{name}"));
+        let run = noncirc()
+            .args(["fit", "--quiet", "--target"])
+            .arg(&file)
+            .arg("--out")
+            .arg(&out_dir)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{name}: {stderr}");
+        assert!(stderr.contains(says), "{name}: {stderr}");
+        assert!(!out_dir.exists(), "{name}: wrote {}", out_dir.display());
+    }
+    // No target at all.
+    let run = noncirc().args(["fit", "--quiet"]).output().unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("a fit needs a target"));
+}

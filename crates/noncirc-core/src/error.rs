@@ -79,6 +79,14 @@ pub enum Error {
         gap_mm: f64,
         spacing_mm: f64,
     },
+    /// A target point or pose that no design of the search's box can reach: its distance
+    /// from the carrier axis and the band of distances the arm's tip can take.
+    OutOfReach {
+        name: String,
+        distance_mm: f64,
+        inner_mm: f64,
+        outer_mm: f64,
+    },
     /// A target path that crosses itself: the points that start the two crossing pieces,
     /// and where.
     TargetCrossing {

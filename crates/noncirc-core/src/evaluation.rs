@@ -147,6 +147,14 @@ impl Evaluator {
             .get_or_insert_with(|| SpectralIntegrator::new(n))
     }
 
+    /// Prepares `scene`'s target, if it has one, so that this evaluator's clones start
+    /// with it (a bad target's error is kept and returned by each evaluation).
+    pub fn prepare_target(&mut self, scene: &Scene) {
+        if let Some(t) = &scene.target {
+            let _ = self.prepared(t);
+        }
+    }
+
     /// `target` prepared (once for a run of scenes that share it, by pointer or value).
     fn prepared(&mut self, target: &Arc<Target>) -> Result<Arc<PreparedTarget>> {
         let cached =
@@ -293,7 +301,7 @@ impl Evaluator {
         });
         if let Some((target, prepared)) = &target {
             self.counts.fit += 1;
-            out.fit = Some(fit_report(&kin, ev.as_ref(), target, prepared, None));
+            out.fit = Some(fit_report(&kin, ev.as_ref(), target, prepared));
         }
         out.events = ev;
         out.kinematics = Some(kin);

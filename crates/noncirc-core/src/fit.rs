@@ -34,6 +34,12 @@ pub struct FitReport {
     pub cost: f64,
     /// Whether every counting part is within its tolerance.
     pub met: bool,
+    /// The residuals, as many for every design of a scene: per target sample
+    /// `√(1/2M)·d/τ`, per node interval of the trajectory `√(Σ w d²/2L)/τ` over its
+    /// points (w their arc lengths, L the path's), when the path counts; then each
+    /// counting pose's `(Δx, Δy)/tol`, `Δatt/tol` and `Δθ/tol` (those it names).
+    #[serde(skip)]
+    pub residuals: Vec<f64>,
 }
 
 /// A key pose's fit: where it was read, what the arm does there, and the errors.
@@ -85,28 +91,55 @@ impl FitReport {
     }
 }
 
+/// A design's own tip path as a target: `points` points of arm I's path, equally spaced
+/// in carrier angle from θ = 0, and its picking and planting events as poses (position
+/// and attitude) with the default tolerances; numbers to 0.1 µm and 1e-4°.
+pub fn target_of(kin: &Kinematics, events: &Events, points: usize) -> Target {
+    // To 0.1 µm: as exact as any fit, and readable.
+    let round = |v: f64| (v * 1e4).round() / 1e4;
+    let tips: Vec<Vec2> = (0..points)
+        .map(|i| kin.state_at(TAU * i as f64 / points as f64).tip)
+        .map(|p| Vec2::new(round(p.x), round(p.y)))
+        .collect();
+    let pose = |name: &str, at: PoseAt, e: &Event| Pose {
+        name: name.into(),
+        at,
+        x_mm: round(e.tip_mm.x),
+        y_mm: round(e.tip_mm.y),
+        attitude_deg: Some(round(e.attitude_deg)),
+        carrier_deg: None,
+        position_tolerance_mm: 0.5,
+        attitude_tolerance_deg: 0.5,
+        carrier_tolerance_deg: 2.0,
+        counts: true,
+    };
+    Target {
+        kind: crate::target::TargetKind::Points,
+        x_mm: tips.iter().map(|p| p.x).collect(),
+        y_mm: tips.iter().map(|p| p.y).collect(),
+        tolerance_mm: 0.5,
+        samples: 128,
+        counts: true,
+        poses: vec![
+            pose("picking", PoseAt::Picking, &events.picking),
+            pose("planting", PoseAt::Planting, &events.planting),
+        ],
+    }
+}
+
 /// How closely the tip path's curve follows the motion, in tolerances of the target path.
 const PATH_ACCURACY: f64 = 0.01;
 
 /// The fit of `kin`'s arm I to `target` (prepared as `prepared`); `events` must be given
-/// when a pose is read at an event ([`Target::needs_events`]). The residuals, when asked
-/// for, are written to `residuals` (cleared first): the path's when it counts, then each
-/// counting pose's.
+/// when a pose is read at an event ([`Target::needs_events`]).
 pub(crate) fn fit_report(
     kin: &Kinematics,
     events: Option<&Events>,
     target: &Target,
     prepared: &PreparedTarget,
-    mut residuals: Option<&mut Vec<f64>>,
 ) -> FitReport {
-    if let Some(r) = residuals.as_deref_mut() {
-        r.clear();
-    }
-    let path_residuals = if target.counts {
-        residuals.as_deref_mut()
-    } else {
-        None
-    };
+    let mut residuals = Vec::new();
+    let path_residuals = target.counts.then_some(&mut residuals);
     let tip_path = TipPath::of(kin, PATH_ACCURACY * target.tolerance_mm);
     let path = path_fit(&tip_path, prepared, target.tolerance_mm, path_residuals);
     let mut cost = if target.counts {
@@ -121,9 +154,7 @@ pub(crate) fn fit_report(
             if pose.counts {
                 cost += 0.5 * r.iter().map(|x| x * x).sum::<f64>();
                 met &= fit.met;
-                if let Some(out) = residuals.as_deref_mut() {
-                    out.extend_from_slice(&r);
-                }
+                residuals.extend_from_slice(&r);
             }
             fit
         })
@@ -135,6 +166,7 @@ pub(crate) fn fit_report(
         poses,
         cost,
         met,
+        residuals,
     }
 }
 
@@ -160,9 +192,11 @@ fn hermite(p0: Vec2, p1: Vec2, m0: Vec2, m1: Vec2, s: f64) -> [Vec2; 3] {
 }
 
 /// A closed path as a cubic Hermite curve: points at increasing parameters `theta` (rad,
-/// within one turn of the first) with their rates `dD/dθ` (mm/rad).
+/// from 0, within one turn) with their rates `dD/dθ` (mm/rad); `nodes` equally spaced
+/// among them, the others between.
 #[derive(Debug, Clone, PartialEq)]
 struct TipPath {
+    nodes: usize,
     theta: Vec<f64>,
     points: Vec<Vec2>,
     rates: Vec<Vec2>,
@@ -179,6 +213,7 @@ impl TipPath {
         let h = TAU / n as f64;
         let at = |j: usize, k: isize| nodes[(j as isize + k).rem_euclid(n as isize) as usize];
         Self {
+            nodes: n,
             theta: (0..n).map(|j| h * j as f64).collect(),
             points: nodes.to_vec(),
             rates: (0..n)
@@ -199,6 +234,7 @@ impl TipPath {
         let h = TAU / n as f64;
         let node = |j: usize| uniform.points[j % n];
         let mut path = Self {
+            nodes: n,
             theta: Vec::with_capacity(n + n / 4),
             points: Vec::with_capacity(n + n / 4),
             rates: Vec::with_capacity(n + n / 4),
@@ -408,10 +444,17 @@ fn path_fit(
     if let Some(r) = residuals {
         let per_sample = (0.5 / m).sqrt() / tolerance_mm;
         r.extend(to_path.iter().map(|d| d * per_sample));
-        r.extend(
-            (to_target.iter().zip(&weights))
-                .map(|(d, w)| (0.5 * w / path_length).sqrt() * d / tolerance_mm),
-        );
+        // One residual per node interval, whatever the points added in it.
+        let start = r.len();
+        r.resize(start + path.nodes, 0.0);
+        let per_radian = path.nodes as f64 / TAU;
+        for ((d, w), theta) in to_target.iter().zip(&weights).zip(&path.theta) {
+            let interval = ((theta * per_radian + 1e-9) as usize).min(path.nodes - 1);
+            r[start + interval] += 0.5 * w / path_length * d * d;
+        }
+        for x in &mut r[start..] {
+            *x = x.sqrt() / tolerance_mm;
+        }
     }
     let (from_path, k) = refined_max(&to_target);
     let (from_target, i) = refined_max(&to_path);
@@ -618,7 +661,7 @@ mod tests {
                 fit.rms_mm,
                 mean_square.sqrt()
             );
-            // The residuals' squared norm is RMS²/τ².
+            // The residuals' squared norm is RMS²/τ², one per sample and per node.
             let norm2: f64 = residuals.iter().map(|x| x * x).sum();
             assert!((norm2 - (fit.rms_mm / 0.5).powi(2)).abs() < 1e-9 * norm2.max(1.0));
             assert_eq!(residuals.len(), 4096 + nodes);
@@ -725,7 +768,7 @@ mod tests {
             .collect();
         let target = target_of(&exact, 256);
         let prepared = target.prepare().unwrap();
-        let report = fit_report(&kin, None, &target, &prepared, None);
+        let report = fit_report(&kin, None, &target, &prepared);
         // What is left is the Hermite curve's error between the 360 nodes.
         assert!(
             report.path_hausdorff_mm < 2e-3,
@@ -733,6 +776,10 @@ mod tests {
             report.path_hausdorff_mm
         );
         assert!(report.cost < 1e-6, "{}", report.cost);
+        // One residual per target sample and per node, and the cost is half their squares.
+        assert_eq!(report.residuals.len(), 256 + 360);
+        let half: f64 = 0.5 * report.residuals.iter().map(|r| r * r).sum::<f64>();
+        assert!((half - report.cost).abs() <= 1e-12 * report.cost.max(1e-12));
         assert!(report.met);
     }
 }

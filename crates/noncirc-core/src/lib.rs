@@ -99,7 +99,7 @@ pub use vec2::Vec2;
 pub use accuracy::{observed_order, output_errors, ErrorRow};
 pub use error::{Error, Result};
 pub use evaluation::{Evaluation, Evaluator, GearSummary, StageCounts};
-pub use fit::{FitReport, PoseFit};
+pub use fit::{target_of, FitReport, PoseFit};
 
 // Tolerances, robustness and global sensitivity.
 pub use robustness::{
@@ -114,9 +114,9 @@ pub use tolerance::{Spread, Tolerances};
 // from noncirc-search.
 pub use checkpoint::{Checkpoint, Migrants, FORMAT as CHECKPOINT_FORMAT};
 pub use noncirc_search::{
-    execute, nearest, non_dominated_fronts, stop_after_generations, Algorithm, BatchEvaluator,
-    Candidate, Cmaes, Control, Ending, Fitness, HistoryRow, Observer, Rng, SearchState, Solver,
-    SolverState,
+    execute, nearest, non_dominated_fronts, refine, stop_after_generations, Algorithm,
+    BatchEvaluator, Candidate, Cmaes, Control, Ending, Fitness, HistoryRow, LocalReport,
+    LocalSettings, Observer, ResidualBatch, Rng, SearchState, Solver, SolverState,
 };
-pub use problem::SceneProblem;
+pub use problem::{SceneProblem, REFUSED_RESIDUAL, VIOLATION_WEIGHT};
 pub use serial::SerialEvaluator;

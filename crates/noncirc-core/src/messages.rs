@@ -73,6 +73,10 @@ impl fmt::Display for Error {
                 f,
                 "{name}: the target path is open: its last point is {gap_mm:.3} mm from its first, more than three times its median spacing {spacing_mm:.3} mm (close it, or end it where it starts)"
             ),
+            Error::OutOfReach { name, distance_mm, inner_mm, outer_mm } => write!(
+                f,
+                "{name}: out of the arm's reach: {distance_mm:.3} mm from the carrier axis, and the tip of any design in the search's box stays {inner_mm:.3} to {outer_mm:.3} mm from it (is the target in mm, in the machine frame with its origin on the carrier axis?)"
+            ),
             Error::TargetCrossing { name, other, x_mm, y_mm } => write!(
                 f,
                 "{name}: the target path crosses itself at ({x_mm:.3}, {y_mm:.3}) mm: the piece from this point meets the piece from {other}"

@@ -61,6 +61,13 @@ pub(crate) fn default_space(scene: &Scene) -> Vec<FreeParam> {
     free
 }
 
+/// Weight of an objective's normalised violation among a fit's residuals: a tenth of an
+/// objective's scale costs as much as a path one tolerance off everywhere.
+pub const VIOLATION_WEIGHT: f64 = 10.0;
+
+/// Each residual of a design the model refuses, in a fit: far above any design it takes.
+pub const REFUSED_RESIDUAL: f64 = 1e3;
+
 /// The search problem.
 #[derive(Debug, Clone)]
 pub struct SceneProblem {
@@ -253,6 +260,47 @@ impl SceneProblem {
         self.apply(u, scratch);
         let (fitness, outcome) = self.score(evaluator, scratch, resolution);
         (fitness, outcome.ok())
+    }
+
+    /// How many residuals [`SceneProblem::fit_residuals`] gives at `resolution`: the
+    /// target's ([`FitReport::residuals`](crate::fit::FitReport)), then one per objective.
+    pub fn fit_residual_count(&self, resolution: &Resolution) -> usize {
+        let target = self.base.target.as_deref();
+        let path = target
+            .filter(|t| t.counts)
+            .map_or(0, |t| t.samples + resolution.samples_per_turn);
+        let poses: usize = (target.map_or(&[][..], |t| &t.poses[..]).iter())
+            .filter(|p| p.counts)
+            .map(|p| 2 + p.attitude_deg.is_some() as usize + p.carrier_deg.is_some() as usize)
+            .sum();
+        path + poses + self.base.objectives.len()
+    }
+
+    /// The residuals of design `u` for a fit at `resolution`: the fit's to the scene's
+    /// target, then each objective's violation over its scale times [`VIOLATION_WEIGHT`]
+    /// (zero when met); and the design's fitness. A design the model refuses (or a scene
+    /// without a target) gives [`REFUSED_RESIDUAL`] for each.
+    pub fn fit_residuals(
+        &self,
+        u: &[f64],
+        evaluator: &mut Evaluator,
+        scratch: &mut Scene,
+        resolution: &Resolution,
+    ) -> (Vec<f64>, Fitness) {
+        let count = self.fit_residual_count(resolution);
+        let (fitness, eval) = self.fitness(u, evaluator, scratch, resolution);
+        let residuals = eval
+            .and_then(|eval| {
+                let mut r = eval.fit?.residuals;
+                let bounds = &scratch.bounds;
+                r.extend(
+                    (eval.objectives.iter())
+                        .map(|o| VIOLATION_WEIGHT * o.violation / scale(o.kind, bounds)),
+                );
+                (r.len() == count && r.iter().all(|x| x.is_finite())).then_some(r)
+            })
+            .unwrap_or_else(|| vec![REFUSED_RESIDUAL; count]);
+        (residuals, fitness)
     }
 
     /// Evaluates the design with parameter values `x` (not clamped to the bounds): the

@@ -158,6 +158,7 @@ fn core_kind(e: &noncirc::core::Error, message: String) -> Error {
         | E::Missing { .. }
         | E::BadList { .. }
         | E::OpenTarget { .. }
+        | E::OutOfReach { .. }
         | E::TargetCrossing { .. } => ParameterError::new_err(message),
         E::NonPositiveRadius { .. }
         | E::NotStarShaped { .. }

@@ -9,6 +9,8 @@
 //!   NSGA-II/III and the parameter-guided probes, registered by name as [`Algorithm`];
 //! - the search state ([`SearchState`]: best screened and confirmed designs, counters,
 //!   history) and the executor that steps it under a budget and asks its [`Observer`]s;
+//! - a local least-squares refinement ([`refine`], Levenberg–Marquardt) of a problem's
+//!   residual vector ([`ResidualBatch`]);
 //! - a seeded, serialisable [`Rng`], serde for non-finite floats, and checks of a state
 //!   read from outside.
 //!
@@ -27,6 +29,7 @@ mod error;
 mod executor;
 mod fitness;
 mod guided;
+mod local;
 mod names;
 mod nonfinite;
 mod nsga;
@@ -43,6 +46,7 @@ pub use error::{Error, Result};
 pub use executor::{execute, stop_after_generations, Control, Ending, Observer};
 pub use fitness::{BatchEvaluator, Candidate, Fitness};
 pub use guided::ParameterGuided;
+pub use local::{refine, LocalReport, LocalSettings, ResidualBatch};
 pub use names::nearest;
 pub use nsga::{non_dominated_fronts, Nsga, Survival};
 pub use rng::Rng;

@@ -1,0 +1,110 @@
+//! `noncirc fit`: the search for the design nearest a target, with its progress bar,
+//! signals, checkpoints and outputs (as `optimise`), then the local refinement.
+
+use crate::args::{FitArgs, Format, TargetArgs};
+use crate::commands::VerdictFailed;
+use crate::optimise::prepare_search;
+use crate::output::{json, out};
+use crate::Finished;
+use noncirc::core::LocalSettings;
+use noncirc::fit::{fit_scene, read_target, with_target, FitOptions};
+use std::sync::atomic::Ordering;
+
+/// Fit the scene's design to a target; exit 3 when the fit misses a tolerance or an
+/// objective (its outputs written), 130 when a signal stopped it.
+pub(crate) fn fit(args: FitArgs) -> Result<Finished, Box<dyn std::error::Error>> {
+    if args.search.resume.is_some() && (args.target.is_some() || args.tolerance_mm.is_some()) {
+        return Err(noncirc::Error::Input(
+            "--resume continues the checkpoint's own scene and target; --target and \
+             --tolerance-mm would be ignored"
+                .into(),
+        )
+        .into());
+    }
+    let (mut scene, opts, stop, mut progress) = prepare_search(&args.search, "paper-search")?;
+    if let Some(path) = &args.target {
+        scene = with_target(scene, read_target(path)?);
+    }
+    if let Some(tolerance) = args.tolerance_mm {
+        let Some(target) = scene.target.as_mut() else {
+            return Err(noncirc::Error::Input(
+                "--tolerance-mm sets the target path's tolerance: the scene has no target \
+                 (give --target FILE)"
+                    .into(),
+            )
+            .into());
+        };
+        std::sync::Arc::make_mut(target).tolerance_mm = tolerance;
+        target.validate()?;
+    }
+    let options = FitOptions {
+        run: opts,
+        local: LocalSettings::default(),
+    };
+    let outcome = fit_scene(&scene, &options, &mut [&mut progress])?;
+    if let Some(bar) = progress.bar {
+        bar.finish_and_clear();
+    }
+    for failure in &outcome.search.checkpoint_failures {
+        eprintln!("warning: {failure} (the search went on)");
+    }
+    if let Some(dir) = &args.search.out {
+        outcome.write(dir)?;
+    }
+    if let Some(dir) = &args.search.scene.plot {
+        for f in noncirc::plots::fit_figures(&outcome, dir, &args.search.scene.figures()?)? {
+            eprintln!("wrote {}", f.display());
+        }
+    }
+    let summary = outcome.summary();
+    noncirc::report::check_finite(&summary)?;
+    match args.search.scene.format {
+        Format::Json => out(&json(&summary)?)?,
+        Format::Table => out(&summary.table())?,
+    }
+    if stop.load(Ordering::SeqCst) {
+        eprintln!("interrupted: the results so far are above (and in the checkpoint and --out)");
+        return Ok(Finished::Interrupted);
+    }
+    if !summary.met {
+        return Err(VerdictFailed(summary.failures()).into());
+    }
+    Ok(Finished::Completed)
+}
+
+/// Print the scene's own path and events as a `[target]` table.
+pub(crate) fn target(args: TargetArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let [lo, hi] = [
+        noncirc::core::Target::MIN_POINTS,
+        noncirc::core::Target::MAX_POINTS,
+    ];
+    if !(lo..=hi).contains(&args.points) {
+        return Err(noncirc::Error::Input(format!(
+            "--points {}: expected {lo} to {hi}",
+            args.points
+        ))
+        .into());
+    }
+    let scene = noncirc::scene_file::load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
+    let eval = noncirc::core::Evaluator::new().evaluate(&scene)?;
+    let (Some(kin), Some(events)) = (&eval.kinematics, &eval.events) else {
+        return Err(noncirc::Error::Input(format!(
+            "a {} scene has no tip path: a target needs a three_arm or transplanter scene",
+            scene.kind.name()
+        ))
+        .into());
+    };
+    let target = noncirc::core::target_of(kin, events, args.points);
+    target.prepare()?;
+    #[derive(serde::Serialize)]
+    struct File<'a> {
+        target: &'a noncirc::core::Target,
+    }
+    let text = format!(
+        "# The tip path and events of scene '{}' as a target (noncirc target).\n{}",
+        scene.name,
+        noncirc::files::toml_text(&File { target: &target }, "the target")?
+    );
+    out(&text)?;
+    Ok(())
+}
