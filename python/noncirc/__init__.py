@@ -29,20 +29,34 @@ from ._noncirc import (
     robustness,
     sensitivity,
 )
-from .api import evaluate, evaluate_batch, optimise
+from .api import evaluate, evaluate_batch, fit, optimise
 from .progress import ProgressBar
-from .results import Batch, Design, Evaluation, Goal, Objective, Quantity, SearchResult
+from .results import (
+    Batch,
+    Design,
+    Evaluation,
+    FitMeasure,
+    FitResult,
+    Goal,
+    Objective,
+    PoseFit,
+    Quantity,
+    SearchResult,
+)
 
 __all__ = [
     "Batch",
     "Design",
     "Evaluation",
+    "FitMeasure",
+    "FitResult",
     "Goal",
     "InternalError",
     "ModelError",
     "NoncircError",
     "Objective",
     "ParameterError",
+    "PoseFit",
     "ProgressBar",
     "Quantity",
     "Scene",
@@ -51,6 +65,7 @@ __all__ = [
     "UnknownNameError",
     "evaluate",
     "evaluate_batch",
+    "fit",
     "measures",
     "optimise",
     "robustness",

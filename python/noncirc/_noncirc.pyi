@@ -116,6 +116,25 @@ def optimise(
     state every `checkpoint_every` s and at the end; `resume` continues one (its scene and
     settings; `budget` may be raised)."""
 
+def fit(
+    scene: Optional[Scene] = None,
+    *,
+    target: Optional[str | os.PathLike[str]] = None,
+    tolerance_mm: Optional[float] = None,
+    algorithm: Optional[str] = None,
+    seed: Optional[int] = None,
+    budget: Optional[int] = None,
+    population: Optional[int] = None,
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,
+    checkpoint: Optional[str | os.PathLike[str]] = None,
+    checkpoint_every: float = 10.0,
+    resume: Optional[str | os.PathLike[str]] = None,
+) -> dict[str, Any]:
+    """A fit to a target (`noncirc fit --format json`'s summary: met, feasible, measures,
+    fit, objectives, design, run) and best_scene. `target` is a CSV or TOML file replacing
+    the scene's `[target]`."""
+
 def emigrants(checkpoint: str | os.PathLike[str], count: int) -> str:
     """The `count` best members of the search in a checkpoint file, as JSON text, for
     another island of the same search (`noncirc.dask.islands`)."""

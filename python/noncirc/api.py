@@ -12,7 +12,7 @@ import numpy.typing as npt
 from . import _noncirc
 from ._noncirc import Scene
 from .progress import ProgressBar, interactive
-from .results import Batch, Evaluation, SearchResult
+from .results import Batch, Evaluation, FitResult, SearchResult
 
 Progress = Union[bool, Callable[[dict[str, Any]], Optional[bool]], None]
 
@@ -103,3 +103,51 @@ def optimise(
         if bar is not None:
             bar.close()
     return SearchResult._from_raw(raw, raw["parameter_names"], raw["objective_names"])
+
+
+def fit(
+    scene: Optional[Scene] = None,
+    *,
+    target: Optional[Union[str, os.PathLike[str]]] = None,
+    tolerance_mm: Optional[float] = None,
+    algorithm: Optional[str] = None,
+    seed: Optional[int] = None,
+    budget: Optional[int] = None,
+    population: Optional[int] = None,
+    threads: Optional[int] = None,
+    progress: Progress = None,
+    checkpoint: Optional[Union[str, os.PathLike[str]]] = None,
+    checkpoint_every: float = 10.0,
+    resume: Optional[Union[str, os.PathLike[str]]] = None,
+) -> FitResult:
+    """The design of the scene's search box whose tip path and key poses come nearest a
+    target while it meets every objective (docs/inverse.md): the scene's search with the
+    goal `fit`, then Levenberg–Marquardt from its best design. `target` is a file, a CSV of
+    `x_mm,y_mm` points (machine frame, in the order of motion) or a TOML file with a
+    `[target]` table, replacing the scene's own; `tolerance_mm` sets the path's tolerance.
+    A bad target raises `ParameterError` naming the field and the value (an open path, too
+    few points, NaN, a crossing, a point out of the arm's reach).
+
+    `progress`, Ctrl-C, `checkpoint` and `resume` work as for `optimise`; the same seed
+    gives the same design whatever `threads`."""
+    bar = ProgressBar() if progress is True or (progress is None and interactive()) else None
+    callback = bar if bar is not None else (progress if callable(progress) else None)
+    try:
+        raw = _noncirc.fit(
+            scene,
+            target=target,
+            tolerance_mm=tolerance_mm,
+            algorithm=algorithm,
+            seed=seed,
+            budget=budget,
+            population=population,
+            threads=threads,
+            progress=callback,
+            checkpoint=checkpoint,
+            checkpoint_every=checkpoint_every,
+            resume=resume,
+        )
+    finally:
+        if bar is not None:
+            bar.close()
+    return FitResult._from_raw(raw)

@@ -345,3 +345,134 @@ class SearchResult:
             row["cv"] = d.cv
             rows.append(row)
         return pd.DataFrame(rows)
+
+
+@dataclass(frozen=True)
+class FitMeasure:
+    """One measure of a fit: its value in `unit` (mm or deg) and, where it counts, the
+    tolerance it is held to."""
+
+    name: str
+    value: float
+    unit: str
+    tolerance: Optional[float]
+    """The tolerance, in `unit`; None for a measure that is reported only (the RMS
+    distance, a pose that does not count)."""
+    met: Optional[bool]
+
+
+@dataclass(frozen=True)
+class PoseFit:
+    """Where a key pose was read on the fitted design's path, and its errors."""
+
+    name: str
+    carrier_deg: float
+    """Carrier angle of arm I where the pose was read."""
+    tip_mm: tuple[float, float]
+    attitude_deg: float
+    """The arm's attitude there: the pusher's dip below the horizontal."""
+    position_error_mm: float
+    attitude_error_deg: Optional[float]
+    """Attitude minus the pose's, if it names one."""
+    carrier_error_deg: Optional[float]
+    """Carrier angle minus the pose's (wrapped to ±180°), if it names one."""
+    counts: bool
+    met: bool
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """A fit's outcome: the fitted design (`scene`), its fit measures with their
+    tolerances, its objectives, its free parameters, and how the search and the
+    refinement ran."""
+
+    met: bool
+    """Every objective met and every counting part of the target within its tolerance."""
+    feasible: bool
+    """Every objective met."""
+    measures: dict[str, FitMeasure]
+    """`path_hausdorff_mm`, `path_rms_mm`, then `poseK_position_mm`,
+    `poseK_attitude_deg`, `poseK_carrier_deg` for each pose K (those it names)."""
+    poses: list[PoseFit]
+    path_hausdorff_mm: float
+    path_rms_mm: float
+    hausdorff_at_mm: tuple[float, float]
+    """The point (of either path) farthest from the other."""
+    cost: float
+    """Half the squared norm of the residuals, each over its tolerance."""
+    objectives: dict[str, Quantity]
+    """The fitted design's objectives, each with its unit."""
+    violations: dict[str, float]
+    design: dict[str, float]
+    """The fitted design's free parameters, in the scene's order."""
+    evaluations: int
+    """Designs the search evaluated."""
+    local_evaluations: int
+    """Designs the refinement evaluated."""
+    seconds: float
+    """The search's time (the refinement's is a fraction of it)."""
+    algorithm: str
+    seed: int
+    threads: int
+    stopped_early: bool
+    refined: bool
+    """Whether the refinement's design is the one reported (it stayed feasible and fitted
+    better than the search's)."""
+    scene: Optional[Scene]
+    """The scene with the fitted design set (its target inline)."""
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any]) -> FitResult:
+        fit = raw.get("fit") or {}
+        run = raw["run"]
+        local = run.get("local") or {}
+
+        def point(v: Any) -> tuple[float, float]:
+            return (float(v["x"]), float(v["y"])) if isinstance(v, dict) else (float(v[0]), float(v[1]))
+
+        return FitResult(
+            met=raw["met"],
+            feasible=raw["feasible"],
+            measures={m["name"]: FitMeasure(**m) for m in raw["measures"]},
+            poses=[
+                PoseFit(
+                    name=p["name"],
+                    carrier_deg=p["carrier_deg"],
+                    tip_mm=point(p["tip_mm"]),
+                    attitude_deg=p["attitude_deg"],
+                    position_error_mm=p["position_error_mm"],
+                    attitude_error_deg=p["attitude_error_deg"],
+                    carrier_error_deg=p["carrier_error_deg"],
+                    counts=p["counts"],
+                    met=p["met"],
+                )
+                for p in fit.get("poses", [])
+            ],
+            path_hausdorff_mm=fit.get("path_hausdorff_mm", float("nan")),
+            path_rms_mm=fit.get("path_rms_mm", float("nan")),
+            hausdorff_at_mm=point(fit["hausdorff_at_mm"]) if fit else (float("nan"), float("nan")),
+            cost=fit.get("cost", float("nan")),
+            objectives={o["name"]: Quantity(o["value"], o["unit"]) for o in raw["objectives"]},
+            violations={o["name"]: o["violation"] for o in raw["objectives"]},
+            design={d["name"]: d["value"] for d in raw["design"]},
+            evaluations=run["evaluations"],
+            local_evaluations=local.get("evaluations", 0),
+            seconds=run["seconds"],
+            algorithm=run["algorithm"],
+            seed=run["seed"],
+            threads=run["threads"],
+            stopped_early=run["stopped_early"],
+            refined=run["refined"],
+            scene=raw.get("best_scene"),
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data (the scene as its TOML text): JSON-ready."""
+        d = _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.name != "scene"})
+        d["scene"] = None if self.scene is None else self.scene.to_toml()
+        return d
+
+    def to_pandas(self) -> pandas.DataFrame:
+        """The fit measures, one row each: name, value, unit, tolerance, met."""
+        pd = _pandas()
+        return pd.DataFrame([dataclasses.asdict(m) for m in self.measures.values()])

@@ -128,7 +128,7 @@ pub fn target_of(kin: &Kinematics, events: &Events, points: usize) -> Target {
 }
 
 /// How closely the tip path's curve follows the motion, in tolerances of the target path.
-const PATH_ACCURACY: f64 = 0.01;
+const PATH_ACCURACY: f64 = 0.05;
 
 /// The fit of `kin`'s arm I to `target` (prepared as `prepared`); `events` must be given
 /// when a pose is read at an event ([`Target::needs_events`]).
@@ -347,7 +347,7 @@ impl TipPath {
                 break;
             }
             let next = (s - g / curvature).clamp(0.0, 1.0);
-            let done = (next - s).abs() < 1e-12;
+            let done = (next - s).abs() < 1e-7;
             s = next;
             if done {
                 break;
@@ -689,9 +689,14 @@ mod tests {
 
     /// The paper's design solved at 360 nodes a turn, with its events.
     fn paper() -> (Kinematics, Events) {
+        paper_at(360)
+    }
+
+    /// The paper's design solved at `nodes` a turn, with its events.
+    fn paper_at(nodes: usize) -> (Kinematics, Events) {
         let scene = crate::scene::Scene::default();
         let resolution = crate::resolution::Resolution {
-            samples_per_turn: 360,
+            samples_per_turn: nodes,
             ..scene.resolution
         };
         let curve = scene.gear.curve.build().unwrap();
@@ -761,25 +766,29 @@ mod tests {
 
     #[test]
     fn a_design_fits_its_own_path_exactly() {
-        let (kin, _) = paper();
-        // The path itself, 20 000 points of it (chords' sag about 1e-4 mm).
-        let exact: Vec<Vec2> = (0..20_000)
-            .map(|i| kin.state_at(TAU * i as f64 / 20_000.0).tip)
-            .collect();
-        let target = target_of(&exact, 256);
-        let prepared = target.prepare().unwrap();
-        let report = fit_report(&kin, None, &target, &prepared);
-        // What is left is the Hermite curve's error between the 360 nodes.
-        assert!(
-            report.path_hausdorff_mm < 2e-3,
-            "{}",
-            report.path_hausdorff_mm
-        );
-        assert!(report.cost < 1e-6, "{}", report.cost);
-        // One residual per target sample and per node, and the cost is half their squares.
-        assert_eq!(report.residuals.len(), 256 + 360);
-        let half: f64 = 0.5 * report.residuals.iter().map(|r| r * r).sum::<f64>();
-        assert!((half - report.cost).abs() <= 1e-12 * report.cost.max(1e-12));
-        assert!(report.met);
+        // At 72 nodes a turn the nodes' Hermite curve strays 1.2 mm from the paper's path
+        // in its picking loop; the points added where it is uncertain bring it within the
+        // path's accuracy, and at 360 nodes none are needed.
+        for nodes in [72, 120, 360] {
+            let (kin, _) = paper_at(nodes);
+            // The path itself, 20 000 points of it (chords' sag about 1e-4 mm).
+            let exact: Vec<Vec2> = (0..20_000)
+                .map(|i| kin.state_at(TAU * i as f64 / 20_000.0).tip)
+                .collect();
+            let target = target_of(&exact, 256);
+            let prepared = target.prepare().unwrap();
+            let report = fit_report(&kin, None, &target, &prepared);
+            let accuracy = PATH_ACCURACY * target.tolerance_mm;
+            assert!(
+                report.path_hausdorff_mm < accuracy,
+                "{nodes}: {}",
+                report.path_hausdorff_mm
+            );
+            assert!(report.met);
+            // One residual per target sample and per node, the cost half their squares.
+            assert_eq!(report.residuals.len(), 256 + nodes);
+            let half: f64 = 0.5 * report.residuals.iter().map(|r| r * r).sum::<f64>();
+            assert!((half - report.cost).abs() <= 1e-12 * report.cost.max(1e-12));
+        }
     }
 }

@@ -90,7 +90,8 @@ impl From<noncirc::core::Error> for Error {
 
 impl From<noncirc::Error> for Error {
     /// The core's and the scene's errors as above, requests the caller can fix as
-    /// `ParameterError`, files as `OSError`, the rest as `NoncircError`.
+    /// `ParameterError`, files as `OSError`, a file's refused content by the core's kind,
+    /// the rest as `NoncircError`.
     fn from(e: noncirc::Error) -> Self {
         match e {
             noncirc::Error::Core(e) => e.into(),
@@ -107,6 +108,11 @@ impl From<noncirc::Error> for Error {
                     Some(errno) => PyOSError::new_err((errno, message, path)),
                     None => PyOSError::new_err(format!("{message}: {}", path.display())),
                 })
+            }
+            // A file whose content the core refuses (a target, a checkpoint): the core's
+            // kind, the file named in front.
+            noncirc::Error::Content { path, source } => {
+                core_kind(&source, format!("{}: {source}", path.display()))
             }
             other => invalid(other),
         }

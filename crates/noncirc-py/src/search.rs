@@ -188,6 +188,112 @@ pub(crate) fn optimise<'py>(
     Ok(out)
 }
 
+/// Fits a design to a target (GIL released): the scene's search with the goal `fit`, then
+/// Levenberg–Marquardt. `target` is a file (CSV of `x_mm,y_mm`, or TOML with a `[target]`
+/// table) replacing the scene's own `[target]`; `tolerance_mm` sets the path's tolerance.
+/// Progress, Ctrl-C, checkpoints and resume as for `optimise`. Returns the fit's summary
+/// (`noncirc fit --format json`) and `best_scene`.
+#[pyfunction]
+#[pyo3(signature = (scene = None, *, target = None, tolerance_mm = None, algorithm = None, seed = None, budget = None, population = None, threads = None, progress = None, checkpoint = None, checkpoint_every = 10.0, resume = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fit<'py>(
+    py: Python<'py>,
+    scene: Option<&Scene>,
+    target: Option<std::path::PathBuf>,
+    tolerance_mm: Option<f64>,
+    algorithm: Option<&str>,
+    seed: Option<u64>,
+    budget: Option<u64>,
+    population: Option<usize>,
+    threads: Option<usize>,
+    progress: Option<PyObject>,
+    checkpoint: Option<std::path::PathBuf>,
+    checkpoint_every: f64,
+    resume: Option<std::path::PathBuf>,
+) -> Result<Bound<'py, PyDict>> {
+    let settings = SearchSettings {
+        algorithm: algorithm
+            .map(Algorithm::parse)
+            .transpose()
+            .map_err(noncirc::core::Error::from)?,
+        budget,
+        population,
+        seed,
+        screening_samples_per_turn: None,
+    };
+    let mut s = match (scene, &resume) {
+        (Some(scene), None) => {
+            let mut s = scene.inner.clone();
+            settings.apply(&mut s)?;
+            s
+        }
+        (None, Some(_))
+            if settings.ignored_by_resume().is_empty()
+                && target.is_none()
+                && tolerance_mm.is_none() =>
+        {
+            noncirc::core::Scene::default()
+        }
+        (None, Some(_)) => {
+            return Err(invalid(
+                "resume continues the checkpoint's own scene, target and search; only budget, \
+                 threads, progress and the checkpoint options apply",
+            ))
+        }
+        (Some(_), Some(_)) => {
+            return Err(invalid(
+                "give a scene or resume=, not both: a resumed fit uses the checkpoint's scene",
+            ))
+        }
+        (None, None) => return Err(invalid("fit needs a scene, or resume= a checkpoint")),
+    };
+    if let Some(path) = &target {
+        s = noncirc::fit::with_target(s, noncirc::fit::read_target(path)?);
+    }
+    if let Some(tolerance) = tolerance_mm {
+        let t = s.target.as_mut().ok_or_else(|| {
+            parameter("tolerance_mm sets the target path's tolerance: the scene has no target")
+        })?;
+        std::sync::Arc::make_mut(t).tolerance_mm = tolerance;
+        t.validate()?;
+    }
+    let run = RunOptions {
+        checkpoint,
+        checkpoint_every: noncirc::search::checkpoint_interval(checkpoint_every)?,
+        resume_budget: resume.as_ref().and(budget),
+        resume,
+        ..RunOptions::new(threads)?
+    };
+    let options = noncirc::fit::FitOptions {
+        run,
+        local: noncirc::core::LocalSettings::default(),
+    };
+    let mut observer = PythonObserver {
+        progress,
+        error: None,
+    };
+    let outcome =
+        py.allow_threads(|| noncirc::fit::fit_scene(&s, &options, &mut [&mut observer]))?;
+    if let Some(e) = observer.error {
+        return Err(e.into());
+    }
+    let summary = outcome.summary();
+    let json = serde_json::to_string(&summary).map_err(internal)?;
+    let out = py
+        .import("json")?
+        .call_method1("loads", (json,))?
+        .downcast_into::<PyDict>()?;
+    if let Some((best, _)) = &outcome.best {
+        out.set_item(
+            "best_scene",
+            Scene {
+                inner: best.clone(),
+            },
+        )?;
+    }
+    Ok(out)
+}
+
 /// The `count` best members of the search in the checkpoint file `checkpoint`, as JSON
 /// text, to send to another island of the same search (`noncirc.dask.islands`).
 #[pyfunction]
