@@ -31,3 +31,12 @@ def test_the_robust_design_example_runs_as_written(capsys):
     lines = capsys.readouterr().out.splitlines()
     assert lines[0] == "0.0" and lines[1] == "0.0"
     assert lines[2] == "(9, 1024)" and lines[3] == "train.arm_length_mm"
+
+
+def test_the_fit_example_runs_as_written(monkeypatch, capsys):
+    block = next(b for b in blocks() if "noncirc.fit(" in b)
+    monkeypatch.chdir(DOC.parents[1])  # the example names the target from the repository
+    exec(compile(block, str(DOC), "exec"), {})
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == "True 0.084"
+    assert lines[1].startswith("FitMeasure(name='pose1_position_mm'")

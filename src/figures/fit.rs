@@ -2,6 +2,7 @@
 //! farthest apart, and each key pose against what the arm does there.
 
 use super::*;
+use crate::report::signed_fixed;
 use noncirc_core::{FitReport, PreparedTarget, Target};
 
 /// Figure: the target and the fitted trajectory overlaid, with the pose errors drawn.
@@ -44,10 +45,10 @@ impl Figure for FitFigure<'_> {
                     p.name, p.carrier_deg, p.position_error_mm
                 );
                 if let Some(a) = p.attitude_error_deg {
-                    text += &format!(", attitude {a:+.2}°");
+                    text += &format!(", attitude {}°", signed_fixed(a, 2));
                 }
                 if let Some(c) = p.carrier_error_deg {
-                    text += &format!(", carrier {c:+.2}°");
+                    text += &format!(", carrier {}°", signed_fixed(c, 2));
                 }
                 text
             })

@@ -278,6 +278,15 @@ pub struct EvaluationReport {
     pub fit: Option<FitRow>,
 }
 
+/// `v` with its sign and `decimals` decimals, `+` where it rounds to zero (never `-0.00`).
+pub(crate) fn signed_fixed(v: f64, decimals: usize) -> String {
+    let text = format!("{v:+.decimals$}");
+    match text.strip_prefix('-') {
+        Some(digits) if digits.chars().all(|c| c == '0' || c == '.') => format!("+{digits}"),
+        _ => text,
+    }
+}
+
 /// The fit to the target as `noncirc evaluate` reports it: the measures and the
 /// tolerances they are held to.
 #[derive(Debug, Clone, Serialize)]
@@ -309,7 +318,7 @@ fit to the target: path Hausdorff {:.3} mm (at ({:.1}, {:.1}) mm), RMS {:.3} mm,
         if !r.poses.is_empty() {
             out += "pose           carrier         tip (mm)        attitude   position  attitude  carrier\n";
             for p in &r.poses {
-                let opt = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:+.3}°"));
+                let opt = |v: Option<f64>| v.map_or("—".into(), |v| signed_fixed(v, 3) + "°");
                 out += &format!(
                     "{:<12} {:8.2}° ({:8.2}, {:8.2}) {:7.2}°  {:7.3} mm {:>9} {:>9}  {}{}\n",
                     p.name,
@@ -581,5 +590,14 @@ mod names {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_value_that_rounds_to_zero_has_no_minus_sign() {
+        use super::signed_fixed;
+        assert_eq!(signed_fixed(-0.001, 2), "+0.00");
+        assert_eq!(signed_fixed(-0.0, 3), "+0.000");
+        assert_eq!(signed_fixed(-0.006, 2), "-0.01");
+        assert_eq!(signed_fixed(2.5, 1), "+2.5");
     }
 }

@@ -3,7 +3,7 @@
 
 use crate::args::{FitArgs, Format, TargetArgs};
 use crate::commands::VerdictFailed;
-use crate::optimise::prepare_search;
+use crate::optimise::{prepare_search, PreparedSearch};
 use crate::output::{json, out};
 use crate::Finished;
 use noncirc::core::LocalSettings;
@@ -21,7 +21,12 @@ pub(crate) fn fit(args: FitArgs) -> Result<Finished, Box<dyn std::error::Error>>
         )
         .into());
     }
-    let (mut scene, opts, stop, mut progress) = prepare_search(&args.search, "paper-search")?;
+    let PreparedSearch {
+        mut scene,
+        opts,
+        stop,
+        mut progress,
+    } = prepare_search(&args.search, "paper-search")?;
     if let Some(path) = &args.target {
         scene = with_target(scene, read_target(path)?);
     }

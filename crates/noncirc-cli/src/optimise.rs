@@ -49,13 +49,22 @@ impl Observer for ProgressBar {
     }
 }
 
-/// A search as the flags ask for it: the scene (`default` without one) with the flags'
-/// settings, the run's options with a stop flag that SIGINT, SIGTERM and SIGHUP set, and
-/// the progress bar. A resume refuses the flags it would ignore.
+/// A search as the flags ask for it.
+pub(crate) struct PreparedSearch {
+    /// The scene with the flags' settings.
+    pub(crate) scene: Scene,
+    pub(crate) opts: RunOptions,
+    /// Set by SIGINT, SIGTERM and SIGHUP.
+    pub(crate) stop: Arc<AtomicBool>,
+    pub(crate) progress: ProgressBar,
+}
+
+/// The search the flags ask for on their scene (`default` without one). A resume refuses
+/// the flags it would ignore.
 pub(crate) fn prepare_search(
     args: &OptimiseArgs,
     default: &str,
-) -> Result<(Scene, RunOptions, Arc<AtomicBool>, ProgressBar), Box<dyn std::error::Error>> {
+) -> Result<PreparedSearch, Box<dyn std::error::Error>> {
     let settings = SearchSettings {
         algorithm: args.algorithm,
         budget: args.budget,
@@ -109,13 +118,23 @@ pub(crate) fn prepare_search(
         bar: None,
         show: !args.quiet && args.scene.format == Format::Table,
     };
-    Ok((scene, opts, stop, progress))
+    Ok(PreparedSearch {
+        scene,
+        opts,
+        stop,
+        progress,
+    })
 }
 
 /// Search the scene's design space; a signal stops it after the current generation with
 /// its results written.
 pub(crate) fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> {
-    let (scene, opts, stop, mut progress) = prepare_search(&args, "paper-search")?;
+    let PreparedSearch {
+        scene,
+        opts,
+        stop,
+        mut progress,
+    } = prepare_search(&args, "paper-search")?;
     let outcome = noncirc::search::run(&scene, &opts, &mut [&mut progress])?;
     if let Some(bar) = progress.bar {
         bar.finish_and_clear();

@@ -567,7 +567,7 @@ fn nearest_pose(kin: &Kinematics, pose: &Pose) -> (f64, Vec2, f64) {
             0.0
         };
         let (gradient, curvature) = (d.dot(jd) + a * ja + c * jc, jd.hypot2() + ja * ja + jc * jc);
-        if !(curvature > 0.0) {
+        if curvature.is_nan() || curvature <= 0.0 {
             break;
         }
         let step = (-gradient / curvature).clamp(-kin.theta(1), kin.theta(1));
