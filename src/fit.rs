@@ -199,8 +199,8 @@ pub fn fit_scene(
     } else {
         let target = scene.target.as_ref().ok_or_else(|| {
             Error::Input(
-                "a fit needs a target: --target FILE (CSV of x_mm,y_mm or TOML with a \
-                 [target] table) or a [target] table in the scene"
+                "a fit needs a target: a file (CSV of x_mm,y_mm, or TOML with a [target] \
+                 table; the CLI's --target, Python's target=) or a [target] table in the scene"
                     .into(),
             )
         })?;

@@ -58,6 +58,18 @@ def evaluate_batch(
     return Batch._from_raw(raw, parameter_names, np.asarray(x, dtype=np.float64))
 
 
+def _with_progress(progress: Progress, run: Callable[[Any], dict[str, Any]]) -> dict[str, Any]:
+    """`run(callback)` with the progress a search was asked for: a bar on stderr (True, or
+    None when a person is watching), the caller's callable, or nothing."""
+    bar = ProgressBar() if progress is True or (progress is None and interactive()) else None
+    callback = bar if bar is not None else (progress if callable(progress) else None)
+    try:
+        return run(callback)
+    finally:
+        if bar is not None:
+            bar.close()
+
+
 def optimise(
     scene: Optional[Scene] = None,
     *,
@@ -83,10 +95,9 @@ def optimise(
     current generation and raises KeyboardInterrupt. `checkpoint` writes the state every
     `checkpoint_every` seconds and at the end; `resume` continues one (its scene and
     settings; `budget` may be raised)."""
-    bar = ProgressBar() if progress is True or (progress is None and interactive()) else None
-    callback = bar if bar is not None else (progress if callable(progress) else None)
-    try:
-        raw = _noncirc.optimise(
+    raw = _with_progress(
+        progress,
+        lambda callback: _noncirc.optimise(
             scene,
             algorithm=algorithm,
             seed=seed,
@@ -98,10 +109,8 @@ def optimise(
             checkpoint=checkpoint,
             checkpoint_every=checkpoint_every,
             resume=resume,
-        )
-    finally:
-        if bar is not None:
-            bar.close()
+        ),
+    )
     return SearchResult._from_raw(raw, raw["parameter_names"], raw["objective_names"])
 
 
@@ -130,10 +139,9 @@ def fit(
 
     `progress`, Ctrl-C, `checkpoint` and `resume` work as for `optimise`; the same seed
     gives the same design whatever `threads`."""
-    bar = ProgressBar() if progress is True or (progress is None and interactive()) else None
-    callback = bar if bar is not None else (progress if callable(progress) else None)
-    try:
-        raw = _noncirc.fit(
+    raw = _with_progress(
+        progress,
+        lambda callback: _noncirc.fit(
             scene,
             target=target,
             tolerance_mm=tolerance_mm,
@@ -146,8 +154,6 @@ def fit(
             checkpoint=checkpoint,
             checkpoint_every=checkpoint_every,
             resume=resume,
-        )
-    finally:
-        if bar is not None:
-            bar.close()
+        ),
+    )
     return FitResult._from_raw(raw)

@@ -377,20 +377,9 @@ mod tests {
         let plain = evaluator.evaluate(&scene).unwrap();
         assert!(plain.fit.is_none());
         assert_eq!(evaluator.counts().fit, 0);
-        // The design's own path as its target: met, at the Hermite path's accuracy.
+        // The design's own path and events as its target: met, at the tip path's accuracy.
         let kin = plain.kinematics.unwrap();
-        let tips: Vec<_> = (0..4000)
-            .map(|i| kin.state_at(std::f64::consts::TAU * i as f64 / 4000.0).tip)
-            .collect();
-        let target = Target {
-            kind: crate::target::TargetKind::Points,
-            x_mm: tips.iter().map(|p| p.x).collect(),
-            y_mm: tips.iter().map(|p| p.y).collect(),
-            tolerance_mm: 0.5,
-            samples: 128,
-            counts: true,
-            poses: Vec::new(),
-        };
+        let target = crate::fit::target_of(&kin, plain.events.as_ref().unwrap(), 4000);
         scene.target = Some(Arc::new(target));
         for k in 1..=3 {
             let eval = evaluator.evaluate(&scene).unwrap();

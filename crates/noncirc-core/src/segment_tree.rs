@@ -106,19 +106,8 @@ impl SegmentTree {
 
     /// The nearest point of segment `i` to `p`.
     fn segment_nearest(&self, p: Vec2, i: usize) -> Nearest {
-        let (a, b) = (self.points[i], self.points[i + 1]);
-        let d = b - a;
-        let len2 = d.hypot2();
-        let t = if len2 > 0.0 {
-            ((p - a).dot(d) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        Nearest {
-            d2: (a + d * t - p).hypot2(),
-            segment: i,
-            t,
-        }
+        let (d2, t) = nearest_on_segment(p, self.points[i], self.points[i + 1]);
+        Nearest { d2, segment: i, t }
     }
 
     /// The polyline's point nearest `p`. `hint`, a segment likely near (the answer for
@@ -203,6 +192,19 @@ impl SegmentTree {
             }
         }
     }
+}
+
+/// The point of segment `a→b` nearest `p`: its squared distance (mm²) and its parameter
+/// in `[0, 1]` (0 for a segment of no length).
+pub(crate) fn nearest_on_segment(p: Vec2, a: Vec2, b: Vec2) -> (f64, f64) {
+    let d = b - a;
+    let len2 = d.hypot2();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(d) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    ((a + d * t - p).hypot2(), t)
 }
 
 /// Where segments `p0→p1` and `q0→q1` cross: the parameters `(t, u)` in `[0, 1]` of each.

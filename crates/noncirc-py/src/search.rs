@@ -50,6 +50,25 @@ impl Observer for PythonObserver {
     }
 }
 
+/// The search settings a call's keywords give (the algorithm by name).
+fn search_settings(
+    algorithm: Option<&str>,
+    budget: Option<u64>,
+    population: Option<usize>,
+    seed: Option<u64>,
+) -> Result<SearchSettings> {
+    Ok(SearchSettings {
+        algorithm: algorithm
+            .map(Algorithm::parse)
+            .transpose()
+            .map_err(noncirc::core::Error::from)?,
+        budget,
+        population,
+        seed,
+        screening_samples_per_turn: None,
+    })
+}
+
 /// Runs a search (GIL released) and returns its summary and confirmed Pareto set.
 /// `progress(info)` is called after every generation (return False to stop); Ctrl-C stops
 /// the search after the current generation and raises `KeyboardInterrupt`. With
@@ -72,15 +91,10 @@ pub(crate) fn optimise<'py>(
     checkpoint_every: f64,
     resume: Option<std::path::PathBuf>,
 ) -> Result<Bound<'py, PyDict>> {
+    let settings = search_settings(algorithm, budget, population, seed)?;
     let settings = SearchSettings {
-        algorithm: algorithm
-            .map(Algorithm::parse)
-            .transpose()
-            .map_err(noncirc::core::Error::from)?,
-        budget,
-        population,
-        seed,
         screening_samples_per_turn,
+        ..settings
     };
     let s =
         match (scene, &resume) {
@@ -211,16 +225,7 @@ pub(crate) fn fit<'py>(
     checkpoint_every: f64,
     resume: Option<std::path::PathBuf>,
 ) -> Result<Bound<'py, PyDict>> {
-    let settings = SearchSettings {
-        algorithm: algorithm
-            .map(Algorithm::parse)
-            .transpose()
-            .map_err(noncirc::core::Error::from)?,
-        budget,
-        population,
-        seed,
-        screening_samples_per_turn: None,
-    };
+    let settings = search_settings(algorithm, budget, population, seed)?;
     let mut s = match (scene, &resume) {
         (Some(scene), None) => {
             let mut s = scene.inner.clone();

@@ -1,6 +1,7 @@
 //! Plane polylines: segment intersection, signed distance to a closed outline through a
 //! uniform grid of its segments, and the simplicity check of a closed outline.
 
+use crate::segment_tree::nearest_on_segment;
 pub(super) use crate::segment_tree::segments_cross;
 use crate::vec2::Vec2;
 
@@ -18,14 +19,7 @@ pub(super) fn first_crossing(a: &[Vec2], b: &[Vec2]) -> Option<(f64, f64)> {
 
 /// Distance (mm) from `p` to the segment `a→b`.
 pub fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f64 {
-    let d = b - a;
-    let len2 = d.hypot2();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(d) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + d * t - p).hypot2().sqrt()
+    nearest_on_segment(p, a, b).0.sqrt()
 }
 
 /// Signed curvature (1/mm; positive turning left) of the circle through `a`, `b`, `c`.
