@@ -424,7 +424,19 @@ fn slot<'t>(
     }
     let plain = tree.clone();
     let mut node = tree;
+    let mut path = String::new();
     for part in key.trim().split('.') {
+        // An optional table the scene does not have (`target`): set it whole first.
+        if node.is_null() {
+            return Err(err(format!(
+                "the scene has no '{path}': set the table whole first, e.g. \
+                 --set '{path}={{…}}' (docs/scenes.md lists its keys)"
+            )));
+        }
+        if !path.is_empty() {
+            path.push('.');
+        }
+        path.push_str(part.split('[').next().unwrap_or(part));
         let (name, index) = match part.split_once('[') {
             Some((name, rest)) => {
                 let i = rest.strip_suffix(']').and_then(|i| i.parse::<usize>().ok());
@@ -482,6 +494,12 @@ fn set_values(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError>
             Err(_) => serde_json::Value::String(raw.to_string()),
         };
         *slot(&mut tree, key, assignment)? = value;
+        // A table set whole (`target={…}`) gains its defaults, so that a later assignment
+        // can set one of them by key; a tree that does not read yet (a curve's kind
+        // changed before its fields) is kept as it is.
+        if let Ok(scene) = serde_json::from_value::<Scene>(tree.clone()) {
+            tree = scene_tree(&scene);
+        }
     }
     read_tree(tree, assignments)
 }

@@ -262,3 +262,25 @@ fn every_number_of_a_scene_is_a_parameter() {
         }
     }
 }
+
+#[test]
+fn a_target_is_set_whole_then_by_key_and_written_with_the_scene() {
+    use noncirc::scene_file::apply_overrides;
+    let paper = load_scene(Some("paper")).unwrap();
+    // A key of a table the scene does not have: refused, saying how to set it.
+    let err = apply_overrides(paper.clone(), &["target.tolerance_mm=1".into()]).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("the scene has no 'target': set the table whole first"),
+        "{err}"
+    );
+    // Set whole, then by key; the written scene reads back with it.
+    let whole = "target={x_mm=[300.0,0.0,-250.0,0.0],y_mm=[-100.0,200.0,-150.0,-380.0]}";
+    let scene = apply_overrides(paper, &[whole.into(), "target.tolerance_mm=2".into()]).unwrap();
+    let target = scene.target.as_ref().unwrap();
+    assert_eq!((target.x_mm.len(), target.tolerance_mm), (4, 2.0));
+    let text = toml::to_string(&scene).unwrap();
+    let back = parse_scene(&text, "written").unwrap();
+    assert_eq!(back, scene);
+    assert!(Evaluator::new().evaluate(&back).unwrap().fit.is_some());
+}
