@@ -7,7 +7,7 @@ use crate::files::{create_dir, json_text, read_limited, toml_text, write_file};
 use crate::search::{map_batch, thread_pool, Outcome, RunOptions};
 use crate::{Error, Result};
 use noncirc_core::{
-    refine, symbol, Error as CoreError, Evaluation, Evaluator, FitReport, Goal, LocalReport,
+    refine, scale, symbol, Error as CoreError, Evaluation, Evaluator, FitReport, Goal, LocalReport,
     LocalSettings, Observer, ResidualBatch, Resolution, Scene, SceneProblem, Target, TargetKind,
 };
 use serde::Serialize;
@@ -232,8 +232,15 @@ pub fn fit_scene(
         let candidate = problem.scene_at(&report.u);
         if let Ok(eval) = Evaluator::new().evaluate(&candidate) {
             let cost = |e: &Evaluation| e.fit.as_ref().map_or(f64::INFINITY, |f| f.cost);
+            // Violations compared as the search does: each over its objective's scale.
+            let bounds = &problem.base().bounds;
+            let violation = |e: &Evaluation| -> f64 {
+                (e.objectives.iter())
+                    .map(|o| o.violation / scale(o.kind, bounds))
+                    .sum()
+            };
             let better = best.as_ref().is_none_or(|(_, b)| {
-                let (new_v, old_v) = (eval.total_violation(), b.total_violation());
+                let (new_v, old_v) = (violation(&eval), violation(b));
                 new_v < old_v || (new_v == old_v && cost(&eval) < cost(b))
             });
             if better {
