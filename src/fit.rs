@@ -4,11 +4,13 @@
 //! resolution, kept only if it stays feasible and fits better.
 
 use crate::files::{create_dir, json_text, read_limited, toml_text, write_file};
+use crate::report::ObjectiveRow;
 use crate::search::{map_batch, thread_pool, Outcome, RunOptions};
 use crate::{Error, Result};
 use noncirc_core::{
-    refine, scale, symbol, Error as CoreError, Evaluation, Evaluator, FitReport, Goal, LocalReport,
-    LocalSettings, Observer, ResidualBatch, Resolution, Scene, SceneProblem, Target, TargetKind,
+    refine, scale, symbol, Error as CoreError, Evaluation, Evaluator, FitMeasure, FitReport, Goal,
+    LocalReport, LocalSettings, Measure, Observer, PoseQuantity, ResidualBatch, Resolution, Scene,
+    SceneProblem, Target, TargetKind,
 };
 use serde::Serialize;
 use std::path::Path;
@@ -269,15 +271,6 @@ pub struct FitMeasureRow {
     pub met: Option<bool>,
 }
 
-/// An objective of the fitted design.
-#[derive(Debug, Clone, Serialize)]
-pub struct ObjectiveRow {
-    pub name: &'static str,
-    pub value: f64,
-    pub violation: f64,
-    pub unit: &'static str,
-}
-
 /// A free parameter of the fitted design.
 #[derive(Debug, Clone, Serialize)]
 pub struct DesignRow {
@@ -446,56 +439,39 @@ impl FitOutcome {
         let target = base.target.as_deref();
         let mut measures = Vec::new();
         if let (Some(f), Some(t)) = (&fit, target) {
-            let row = |name: &str, value, unit, tolerance: Option<f64>| FitMeasureRow {
-                name: name.into(),
-                value,
-                unit,
-                tolerance,
-                met: tolerance.map(|t| value <= t),
-            };
-            measures.push(row(
-                "path_hausdorff_mm",
-                f.path_hausdorff_mm,
-                "mm",
-                t.counts.then_some(t.tolerance_mm),
-            ));
-            measures.push(row("path_rms_mm", f.path_rms_mm, "mm", None));
-            for (k, (p, pose)) in f.poses.iter().zip(&t.poses).enumerate() {
-                let tol = |x: f64| pose.counts.then_some(x);
-                let name = |q: &str| format!("pose{}_{q}", k + 1);
-                measures.push(row(
-                    &name("position_mm"),
-                    p.position_error_mm,
-                    "mm",
-                    tol(pose.position_tolerance_mm),
-                ));
-                if let Some(a) = p.attitude_error_deg {
-                    measures.push(row(
-                        &name("attitude_deg"),
-                        a.abs(),
-                        "deg",
-                        tol(pose.attitude_tolerance_deg),
-                    ));
+            // Named, measured and held to a tolerance as the core's fit measures are.
+            let mut row = |m: FitMeasure, tolerance: Option<f64>| {
+                if let Some(value) = f.value(m) {
+                    measures.push(FitMeasureRow {
+                        name: Measure::Fit(m).name(),
+                        value,
+                        unit: Measure::Fit(m).unit(),
+                        tolerance,
+                        met: tolerance.map(|t| value <= t),
+                    });
                 }
-                if let Some(c) = p.carrier_error_deg {
-                    measures.push(row(
-                        &name("carrier_deg"),
-                        c.abs(),
-                        "deg",
-                        tol(pose.carrier_tolerance_deg),
-                    ));
+            };
+            row(
+                FitMeasure::PathHausdorff,
+                t.counts.then_some(t.tolerance_mm),
+            );
+            row(FitMeasure::PathRms, None);
+            for (k, pose) in t.poses.iter().enumerate() {
+                for (quantity, tolerance) in [
+                    (PoseQuantity::Position, pose.position_tolerance_mm),
+                    (PoseQuantity::Attitude, pose.attitude_tolerance_deg),
+                    (PoseQuantity::Carrier, pose.carrier_tolerance_deg),
+                ] {
+                    let slot = Some(k as u8);
+                    row(
+                        FitMeasure::Pose { slot, quantity },
+                        pose.counts.then_some(tolerance),
+                    );
                 }
             }
         }
         let objectives = eval.map_or(Vec::new(), |e| {
-            (e.objectives.iter())
-                .map(|o| ObjectiveRow {
-                    name: o.kind.name(),
-                    value: o.value,
-                    violation: o.violation,
-                    unit: o.kind.unit(),
-                })
-                .collect()
+            e.objectives.iter().map(ObjectiveRow::from).collect()
         });
         let (lower, upper) = problem.bounds();
         let design = match &self.best {
