@@ -106,7 +106,7 @@ impl Figure for FitFigure<'_> {
                 red.stroke_width(2),
             )))
             .map_err(err)?;
-        entries.push((farthest_label, Swatch::Dot(red.into())));
+        entries.push((farthest_label, Swatch::Ring(red.into())));
         chart
             .draw_series(std::iter::once(Circle::new((0.0, 0.0), 4, BLACK.filled())))
             .map_err(err)?;

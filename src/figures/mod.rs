@@ -161,6 +161,8 @@ enum Swatch {
     Band(RGBAColor),
     /// A filled dot.
     Dot(RGBAColor),
+    /// A ring (a marker that leaves the line under it visible).
+    Ring(RGBAColor),
     /// A filled triangle.
     Triangle(RGBAColor),
     /// A short upright line of this width (a marker line, a seedling).
@@ -225,6 +227,7 @@ where
                 c.filled(),
             )),
             Swatch::Dot(c) => area.draw(&Circle::new((sx + 11, sy), 5, c.filled())),
+            Swatch::Ring(c) => area.draw(&Circle::new((sx + 11, sy), 6, c.stroke_width(2))),
             Swatch::Triangle(c) => area.draw(&TriangleMarker::new((sx + 11, sy), 7, c.filled())),
             Swatch::Tick(c, w) => area.draw(&PathElement::new(
                 vec![(sx + 11, sy - row / 2 + 2), (sx + 11, sy + row / 2 - 2)],

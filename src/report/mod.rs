@@ -316,7 +316,11 @@ fit to the target: path Hausdorff {:.3} mm (at ({:.1}, {:.1}) mm), RMS {:.3} mm,
             if r.met { "met" } else { "NOT met" }
         );
         if !r.poses.is_empty() {
-            out += "pose           carrier         tip (mm)        attitude   position  attitude  carrier\n";
+            // Each heading right over its column (the rows' widths below).
+            out += &format!(
+                "{:<12} {:>9} {:^20} {:>8}  {:>10} {:>9} {:>9}\n",
+                "pose", "carrier", "tip (mm)", "attitude", "position", "Δattitude", "Δcarrier"
+            );
             for p in &r.poses {
                 let opt = |v: Option<f64>| v.map_or("—".into(), |v| signed_fixed(v, 3) + "°");
                 out += &format!(
