@@ -239,8 +239,6 @@ impl TipPath {
             points: Vec::with_capacity(n + n / 4),
             rates: Vec::with_capacity(n + n / 4),
         };
-        // Whether each node's rate is exact (from the motion) rather than the stencil's.
-        let mut exact_at = vec![false; n];
         let uncertain: Vec<bool> = (0..n)
             .map(|j| {
                 let m = |k: usize| uniform.rates[k % n] * h;
@@ -250,26 +248,25 @@ impl TipPath {
                 (hermite_mid - cubic_mid).hypot() > accuracy_mm
             })
             .collect();
-        for j in 0..n {
-            if uncertain[j] || uncertain[(j + n - 1) % n] {
-                exact_at[j] = true;
-            }
-        }
         let exact = |theta: f64| {
             let state = kin.state_at(theta);
             (state.tip, state.tip_d1)
         };
+        // A node that ends or starts an uncertain interval takes the motion's exact state;
+        // the end of one refined interval is carried over as the next node's.
+        let mut carried = None;
         for j in 0..n {
-            let theta = h * j as f64;
-            let start = if exact_at[j] {
-                exact(theta)
-            } else {
-                (uniform.points[j], uniform.rates[j])
+            let (theta, next) = (h * j as f64, h * (j + 1) as f64);
+            let start = match carried.take() {
+                Some(state) => state,
+                None if uncertain[j] || uncertain[(j + n - 1) % n] => exact(theta),
+                None => (uniform.points[j], uniform.rates[j]),
             };
             path.push(theta, start);
             if uncertain[j] {
-                let end = exact(theta + h);
-                path.refine(kin, theta, start, theta + h, end, accuracy_mm, MAX_HALVINGS);
+                let end = exact(next);
+                path.refine(kin, theta, start, next, end, accuracy_mm, MAX_HALVINGS);
+                carried = Some(end);
             }
         }
         path
