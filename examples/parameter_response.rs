@@ -5,7 +5,6 @@
 //!
 //! `cargo run --release --example parameter_response -- docs/figures/response`
 
-use noncirc::core::Kinematics;
 use noncirc::core::Measure;
 use noncirc::core::{Evaluator, Param, Scene};
 use noncirc::figures::{save, FigureOptions, LinesFigure, FIGURE_SAMPLES};
@@ -97,7 +96,7 @@ fn main() -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
             if i % 4 == 0 {
                 // Drawn from a dense solution, not the evaluation's samples.
                 let dense = s.resolution.with_samples(FIGURE_SAMPLES);
-                let kin = Kinematics::solve(&s.gear.curve.build()?, &s.train, &dense)?;
+                let kin = s.kinematics(&dense)?;
                 let pts = kin
                     .tips()
                     .iter()

@@ -218,7 +218,7 @@ pub fn sweep_figures(
         p.set(&mut s, r.value);
         // Drawn from a dense solution, whatever the scene's resolution.
         let dense = (s.resolution).with_samples(s.resolution.samples_per_turn.max(FIGURE_SAMPLES));
-        if let Ok(kin) = noncirc_core::Kinematics::solve(&s.gear.curve.build()?, &s.train, &dense) {
+        if let Ok(kin) = s.kinematics(&dense) {
             let pts = kin
                 .tips()
                 .iter()

@@ -74,7 +74,7 @@ fn checked(scene: Scene, origin: &str, text: Option<&str>) -> Result<Scene, Scen
     scene
         .validate()
         .and_then(|()| scene.validate_search())
-        .and_then(|()| scene.gear.curve.build().map(drop))
+        .and_then(|()| scene.gear.curves().map(drop))
         .and_then(|()| scene.validate_target())
         .map_err(|source| SceneError::Invalid {
             origin: origin.to_string(),
@@ -96,6 +96,7 @@ fn error_key(e: &noncirc_core::Error) -> Option<&str> {
         | Error::OutOfReach { name, .. }
         | Error::TargetCrossing { name, .. } => name.as_str(),
         Error::BadList { list, .. } => list,
+        Error::SecondPair(_) => "gear.second_curve",
         _ => return None,
     };
     let end = name
@@ -392,6 +393,11 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
         search
             .entry("confirm_with_teeth")
             .or_insert(serde_json::Value::Bool(false));
+    }
+    if let Some(gear) = tree.get_mut("gear").and_then(|g| g.as_object_mut()) {
+        // The paper's train: `--set gear.second_curve={…}` makes it a train of two pairs.
+        gear.entry("second_curve")
+            .or_insert(serde_json::Value::Null);
     }
     if let Some(top) = tree.as_object_mut() {
         top.entry("tolerances").or_insert_with(|| {

@@ -11,6 +11,10 @@ const SECTIONS: &[(&str, &str)] = &[
     ("", "The scene"),
     ("resolution.", "`[resolution]`: numerical resolution"),
     ("gear.curve.", "`[gear.curve]`: the sun's pitch curve"),
+    (
+        "gear.second_curve",
+        "`[gear.second_curve]`: the train with two pairs",
+    ),
     ("gear.module.", "`[gear.module]`: the module rule"),
     ("gear.teeth.", "`[gear.teeth]`: cutting and checking teeth"),
     ("train.", "`[train]`: the three-arm planetary train"),

@@ -264,7 +264,7 @@ impl Prepared {
         let rule = &scene.gear.module;
         let train = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
         let kin = if train {
-            Some(Kinematics::solve(&curve, &scene.train, &scene.resolution)?)
+            Some(scene.kinematics(&scene.resolution)?)
         } else {
             None
         };

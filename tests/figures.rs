@@ -164,6 +164,7 @@ fn box_search_and_sweep_figures_and_the_animation() {
     }
     let kin = noncirc::core::Kinematics::solve(
         &paper.gear.curve.build().unwrap(),
+        None,
         &paper.train,
         &paper.resolution,
     )

@@ -1,7 +1,8 @@
 //! Convention-free physics of the three-arm train (spec §2): at every sample and both
 //! meshes, each gear's own pitch curve, placed by its own orientation, reaches the same
 //! contact point on the line of centres; the curves are tangent there; the material points'
-//! velocities agree. Run for both rotation senses, both sun frames and several designs.
+//! velocities agree. Run for both rotation senses, both sun frames and several designs, for
+//! the paper's train and the train with two pairs.
 
 use noncirc::core::{
     unit, CurveSpec, GearPair, Kinematics, PitchCurve, Resolution, Rotation, SunFrame, TrainSpec,
@@ -41,11 +42,29 @@ fn tangent(curve: &PitchCurve, orient: f64, chi: f64) -> f64 {
 }
 
 /// Largest mismatch over the cycle: (radius sum − a, tangent angle, velocity) at both meshes.
-fn mesh_errors(spec: &CurveSpec, train: &TrainSpec, samples: usize) -> (f64, f64, f64) {
+/// With `second`, the intermediate's layer B drives the planet, its conjugate.
+fn mesh_errors(
+    spec: &CurveSpec,
+    second: Option<&CurveSpec>,
+    train: &TrainSpec,
+    samples: usize,
+) -> (f64, f64, f64) {
     let sun = spec.build().unwrap();
-    let kin = Kinematics::solve(&sun, train, &Resolution::DEFAULT.with_samples(samples)).unwrap();
+    let layer_b = second.map(|c| c.build().unwrap());
+    let res = Resolution::DEFAULT.with_samples(samples);
+    let kin = Kinematics::solve(&sun, layer_b.as_ref(), train, &res).unwrap();
     let a = kin.centre_distance();
     let inter = intermediate_curve(&sun, a, train.psi_start());
+    // The second mesh's curves and centre distance: the planet's own angle 0 meets layer
+    // B's own angle γ0 − π (where the intermediate's layer A meets the sun at θ = 0).
+    let (inter2, planet, a2) = match &layer_b {
+        None => (inter.clone(), sun.clone(), a),
+        Some(b) => {
+            let a2 = kin.centre_distances()[1];
+            let start = train.gamma0_deg.to_radians() - PI;
+            (b.clone(), intermediate_curve(b, a2, start), a2)
+        }
+    };
     let sun_angle = train.sun_angle();
     let (mut radius, mut tang, mut vel) = (0.0f64, 0.0f64, 0.0f64);
     for j in 0..kin.len() {
@@ -61,14 +80,14 @@ fn mesh_errors(spec: &CurveSpec, train: &TrainSpec, samples: usize) -> (f64, f64
         let t_sun = tangent(&sun, sun_angle, phi_h - sun_angle);
         let t_int = tangent(&inter, s.theta2, chi1);
         tang = tang.max(wrap(2.0 * (t_sun - t_int)).abs() / 2.0);
-        // Mesh 2: intermediate and planet (the sun's own curve), on the line O2 O3.
+        // Mesh 2: intermediate and planet, on the line O2 O3.
         let toward_o3 = dir(s.o2, s.o3);
         let chi2 = toward_o3 - s.theta2;
         let chi3 = toward_o3 + PI - s.theta3;
-        let (ri, rp) = (inter.eval(chi2).rho, sun.eval(chi3).rho);
-        radius = radius.max((ri + rp - a).abs());
-        let t_i = tangent(&inter, s.theta2, chi2);
-        let t_p = tangent(&sun, s.theta3, chi3);
+        let (ri, rp) = (inter2.eval(chi2).rho, planet.eval(chi3).rho);
+        radius = radius.max((ri + rp - a2).abs());
+        let t_i = tangent(&inter2, s.theta2, chi2);
+        let t_p = tangent(&planet, s.theta3, chi3);
         tang = tang.max(wrap(2.0 * (t_i - t_p)).abs() / 2.0);
         // Velocities of the two material points at the mesh-2 contact (central differences).
         let c = s.o2 + unit(toward_o3) * ri;
@@ -143,12 +162,169 @@ fn both_meshes_touch_on_the_line_of_centres_without_slip() {
                         gamma0_deg,
                         ..TrainSpec::default()
                     };
-                    let (radius, tang, vel) = mesh_errors(&spec, &train, 720);
+                    let (radius, tang, vel) = mesh_errors(&spec, None, &train, 720);
                     let label = format!("{name} {rotation:?} {sun_frame:?} γ0={gamma0_deg}");
                     assert!(radius < 1e-4, "{label}: radii miss by {radius:e} mm");
                     assert!(tang < 1e-4, "{label}: tangents differ by {tang:e} rad");
                     assert!(vel < 1e-3, "{label}: slip velocity {vel:e} mm/rad");
                 }
+            }
+        }
+    }
+}
+
+/// Second pairs unlike the first: an ellipse about its focus, and a Fourier curve.
+fn second_curves() -> Vec<(&'static str, CurveSpec)> {
+    vec![
+        (
+            "ellipse",
+            CurveSpec::Ellipse {
+                semi_major_mm: 30.0,
+                eccentricity: 0.25,
+            },
+        ),
+        (
+            "fourier",
+            CurveSpec::Fourier {
+                c0_mm: 35.0,
+                cos_mm: vec![-3.0, 2.0],
+                sin_mm: vec![5.0, 0.0, 0.7],
+            },
+        ),
+    ]
+}
+
+#[test]
+fn both_meshes_of_the_two_pair_train_touch_on_the_line_of_centres_without_slip() {
+    let designs = designs();
+    for (name, spec) in [&designs[0], &designs[2]] {
+        for (second_name, second) in second_curves() {
+            for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
+                for sun_frame in [SunFrame::Installed, SunFrame::Ground] {
+                    for gamma0_deg in [-53.0, 70.0] {
+                        let train = TrainSpec {
+                            rotation,
+                            sun_frame,
+                            gamma0_deg,
+                            ..TrainSpec::default()
+                        };
+                        let (radius, tang, vel) = mesh_errors(spec, Some(&second), &train, 720);
+                        let label = format!(
+                            "{name} + {second_name} {rotation:?} {sun_frame:?} γ0={gamma0_deg}"
+                        );
+                        assert!(radius < 1e-4, "{label}: radii miss by {radius:e} mm");
+                        assert!(tang < 1e-4, "{label}: tangents differ by {tang:e} rad");
+                        assert!(vel < 1e-3, "{label}: slip velocity {vel:e} mm/rad");
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The paper's train written as two pairs (layer B the intermediate's own curve, so the
+/// planet is the sun's copy) moves its planets as the paper's train does, up to the
+/// constant turn by which the two conventions place the planet's own frame: with β0 less
+/// that turn, the tips coincide.
+#[test]
+fn the_paper_train_written_as_two_pairs_moves_as_the_paper_train() {
+    let sun = CurveSpec::paper().build().unwrap();
+    let res = Resolution::DEFAULT.with_samples(720);
+    for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
+        let train = TrainSpec {
+            rotation,
+            ..TrainSpec::default()
+        };
+        let one = Kinematics::solve(&sun, None, &train, &res).unwrap();
+        let inter = intermediate_curve(&sun, one.centre_distance(), train.psi_start());
+        let two = Kinematics::solve(&sun, Some(&inter), &train, &res).unwrap();
+        let [a1, a2] = two.centre_distances();
+        assert!((a1 - a2).abs() < 1e-6 * a1, "{rotation:?}: {a1} vs {a2}");
+        let shift = one.planet_angles()[0] - two.planet_angles()[0];
+        let worst = (one.planet_angles().iter().zip(two.planet_angles()))
+            .map(|(p, q)| wrap(p - q - shift).abs())
+            .fold(0.0, f64::max);
+        // Layer B is a table through 2880 samples of the intermediate: its interpolation
+        // error near the paper curve's sharp lobe (about 6e-7 rad) is the whole gap.
+        assert!(
+            worst < 2e-6,
+            "{rotation:?}: planet turns differ by {worst:e} rad"
+        );
+        let shifted = TrainSpec {
+            beta0_deg: train.beta0_deg + shift.to_degrees(),
+            ..train
+        };
+        let two = Kinematics::solve(&sun, Some(&inter), &shifted, &res).unwrap();
+        let gap = (one.tips().iter().zip(two.tips()))
+            .map(|(p, q)| (*p - *q).hypot())
+            .fold(0.0, f64::max);
+        assert!(gap < 3e-4, "{rotation:?}: tips {gap:e} mm apart");
+    }
+}
+
+/// Two circular pairs: the planet keeps its orientation (θ3' = σ(1 − g_A g_B) = 0), so the
+/// tip runs round a circle of the planet radius |a_A + a_B e^{iγ0}| about S·e(θ3 + β0).
+#[test]
+fn two_circular_pairs_translate_the_planet_round_a_circle() {
+    let circle = |r: f64| CurveSpec::Fourier {
+        c0_mm: r,
+        cos_mm: vec![0.0],
+        sin_mm: vec![0.0],
+    };
+    let (sun, layer_b) = (circle(30.0).build().unwrap(), circle(22.0).build().unwrap());
+    let train = TrainSpec::default();
+    let kin = Kinematics::solve(&sun, Some(&layer_b), &train, &Resolution::DEFAULT).unwrap();
+    let [a1, a2] = kin.centre_distances();
+    assert!(
+        (a1 - 60.0).abs() < 1e-9 && (a2 - 44.0).abs() < 1e-9,
+        "{a1} {a2}"
+    );
+    let g = train.gamma0_deg.to_radians();
+    let radius = (a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * g.cos()).sqrt();
+    assert!((kin.planet_radius() - radius).abs() < 1e-9);
+    let theta3 = kin.planet_angles()[0];
+    let centre = unit(theta3 + train.beta0_deg.to_radians()) * train.arm_length_mm;
+    for j in 0..kin.len() {
+        assert!(wrap(kin.planet_angles()[j] - theta3).abs() < 1e-12);
+        let off = ((kin.tips()[j] - centre).hypot() - radius).abs();
+        assert!(off < 1e-9, "node {j}: {off:e} mm off the circle");
+        let s = kin.state_at(kin.theta(j) + 0.3 * TAU / kin.len() as f64);
+        assert!(((s.tip - centre).hypot() - radius).abs() < 1e-9);
+    }
+}
+
+/// The two-pair train's state between nodes agrees with its nodes, and its tip derivatives
+/// with the tip's differences.
+#[test]
+fn the_two_pair_train_state_agrees_with_its_nodes_and_differences() {
+    let sun = CurveSpec::paper().build().unwrap();
+    for (name, second) in second_curves() {
+        let layer_b = second.build().unwrap();
+        for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
+            let train = TrainSpec {
+                rotation,
+                ..TrainSpec::default()
+            };
+            let res = Resolution::DEFAULT.with_samples(720);
+            let kin = Kinematics::solve(&sun, Some(&layer_b), &train, &res).unwrap();
+            for j in (0..kin.len()).step_by(7) {
+                let theta = kin.theta(j);
+                let s = kin.state_at(theta);
+                let gap = (s.tip - kin.tips()[j]).hypot();
+                assert!(gap < 1e-7, "{name} {rotation:?} node {j}: {gap:e} mm");
+                let h = 1e-4;
+                let (p, m) = (kin.state_at(theta + h), kin.state_at(theta - h));
+                let d1 = (p.tip - m.tip) * (0.5 / h);
+                let d2 = (p.tip - s.tip * 2.0 + m.tip) * (1.0 / (h * h));
+                let (e1, e2) = ((d1 - s.tip_d1).hypot(), (d2 - s.tip_d2).hypot());
+                assert!(
+                    e1 < 1e-4 * (1.0 + s.tip_d1.hypot()),
+                    "{name} tip′ off by {e1:e}"
+                );
+                assert!(
+                    e2 < 1e-2 * (1.0 + s.tip_d2.hypot()),
+                    "{name} tip″ off by {e2:e}"
+                );
             }
         }
     }
@@ -162,8 +338,8 @@ fn mesh_error_shrinks_as_resolution_grows() {
         angles_deg: a,
     };
     let train = TrainSpec::default();
-    let coarse = mesh_errors(&spec, &train, 120);
-    let fine = mesh_errors(&spec, &train, 480);
+    let coarse = mesh_errors(&spec, None, &train, 120);
+    let fine = mesh_errors(&spec, None, &train, 480);
     assert!(
         fine.0 < coarse.0 / 4.0,
         "radius error {coarse:?} -> {fine:?}"
@@ -178,7 +354,7 @@ fn mesh_error_shrinks_as_resolution_grows() {
 fn the_train_pair_is_the_gear_pair_on_the_carrier_grid() {
     let sun = CurveSpec::paper().build().unwrap();
     let res = Resolution::DEFAULT.with_samples(720);
-    let kin = Kinematics::solve(&sun, &TrainSpec::default(), &res).unwrap();
+    let kin = Kinematics::solve(&sun, None, &TrainSpec::default(), &res).unwrap();
     let standard = GearPair::solve(sun, res).unwrap();
     let pair = kin.pair();
     let n = pair.samples().len();
@@ -216,7 +392,7 @@ fn the_train_pair_has_the_conjugate_on_every_grid() {
             sun_frame,
             ..TrainSpec::default()
         };
-        let kin = Kinematics::solve(&sun, &train, &res).unwrap();
+        let kin = Kinematics::solve(&sun, None, &train, &res).unwrap();
         let pair = kin.pair();
         let (a, start) = (pair.centre_distance(), train.psi_start());
         assert_eq!(pair.psi(0), start);

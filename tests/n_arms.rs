@@ -49,6 +49,7 @@ fn two_arms_stand_half_a_turn_apart_and_every_arm_picks_in_turn() {
         let scene = with_arms(arms);
         let kin = Kinematics::solve(
             &scene.gear.curve.build().unwrap(),
+            None,
             &scene.train,
             &scene.resolution,
         )

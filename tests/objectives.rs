@@ -14,6 +14,7 @@ use proptest::prelude::*;
 fn paper(samples: usize) -> (Vec<noncirc::core::ObjectiveValue>, noncirc::core::Events) {
     let kin = Kinematics::solve(
         &CurveSpec::paper().build().unwrap(),
+        None,
         &TrainSpec::default(),
         &Resolution::DEFAULT.with_samples(samples),
     )
@@ -83,6 +84,7 @@ fn events_are_located_to_sub_sample_accuracy() {
     // At the refined planting point the tip's vertical velocity vanishes.
     let kin = Kinematics::solve(
         &CurveSpec::paper().build().unwrap(),
+        None,
         &TrainSpec::default(),
         &Resolution::DEFAULT,
     )
@@ -95,9 +97,10 @@ fn events_are_located_to_sub_sample_accuracy() {
 #[test]
 fn rotation_senses_trace_one_curve_backwards() {
     let curve = CurveSpec::paper().build().unwrap();
-    let cw = Kinematics::solve(&curve, &TrainSpec::default(), &Resolution::DEFAULT).unwrap();
+    let cw = Kinematics::solve(&curve, None, &TrainSpec::default(), &Resolution::DEFAULT).unwrap();
     let ccw = Kinematics::solve(
         &curve,
+        None,
         &TrainSpec {
             rotation: Rotation::Counterclockwise,
             ..TrainSpec::default()
@@ -151,7 +154,7 @@ proptest! {
         let (_, angles) = noncirc::core::paper_control_points();
         let Ok(curve) = (CurveSpec::Spline { radii_mm: radii, angles_deg: angles }).build() else { return Ok(()); };
         let train = TrainSpec { phi0_deg: phi0, beta0_deg: beta0, arm_length_mm: s, pusher_offset_mm: h1, gamma0_deg: gamma0, ..TrainSpec::default() };
-        let Ok(kin) = Kinematics::solve(&curve, &train, &Resolution::FAST) else { return Ok(()); };
+        let Ok(kin) = Kinematics::solve(&curve, None, &train, &Resolution::FAST) else { return Ok(()); };
         let (values, ev) = evaluate_all(&kin, &Agronomy::default(), &Bounds::default(), &ModuleRule::default());
         prop_assert!(ev.picking.carrier_rad.is_finite() && ev.planting.carrier_rad.is_finite());
         for v in values {

@@ -6,8 +6,13 @@ use noncirc_core::fields;
 use std::collections::BTreeSet;
 
 /// The field paths of a scene's tree: a list of numbers or names is one field (`key`), a
-/// list of tables has fields `key[i].name`.
+/// list of tables has fields `key[i].name`. `gear.second_curve` is one field: its keys are
+/// `gear.curve`'s.
 fn field_paths(v: &serde_json::Value, path: &str, out: &mut BTreeSet<String>) {
+    if path == "gear.second_curve" {
+        out.insert(path.to_string());
+        return;
+    }
     let join = |k: &str| {
         if path.is_empty() {
             k.to_string()
@@ -63,6 +68,7 @@ fn scenes() -> Vec<noncirc_core::Scene> {
         ],
         &["tolerances.samples=32"],
         &["train.arms=2", "train.picks_per_minute=180"],
+        &["gear.second_curve={kind=\"ellipse\",semi_major_mm=30.0,eccentricity=0.2}"],
         &[
             "target={kind=\"spline\",x_mm=[200.0,0.0,-200.0,0.0],y_mm=[0.0,150.0,0.0,-300.0],\
            tolerance_mm=0.5,samples=128,counts=true,poses=[{name=\"picking\",at=\"picking\",\

@@ -20,7 +20,7 @@ fn every_planet_meets_its_intermediate_at_the_sun_meshs_pitch_arc() {
             rotation,
             ..scene.train
         };
-        let kin = Kinematics::solve(&curve, &train, &scene.resolution).unwrap();
+        let kin = Kinematics::solve(&curve, None, &train, &scene.resolution).unwrap();
         let toothed =
             ToothedPair::cut(&curve, kin.centre_distance(), 40, &ToothSpec::default()).unwrap();
         let track = &toothed.track;

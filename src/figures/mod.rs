@@ -353,12 +353,7 @@ fn dense_kinematics<'k>(
         return Ok(std::borrow::Cow::Borrowed(kin));
     }
     let resolution = scene.resolution.with_samples(FIGURE_SAMPLES);
-    let curve = scene.gear.curve.build()?;
-    Ok(std::borrow::Cow::Owned(Kinematics::solve(
-        &curve,
-        &scene.train,
-        &resolution,
-    )?))
+    Ok(std::borrow::Cow::Owned(scene.kinematics(&resolution)?))
 }
 
 /// A figure that can draw itself on any plotters backend, at any size.

@@ -120,11 +120,7 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
 /// Write the mechanism turning as a GIF.
 pub(crate) fn animate(args: AnimateArgs) -> Result<(), Box<dyn Error>> {
     let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
-    let kin = noncirc::core::Kinematics::solve(
-        &scene.gear.curve.build()?,
-        &scene.train,
-        &scene.resolution,
-    )?;
+    let kin = scene.kinematics(&scene.resolution)?;
     let teeth = if args.teeth {
         Some(noncirc::teeth::TeethRun::from_scene(&scene, 0.0)?.pair)
     } else {

@@ -86,6 +86,16 @@ impl Scene {
                 });
             }
         }
+        if self.gear.second_curve.is_some() && !mechanism {
+            return Err(Error::BadList {
+                list: "gear.second_curve",
+                problem: format!(
+                    "set in a {} scene, which has one pair: a second pair needs a three_arm \
+                     or transplanter scene (its intermediate drives the planet)",
+                    self.kind.name()
+                ),
+            });
+        }
         if let Some(target) = &self.target {
             if !mechanism {
                 return Err(Error::BadList {

@@ -87,6 +87,9 @@ pub enum Error {
         inner_mm: f64,
         outer_mm: f64,
     },
+    /// An error of the second pair's pitch curve (`gear.second_curve`), which would
+    /// otherwise read as the sun's.
+    SecondPair(Box<Error>),
     /// A target path that crosses itself: the points that start the two crossing pieces,
     /// and where.
     TargetCrossing {

@@ -37,13 +37,36 @@ pub struct StageCounts {
     pub fit: u64,
 }
 
-/// A gear pair's summary.
+/// A gear pair's summary: the (first) pair's geometry and the train's module.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct GearSummary {
     pub centre_distance_mm: f64,
     pub closure_error_mm: f64,
     pub perimeter_mm: f64,
+    /// The train with two pairs: the intermediate–planet pair's geometry.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub second: Option<PairGeometry>,
+    /// The module of the pair that limits it.
     pub module: ModuleReport,
+}
+
+/// A closed pair's geometry (mm).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PairGeometry {
+    pub centre_distance_mm: f64,
+    pub closure_error_mm: f64,
+    pub perimeter_mm: f64,
+}
+
+impl PairGeometry {
+    /// The geometry of a solved pair.
+    pub fn of(pair: &GearPair) -> Self {
+        Self {
+            centre_distance_mm: pair.centre_distance(),
+            closure_error_mm: pair.closure().error_estimate,
+            perimeter_mm: pair.perimeter(),
+        }
+    }
 }
 
 /// The outcome of one evaluation, with the resolution that produced it.
@@ -62,6 +85,9 @@ pub struct Evaluation {
     pub gear_pair: Option<GearPair>,
     /// The teeth's checks, when the module rule is `teeth`.
     pub teeth: Option<TeethReport>,
+    /// The train with two pairs: the intermediate–planet pair's teeth, cut with the same
+    /// tooth count.
+    pub second_teeth: Option<TeethReport>,
     /// The fit to the scene's target, when it has one.
     pub fit: Option<FitReport>,
 }
@@ -80,6 +106,7 @@ impl Evaluation {
             kinematics: None,
             gear_pair: None,
             teeth: None,
+            second_teeth: None,
             fit: None,
         }
     }
@@ -205,15 +232,15 @@ impl Evaluator {
         }
     }
 
-    /// Builds the scene's pitch curve, closes the pair and solves the train at
+    /// Builds the scene's pitch curves, closes the pairs and solves the train at
     /// `resolution` (the stages before the events).
     pub fn solve_train(&mut self, scene: &Scene, resolution: &Resolution) -> Result<Kinematics> {
         self.counts.pitch_curve += 1;
-        let curve = scene.gear.curve.build()?;
+        let (curve, second) = scene.gear.curves()?;
         self.counts.closure += 1;
         self.counts.kinematics += 1;
         let integrator = self.integrator(resolution.samples_per_turn);
-        Kinematics::solve_with(curve, &scene.train, resolution, integrator)
+        Kinematics::solve_with(curve, second, &scene.train, resolution, integrator)
     }
 
     /// Evaluates a three-arm scene on a train already solved for it (`kin`'s curve and
@@ -262,6 +289,10 @@ impl Evaluator {
             .then(|| kin.module(&scene.gear.module));
         if gear_module.is_some() {
             out.teeth = self.teeth(scene, kin.curve(), kin.centre_distance())?;
+            if let Some(second) = kin.second_pair() {
+                out.second_teeth = (self.teeth(scene, second.curve(), second.centre_distance()))
+                    .map_err(|e| Error::SecondPair(Box::new(e)))?;
+            }
         }
         for &kind in &scene.objectives {
             self.counts.objectives[kind as usize] += 1;
@@ -275,6 +306,7 @@ impl Evaluator {
             let mut value = ObjectiveValue::new(kind, value, &scene.bounds);
             if kind == ObjectiveKind::Module {
                 value.add_teeth(out.teeth.as_ref());
+                value.add_teeth(out.second_teeth.as_ref());
             }
             out.objectives.push(value);
         }
@@ -297,6 +329,7 @@ impl Evaluator {
             centre_distance_mm: kin.centre_distance(),
             closure_error_mm: kin.pair().closure().error_estimate,
             perimeter_mm: kin.pair().perimeter(),
+            second: kin.second_pair().map(PairGeometry::of),
             module,
         });
         if let Some((target, prepared)) = &target {
@@ -337,6 +370,7 @@ impl Evaluator {
                     centre_distance_mm: pair.centre_distance(),
                     closure_error_mm: pair.closure().error_estimate,
                     perimeter_mm: pair.perimeter(),
+                    second: None,
                     module,
                 });
                 for &kind in &scene.objectives {

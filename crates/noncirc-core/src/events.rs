@@ -211,10 +211,9 @@ fn extreme_and_runner_up(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
 /// The housing's radius about the carrier axis (mm): the disc the gearbox sweeps (the
 /// envelope of the sun, the intermediates and the planets) plus the wall margin.
 pub(crate) fn housing_radius(kin: &Kinematics, agro: &Agronomy) -> f64 {
-    let a = kin.centre_distance();
-    let (rmin, rmax) = kin.radius_range();
-    rmax.max(kin.carrier_distance() + (a - rmin))
-        .max(kin.planet_radius() + rmax)
+    (kin.radius_range().1)
+        .max(kin.carrier_distance() + kin.intermediate_reach())
+        .max(kin.planet_radius() + kin.planet_reach())
         + agro.housing_margin_mm
 }
 

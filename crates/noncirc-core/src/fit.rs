@@ -697,7 +697,7 @@ mod tests {
             ..scene.resolution
         };
         let curve = scene.gear.curve.build().unwrap();
-        let kin = Kinematics::solve(&curve, &scene.train, &resolution).unwrap();
+        let kin = Kinematics::solve(&curve, None, &scene.train, &resolution).unwrap();
         let events = crate::events::events(&kin, &scene.agronomy);
         (kin, events)
     }

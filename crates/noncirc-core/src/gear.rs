@@ -334,6 +334,14 @@ impl Rotation {
             Rotation::Counterclockwise => 1.0,
         }
     }
+
+    /// The other sense.
+    pub fn reversed(self) -> Self {
+        match self {
+            Rotation::Clockwise => Rotation::Counterclockwise,
+            Rotation::Counterclockwise => Rotation::Clockwise,
+        }
+    }
 }
 
 /// Where a gear pair samples its driver: `psi_j = start ± j·2π/N` (+ counter-clockwise). The gear command

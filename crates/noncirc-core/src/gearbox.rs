@@ -1,6 +1,6 @@
 //! The gearbox of an n-arm train: the gears of different arm sets turn in one plane (each
-//! intermediate meshes with the sun, each planet with its intermediate), so no two of them
-//! may overlap. Their centres stand still on the carrier; only their orientations change.
+//! intermediate meshes with the sun, each planet with its intermediate; with two pairs, in
+//! two planes), so no two of them in one plane may overlap. Their centres stand still on the carrier; only their orientations change.
 //! Pitch curves are star-shaped about their centres, so a point lies inside a gear when it
 //! is nearer the centre than the pitch curve in its direction.
 
@@ -119,59 +119,107 @@ impl Placed<'_> {
     }
 }
 
-/// The deepest overlap (mm, > 0) between gears of different arm sets over one carrier
-/// turn, at the kinematics' nodes, or `None` when no two overlap. Pairs whose circles of
-/// largest radius keep apart are not looked at, so a two- or three-arm train with room
-/// between its sets costs nothing.
+/// One gear of every arm set: its pitch curve in its own frame, the plane it turns in, and
+/// whether it stands where the intermediate or the planet does.
+struct SetGear {
+    points: Vec<Vec2>,
+    curve: Radial,
+    /// Its largest radius (mm), from the pair's radius range (refined between samples).
+    reach: f64,
+    plane: usize,
+    planet: bool,
+}
+
+impl SetGear {
+    fn new(points: Vec<Vec2>, reach: f64, plane: usize, planet: bool) -> Self {
+        let curve = Radial::new(&points);
+        Self {
+            points,
+            curve,
+            reach,
+            plane,
+            planet,
+        }
+    }
+}
+
+/// The gears each arm set carries: in the paper's train the intermediate and the planet,
+/// both in the sun's plane; with two pairs the intermediate's layer A in the sun's plane,
+/// and its layer B with the planet in a second plane.
+fn set_gears(kin: &Kinematics) -> Vec<SetGear> {
+    let first = kin.pair();
+    let layer_a = SetGear::new(
+        first.driven_points(),
+        first.centre_distance() - first.radius_range().0,
+        0,
+        false,
+    );
+    match kin.second_pair() {
+        None => vec![
+            layer_a,
+            SetGear::new(first.driver_points(), first.radius_range().1, 0, true),
+        ],
+        Some(second) => vec![
+            layer_a,
+            SetGear::new(second.driver_points(), second.radius_range().1, 1, false),
+            SetGear::new(kin.planet_points(), kin.planet_reach(), 1, true),
+        ],
+    }
+}
+
+/// The deepest overlap (mm, > 0) between gears of different arm sets in one plane over one
+/// carrier turn, at the kinematics' nodes, or `None` when no two overlap. Pairs whose
+/// circles of largest radius keep apart are not looked at, so a two- or three-arm train
+/// with room between its sets costs nothing.
 pub(crate) fn gear_sets_overlap(kin: &Kinematics) -> Option<f64> {
     let arms = kin.arms();
-    // Gear kinds: 0 the intermediate, 1 the planet. Arm set I against set m; the pair at
-    // lag m is the pair at lag arms − m seen from the other set, so like gears need
-    // m ≤ arms/2, and the intermediate of set I against every other set's planet covers
-    // the planet of set I against every other set's intermediate.
-    let pairs = (1..=arms / 2)
-        .flat_map(|m| [(0, 0, m), (1, 1, m)])
-        .chain((1..arms).map(|m| (0, 1, m)));
-    let (r_min, r_max) = kin.radius_range();
-    let reach = [kin.centre_distance() - r_min, r_max];
-    let centre = |kind: usize, j: usize| match kind {
-        0 => kin.intermediate_at(j).0,
-        _ => kin.planet_centres()[j],
+    let gears = set_gears(kin);
+    // Gear a of arm set I against gear b of set m, in one plane. The pair at lag m is the
+    // pair at lag arms − m seen from the other set, so like gears need m ≤ arms/2, and
+    // gear a of set I against every other set's gear b covers b of set I against a.
+    let pairs = (0..gears.len()).flat_map(|a| {
+        let gears = &gears;
+        (a..gears.len())
+            .filter(move |&b| gears[a].plane == gears[b].plane)
+            .flat_map(move |b| {
+                let lags = if a == b { 1..arms / 2 + 1 } else { 1..arms };
+                lags.map(move |m| (a, b, m))
+            })
+    });
+    let centre = |g: &SetGear, j: usize| match g.planet {
+        false => kin.intermediate_at(j).0,
+        true => kin.planet_centres()[j],
     };
     // The centres keep their distance on the carrier: pairs whose circles of largest
     // radius keep apart never meet.
     let near: Vec<_> = pairs
         .filter(|&(a, b, m)| {
-            (centre(a, 0) - centre(b, kin.arm_node(m, 0))).hypot() < reach[a] + reach[b]
+            let (ga, gb) = (&gears[a], &gears[b]);
+            (centre(ga, 0) - centre(gb, kin.arm_node(m, 0))).hypot() < ga.reach + gb.reach
         })
         .collect();
     if near.is_empty() {
         return None;
     }
-    let pair = kin.pair();
-    let (sun_points, inter_points) = (pair.driver_points(), pair.driven_points());
-    let (planet, intermediate) = (Radial::new(&sun_points), Radial::new(&inter_points));
-    let place = |kind: usize, j: usize| match kind {
-        0 => {
-            let (centre, angle) = kin.intermediate_at(j);
-            Placed {
-                curve: &intermediate,
-                points: &inter_points,
-                centre,
-                angle,
-            }
+    fn place<'g>(kin: &Kinematics, g: &'g SetGear, j: usize) -> Placed<'g> {
+        let (centre, angle) = match g.planet {
+            false => kin.intermediate_at(j),
+            true => (kin.planet_centres()[j], kin.planet_angles()[j]),
+        };
+        Placed {
+            curve: &g.curve,
+            points: &g.points,
+            centre,
+            angle,
         }
-        _ => Placed {
-            curve: &planet,
-            points: &sun_points,
-            centre: kin.planet_centres()[j],
-            angle: kin.planet_angles()[j],
-        },
-    };
+    }
     let mut deepest = f64::NEG_INFINITY;
     for (a, b, m) in near {
         for j in 0..kin.len() {
-            let (ga, gb) = (place(a, j), place(b, kin.arm_node(m, j)));
+            let (ga, gb) = (
+                place(kin, &gears[a], j),
+                place(kin, &gears[b], kin.arm_node(m, j)),
+            );
             // A point of both is within each gear's reach of the other's centre, so in a
             // sector of each seen from its own centre; were the two sectors' radii short of
             // the centres' distance, none could be.
@@ -243,7 +291,7 @@ mod tests {
     fn the_gears_at_the_nodes_are_where_the_states_put_them() {
         let curve = crate::CurveSpec::paper().build().unwrap();
         let spec = crate::TrainSpec::default();
-        let kin = Kinematics::solve(&curve, &spec, &crate::Resolution::DEFAULT).unwrap();
+        let kin = Kinematics::solve(&curve, None, &spec, &crate::Resolution::DEFAULT).unwrap();
         for j in 0..kin.len() {
             let st = kin.state_at(kin.theta(j));
             let (o2, theta2) = kin.intermediate_at(j);
@@ -267,7 +315,8 @@ mod tests {
                     arms,
                     ..Default::default()
                 };
-                let kin = Kinematics::solve(&curve, &spec, &crate::Resolution::DEFAULT).unwrap();
+                let kin =
+                    Kinematics::solve(&curve, None, &spec, &crate::Resolution::DEFAULT).unwrap();
                 let pair = kin.pair();
                 let (sun, inter) = (pair.driver_points(), pair.driven_points());
                 // Every gear of every set at every node, as the studio draws it.

@@ -98,7 +98,7 @@ pub use vec2::Vec2;
 // Evaluation and its accuracy.
 pub use accuracy::{observed_order, output_errors, ErrorRow};
 pub use error::{Error, Result};
-pub use evaluation::{Evaluation, Evaluator, GearSummary, StageCounts};
+pub use evaluation::{Evaluation, Evaluator, GearSummary, PairGeometry, StageCounts};
 pub use fit::{target_of, FitReport, PoseFit};
 
 // Tolerances, robustness and global sensitivity.

@@ -77,6 +77,10 @@ impl fmt::Display for Error {
                 f,
                 "{name}: out of the arm's reach: {distance_mm:.3} mm from the carrier axis, and the tip of any design in the search's box stays {inner_mm:.3} to {outer_mm:.3} mm from it (is the target in mm, in the machine frame with its origin on the carrier axis?)"
             ),
+            Error::SecondPair(inner) => write!(
+                f,
+                "gear.second_curve (the intermediate's layer B, driving the planet): {inner}"
+            ),
             Error::TargetCrossing { name, other, x_mm, y_mm } => write!(
                 f,
                 "{name}: the target path crosses itself at ({x_mm:.3}, {y_mm:.3}) mm: the piece from this point meets the piece from {other}"

@@ -294,7 +294,7 @@ pub fn evaluate_all(
     rule: &ModuleRule,
 ) -> (Vec<ObjectiveValue>, Events) {
     let ev = events(kin, agro);
-    let gear_module = kin.pair().module(rule);
+    let gear_module = kin.module(rule);
     let values = ObjectiveKind::ALL
         .iter()
         .map(|&kind| {
@@ -399,7 +399,8 @@ mod tests {
                             ..agro
                         };
                         let kin =
-                            Kinematics::solve(&curve, &spec, &crate::Resolution::DEFAULT).unwrap();
+                            Kinematics::solve(&curve, None, &spec, &crate::Resolution::DEFAULT)
+                                .unwrap();
                         let value = interference_clearance(&kin, &agro);
                         let (every_pair, least_node, refined) = full_scan(&kin, &agro);
                         let at = format!("{arms} arms, β0 {beta0}, γ0 {gamma0}, w {width}");

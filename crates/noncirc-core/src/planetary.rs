@@ -1,6 +1,9 @@
-//! The planetary transplanting mechanism: fixed sun, intermediate (conjugate) and planet
-//! (congruent to the sun) gears on a carrier, an arm on each planet (spec §2); three arm
-//! sets as in the paper, or 1 to 4 (`TrainSpec::arms`).
+//! The planetary transplanting mechanism: fixed sun, intermediate and planet gears on a
+//! carrier, an arm on each planet (spec §2); three arm sets as in the paper, or 1 to 4
+//! (`TrainSpec::arms`). In the paper's train the intermediate is the sun's conjugate and
+//! meshes with a planet congruent to the sun; in the train with two pairs the
+//! intermediate carries a second pitch curve of its own (its layer B, on the same shaft),
+//! which drives a planet that is that curve's conjugate.
 
 use crate::angle::unit;
 use crate::curve::{PitchCurve, TAU};
@@ -198,8 +201,6 @@ pub struct ArmState {
     /// Intermediate orientation (rad). Its own pitch curve carries the material point of sun
     /// parameter ψ at own angle `χ(ψ) = −∫_{ψ_start}^{ψ} ρ/(a−ρ)`, radius `a − ρ(ψ)`.
     pub theta2: f64,
-    /// Sun own-frame parameter of the intermediate's material point now at the planet mesh (rad).
-    pub psi_planet_mesh: f64,
     /// Arm tip `D`.
     pub tip: Vec2,
     /// `dD/dθ` (mm/rad).
@@ -210,31 +211,28 @@ pub struct ArmState {
     pub pusher_angle: f64,
 }
 
-/// What the gears alone determine, shared by every assembly of them
-/// ([`Kinematics::reassembled`]): the pair on the carrier grid, `Φ`'s derivatives, and the
-/// module (computed once per rule).
+/// One closed pair on its grid, with what interpolating its driven angle needs: `Φ` with
+/// its first two derivatives at the nodes, and those of `Φ⁻¹`.
 #[derive(Debug)]
 struct SolvedPair {
-    /// The sun–intermediate pair, sampled on the carrier grid: node `j` is the sun's
-    /// own-frame parameter `psi_start + σθ_j` at the contact, and the pair's driven angle at
-    /// the node is `Φ(θ_j)`, the intermediate's turn relative to the carrier.
+    /// The pair: node `j` is the driver's own-frame parameter `start + sense·u_j`, and the
+    /// pair's driven angle at the node is `Φ(u_j)`.
     pair: GearPair,
-    /// `Φ''(θ_j) = g̃'` (`Φ' = g̃` is the pair's ratio at the nodes).
+    /// `Φ''(u_j) = g̃'` (`Φ' = g̃` is the pair's ratio at the nodes).
     dg: Vec<f64>,
     /// `(Φ⁻¹)' = 1/g̃` and `(Φ⁻¹)'' = −g̃'/g̃³` at the nodes.
     inv_d1: Vec<f64>,
     inv_d2: Vec<f64>,
     /// `Φ(2π) − Φ(0)` (rad; 2π up to the closure error).
     phi_period: f64,
-    /// The module under the last rule asked.
-    module: Mutex<Option<(ModuleRule, ModuleReport)>>,
 }
 
 impl SolvedPair {
-    fn new(pair: GearPair, sigma: f64) -> Self {
+    fn new(pair: GearPair) -> Self {
         let a = pair.centre_distance();
+        let sense = pair.grid().sense.sign();
         let dg: Vec<f64> = (pair.samples().iter())
-            .map(|p| sigma * a * p.d1 / ((a - p.rho) * (a - p.rho)))
+            .map(|p| sense * a * p.d1 / ((a - p.rho) * (a - p.rho)))
             .collect();
         let (inv_d1, inv_d2) = (pair.ratio_nodes().iter())
             .zip(&dg)
@@ -247,9 +245,54 @@ impl SolvedPair {
             inv_d1,
             inv_d2,
             phi_period,
-            module: Mutex::new(None),
         }
     }
+
+    /// `Φ(u)`, the driven gear's turn after the driver's turn `u` along the grid.
+    fn phi(&self) -> MonotoneDrift<'_> {
+        MonotoneDrift {
+            value: self.pair.phi2_nodes(),
+            d1: self.pair.ratio_nodes(),
+            d2: &self.dg,
+            period_increment: self.phi_period,
+        }
+    }
+
+    /// `Φ⁻¹`, interpolated from the same nodes.
+    fn phi_inverse(&self) -> DriftInverse<'_> {
+        DriftInverse {
+            forward: self.phi(),
+            d1: &self.inv_d1,
+            d2: &self.inv_d2,
+        }
+    }
+
+    /// `g̃(u) = g(start + sense·u)` and `g̃'(u)` at any turn `u`, from the curve itself.
+    fn ratio_at(&self, u: f64) -> (f64, f64) {
+        let (a, grid) = (self.pair.centre_distance(), self.pair.grid());
+        let sense = grid.sense.sign();
+        let p = self.pair.curve().eval(grid.start + sense * u);
+        let gap = a - p.rho;
+        (p.rho / gap, sense * a * p.d1 / (gap * gap))
+    }
+}
+
+/// What the gears alone determine, shared by every assembly of them
+/// ([`Kinematics::reassembled`]): the pairs on their grids and the module (computed once
+/// per rule).
+#[derive(Debug)]
+struct SolvedGears {
+    /// The sun–intermediate pair on the carrier grid: node `j` is the sun's own-frame
+    /// parameter `psi_start + σθ_j` at the contact, and the pair's driven angle is
+    /// `Φ_A(θ_j)`, the intermediate's turn relative to the carrier.
+    first: SolvedPair,
+    /// The train with two pairs: the intermediate's layer B driving the planet. Node `k`
+    /// is layer B's own angle `γ0 − π − σu_k` at the planet mesh when the intermediate has
+    /// turned by `u_k = Φ_A` against the carrier, and the driven angle `Φ_B(u_k)` is the
+    /// planet's turn against the carrier. `None`: the paper's train.
+    second: Option<SolvedPair>,
+    /// The module under the last rule asked.
+    module: Mutex<Option<(ModuleRule, ModuleReport)>>,
 }
 
 /// The sampled motion of arm I over one carrier turn, plus what is needed to evaluate it at
@@ -263,7 +306,7 @@ impl SolvedPair {
 ///
 /// let scene = Scene::default(); // the three-arm paper's design
 /// let curve = scene.gear.curve.build().unwrap();
-/// let kin = Kinematics::solve(&curve, &scene.train, &scene.resolution).unwrap();
+/// let kin = Kinematics::solve(&curve, None, &scene.train, &scene.resolution).unwrap();
 /// let tips = kin.tips();
 /// assert_eq!(tips.len(), kin.len());
 /// // One sample per carrier step over a whole turn; the loop closes on itself.
@@ -273,25 +316,30 @@ impl SolvedPair {
 #[derive(Debug, Clone)]
 pub struct Kinematics {
     /// The gears, shared with every reassembly of them.
-    gears: Arc<SolvedPair>,
+    gears: Arc<SolvedGears>,
     spec: TrainSpec,
     sigma: f64,
-    /// The spec's angles in radians: `Φ0`, `γ0`, `β0`, the sun's own-frame parameter at the
-    /// contact for θ = 0 and the sun's turn in the ground frame.
+    /// The spec's angles in radians: `Φ0`, `γ0`, `β0` and the sun's own-frame parameter
+    /// at the contact for θ = 0.
     phi0: f64,
     gamma0: f64,
     beta0: f64,
     psi_start: f64,
-    sun_angle: f64,
+    /// The planet orientation's constant part: `θ3 = base + σ(θ − lag(θ)) + γ0 + π`. The
+    /// sun's turn in the ground frame for the paper's train, `Φ0` for two pairs.
+    planet_base: f64,
     /// Pusher-axis direction less the planet orientation (rad): `β0 ± asin(H1/S)`.
     pusher_turn: f64,
-    /// Mesh delay of the intermediate between its two meshes (rad).
+    /// The paper's train: mesh delay of the intermediate between its two meshes (rad).
     delay: f64,
-    /// Distance at which the carrier holds each gear from the last (mm): the pair's
-    /// centre distance plus the assembly's error ([`Kinematics::reassembled`]).
-    carrier_a: f64,
-    /// Per node: `θ_s`, planet orientation, planet centre, tip.
-    theta_s: Vec<f64>,
+    /// Distances at which the carrier holds the intermediate from the sun and the planet
+    /// from the intermediate (mm): the pairs' centre distances plus the assembly's error
+    /// ([`Kinematics::reassembled`]).
+    carrier_a: [f64; 2],
+    /// Per node: the planet's lag `lag(θ_j)` (the paper's train: `θ_s`, the carrier angle
+    /// at which the intermediate's point now at the planet met the sun; two pairs:
+    /// `Φ_B(Φ_A(θ_j))`), planet orientation, planet centre, tip.
+    planet_lag: Vec<f64>,
     theta3: Vec<f64>,
     o3: Vec<Vec2>,
     tip: Vec<Vec2>,
@@ -300,21 +348,31 @@ pub struct Kinematics {
 }
 
 impl Kinematics {
-    /// Samples the sun on the carrier grid, closes the pair and moves arm I through one turn.
-    pub fn solve(curve: &PitchCurve, spec: &TrainSpec, resolution: &Resolution) -> Result<Self> {
+    /// Samples the sun on the carrier grid, closes the pair and moves arm I through one
+    /// turn. With `second`, the intermediate's layer B: the train with two pairs, whose
+    /// planet is that curve's conjugate (`None`: the paper's train, the planet congruent
+    /// to the sun).
+    pub fn solve(
+        curve: &PitchCurve,
+        second: Option<&PitchCurve>,
+        spec: &TrainSpec,
+        resolution: &Resolution,
+    ) -> Result<Self> {
         resolution.validate()?;
         Self::solve_with(
             curve.clone(),
+            second.cloned(),
             spec,
             resolution,
             &mut SpectralIntegrator::new(resolution.samples_per_turn),
         )
     }
 
-    /// As [`Kinematics::solve`], taking the curve and reusing a planned integrator of
+    /// As [`Kinematics::solve`], taking the curves and reusing a planned integrator of
     /// `samples_per_turn` points.
     pub(crate) fn solve_with(
         curve: PitchCurve,
+        second: Option<PitchCurve>,
         spec: &TrainSpec,
         resolution: &Resolution,
         integrator: &mut SpectralIntegrator,
@@ -336,17 +394,33 @@ impl Kinematics {
             start: spec.psi_start(),
             sense: spec.rotation,
         };
-        let pair = GearPair::solve_on(curve, *resolution, grid, integrator)?;
-        let gears = Arc::new(SolvedPair::new(pair, spec.rotation.sign()));
+        let first = SolvedPair::new(GearPair::solve_on(curve, *resolution, grid, integrator)?);
+        let second = match second {
+            Some(curve) => {
+                let grid = SampleGrid {
+                    start: spec.gamma0_deg.to_radians() - std::f64::consts::PI,
+                    sense: spec.rotation.reversed(),
+                };
+                let pair = GearPair::solve_on(curve, *resolution, grid, integrator)
+                    .map_err(|e| Error::SecondPair(Box::new(e)))?;
+                Some(SolvedPair::new(pair))
+            }
+            None => None,
+        };
+        let gears = Arc::new(SolvedGears {
+            first,
+            second,
+            module: Mutex::new(None),
+        });
         Ok(Self::assemble(gears, spec, 0.0, None))
     }
 
     /// The same gears assembled anew: another `spec` (its `Φ0`, `β0`, `γ0`, `S`, `H1`) and
-    /// the carrier holding the gears `centre_offset_mm` further apart than their centre
+    /// the carrier holding each pair `centre_offset_mm` further apart than its centre
     /// distance (a bore error: the gears then mesh with backlash, at the same ratio).
-    /// Reuses the closed pair: no closure, no re-sampling. Refused where the pair's grid
-    /// would change (another rotation sense, or `Φ0` under [`SunFrame::Ground`]): solve
-    /// those anew.
+    /// Reuses the closed pairs: no closure, no re-sampling. Refused where a pair's grid
+    /// would change (another rotation sense, `Φ0` under [`SunFrame::Ground`], or `γ0` in
+    /// the train with two pairs): solve those anew.
     pub fn reassembled(&self, spec: &TrainSpec, centre_offset_mm: f64) -> Result<Self> {
         spec.validate()?;
         finite("centre distance offset (mm)", centre_offset_mm)?;
@@ -361,15 +435,26 @@ impl Kinematics {
                 ),
             });
         }
-        let a = self.centre_distance() + centre_offset_mm;
-        if a <= 0.0 {
+        if self.gears.second.is_some() && spec.gamma0_deg != self.spec.gamma0_deg {
+            return Err(Error::OutOfRange {
+                name: "train.gamma0_deg".into(),
+                value: spec.gamma0_deg,
+                expected: format!(
+                    "the solved train's γ0 = {}° (with two pairs, γ0 places the second \
+                     pair's grid): solve the train anew",
+                    self.spec.gamma0_deg
+                ),
+            });
+        }
+        let least = self.centre_distances()[0].min(self.centre_distances()[1]);
+        if least + centre_offset_mm <= 0.0 {
             return Err(Error::OutOfRange {
                 name: "centre distance offset (mm)".into(),
                 value: centre_offset_mm,
-                expected: format!("above -{} mm", self.centre_distance()),
+                expected: format!("above -{least} mm"),
             });
         }
-        // The same carrier angle γ0 keeps θ_s: the assembly then only turns and moves.
+        // The same carrier angle γ0 keeps the lags: the assembly then only turns and moves.
         let same_carrier = spec.gamma0_deg == self.spec.gamma0_deg;
         Ok(Self::assemble(
             self.gears.clone(),
@@ -379,23 +464,32 @@ impl Kinematics {
         ))
     }
 
-    /// Places the arm for `spec` on a solved pair (`spec` valid, the pair on its grid). With
-    /// `same_carrier`, a train on the same pair with the same `γ0`, its `θ_s` are reused
-    /// and its arm directions turned (no inversion, no trigonometry per node): `Φ0` turns
-    /// the planets, `β0` the arm on them.
+    /// Places the arm for `spec` on solved gears (`spec` valid, the pairs on their grids).
+    /// With `same_carrier`, a train on the same gears with the same `γ0`, its lags are
+    /// reused and its arm directions turned (no inversion, no trigonometry per node): `Φ0`
+    /// turns the planets, `β0` the arm on them.
     fn assemble(
-        gears: Arc<SolvedPair>,
+        gears: Arc<SolvedGears>,
         spec: &TrainSpec,
         centre_offset_mm: f64,
         same_carrier: Option<&Kinematics>,
     ) -> Self {
         let sigma = spec.rotation.sign();
-        let n = gears.pair.samples().len();
+        let n = gears.first.pair.samples().len();
         let h = TAU / n as f64;
-        let a = gears.pair.centre_distance();
+        let a = [
+            gears.first.pair.centre_distance(),
+            (gears.second.as_ref()).map_or(gears.first.pair.centre_distance(), |p| {
+                p.pair.centre_distance()
+            }),
+        ];
         let gamma0 = spec.gamma0_deg.to_radians();
         let beta0 = spec.beta0_deg.to_radians();
         let delay = (sigma * (gamma0 - std::f64::consts::PI)).rem_euclid(TAU);
+        let planet_base = match gears.second {
+            None => spec.sun_angle(),
+            Some(_) => spec.phi0_deg.to_radians(),
+        };
         let mut kin = Self {
             gears,
             spec: *spec,
@@ -404,33 +498,33 @@ impl Kinematics {
             gamma0,
             beta0,
             psi_start: spec.psi_start(),
-            sun_angle: spec.sun_angle(),
+            planet_base,
             pusher_turn: beta0
                 + match spec.pusher_side {
                     PusherSide::Left => 1.0,
                     PusherSide::Right => -1.0,
                 } * (spec.pusher_offset_mm / spec.arm_length_mm).asin(),
             delay,
-            carrier_a: a + centre_offset_mm,
-            theta_s: Vec::new(),
+            carrier_a: [a[0] + centre_offset_mm, a[1] + centre_offset_mm],
+            planet_lag: Vec::new(),
             theta3: vec![0.0; n],
             o3: vec![Vec2::ZERO; n],
             tip: vec![Vec2::ZERO; n],
             arm_dir: vec![Vec2::ZERO; n],
         };
-        // The arms' turn relative to `same_carrier`'s: θ3 moves with the sun's angle, the
-        // arm with β0 on top.
+        // The arms' turn relative to `same_carrier`'s: θ3 moves with the planets' base
+        // angle, the arm with β0 on top.
         let turn = same_carrier.map(|src| {
-            let planets = kin.sun_angle - src.sun_angle;
+            let planets = kin.planet_base - src.planet_base;
             (planets, unit(planets + beta0 - src.beta0))
         });
-        kin.theta_s = match same_carrier {
-            Some(src) => src.theta_s.clone(),
-            None => {
+        kin.planet_lag = match (same_carrier, &kin.gears.second) {
+            (Some(src), _) => src.planet_lag.clone(),
+            (None, None) => {
                 // θ_s at every node: sorted targets, so each cell search starts at the last.
-                let inverse = kin.phi_inverse();
+                let inverse = kin.gears.first.phi_inverse();
                 let mut hint = 0;
-                (kin.gears.pair.phi2_nodes().iter())
+                (kin.gears.first.pair.phi2_nodes().iter())
                     .map(|&phi| {
                         let (ts, cell) = inverse.eval(phi - delay, hint);
                         hint = cell;
@@ -438,15 +532,21 @@ impl Kinematics {
                     })
                     .collect()
             }
+            (None, Some(second)) => {
+                let phi_b = second.phi();
+                (kin.gears.first.pair.phi2_nodes().iter())
+                    .map(|&phi_a| phi_b.eval(phi_a).0)
+                    .collect()
+            }
         };
         // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
         let step = unit(sigma * h);
         let (mut e1, mut e2) = (unit(kin.phi0), unit(kin.phi0 + gamma0));
-        let carrier_a = kin.carrier_a;
+        let [a1, a2] = kin.carrier_a;
         for j in 0..n {
             let theta = h * j as f64;
-            let ts = kin.theta_s[j];
-            let o3 = (e1 + e2) * carrier_a;
+            let lag = kin.planet_lag[j];
+            let o3 = e1 * a1 + e2 * a2;
             (e1, e2) = (e1.rotated(step), e2.rotated(step));
             let (theta3, arm_dir) = match (same_carrier, turn) {
                 (Some(src), Some((planets, arm))) => {
@@ -454,7 +554,7 @@ impl Kinematics {
                 }
                 _ => {
                     let theta3 =
-                        kin.sun_angle + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
+                        kin.planet_base + sigma * (theta - lag) + gamma0 + std::f64::consts::PI;
                     (theta3, unit(theta3 + beta0))
                 }
             };
@@ -466,69 +566,95 @@ impl Kinematics {
         kin
     }
 
-    /// `Φ(θ)`, the intermediate's turn relative to the carrier, as an invertible function.
-    fn phi_fn(&self) -> MonotoneDrift<'_> {
-        MonotoneDrift {
-            value: self.gears.pair.phi2_nodes(),
-            d1: self.gears.pair.ratio_nodes(),
-            d2: &self.gears.dg,
-            period_increment: self.gears.phi_period,
-        }
-    }
-
-    /// `Φ⁻¹`, interpolated from the same nodes.
-    fn phi_inverse(&self) -> DriftInverse<'_> {
-        DriftInverse {
-            forward: self.phi_fn(),
-            d1: &self.gears.inv_d1,
-            d2: &self.gears.inv_d2,
-        }
-    }
-
-    /// The sun–intermediate gear pair on the carrier grid (the planet–intermediate mesh is
-    /// the same pair: the planet is congruent to the sun).
+    /// The sun–intermediate gear pair on the carrier grid. In the paper's train the
+    /// planet–intermediate mesh is the same pair (the planet is congruent to the sun).
     pub fn pair(&self) -> &GearPair {
-        &self.gears.pair
+        &self.gears.first.pair
     }
 
-    /// The pair's module under `rule` (spec §1.4), computed once per rule for the gears
-    /// and every reassembly of them.
+    /// The train with two pairs: the intermediate's layer B (the driver) and the planet
+    /// (its conjugate), on layer B's grid. `None` for the paper's train.
+    pub fn second_pair(&self) -> Option<&GearPair> {
+        self.gears.second.as_ref().map(|p| &p.pair)
+    }
+
+    /// The train's module under `rule` (spec §1.4): the report of the pair that limits
+    /// it (the first on a tie), computed once per rule for the gears and every
+    /// reassembly of them.
     pub fn module(&self, rule: &ModuleRule) -> ModuleReport {
         let mut cache = self.gears.module.lock().unwrap_or_else(|e| e.into_inner());
         match *cache {
             Some((r, report)) if r == *rule => report,
             _ => {
-                let report = self.gears.pair.module(rule);
+                let first = self.gears.first.pair.module(rule);
+                let report = match self.second_pair().map(|p| p.module(rule)) {
+                    Some(second) if second.module_max_mm < first.module_max_mm => second,
+                    _ => first,
+                };
                 *cache = Some((*rule, report));
                 report
             }
         }
     }
 
-    /// Centre distance `a` shared by both meshes (mm).
+    /// Centre distance of the sun–intermediate pair (mm); in the paper's train both
+    /// meshes share it.
     pub fn centre_distance(&self) -> f64 {
-        self.gears.pair.centre_distance()
+        self.gears.first.pair.centre_distance()
+    }
+
+    /// Centre distances of the sun–intermediate and intermediate–planet pairs (mm).
+    pub fn centre_distances(&self) -> [f64; 2] {
+        let second = self
+            .second_pair()
+            .map_or(self.centre_distance(), |p| p.centre_distance());
+        [self.centre_distance(), second]
     }
 
     /// Least and largest radius of the sun's pitch curve (mm).
     pub fn radius_range(&self) -> (f64, f64) {
-        self.gears.pair.radius_range()
+        self.gears.first.pair.radius_range()
     }
 
-    /// Distance at which the carrier holds each gear centre from the last (mm): the
+    /// Largest radius of the intermediate's pitch curves about its axis (mm).
+    pub fn intermediate_reach(&self) -> f64 {
+        let layer_a = self.centre_distance() - self.radius_range().0;
+        self.second_pair()
+            .map_or(layer_a, |p| layer_a.max(p.radius_range().1))
+    }
+
+    /// Largest radius of the planet's pitch curve about its axis (mm).
+    pub fn planet_reach(&self) -> f64 {
+        self.second_pair().map_or(self.radius_range().1, |p| {
+            p.centre_distance() - p.radius_range().0
+        })
+    }
+
+    /// The planet's pitch curve in its own frame (mm), at the nodes of its pair: the sun's
+    /// curve in the paper's train, the second pair's driven curve with two.
+    pub fn planet_points(&self) -> Vec<Vec2> {
+        match self.second_pair() {
+            Some(p) => p.driven_points(),
+            None => self.pair().driver_points(),
+        }
+    }
+
+    /// Distance at which the carrier holds the intermediate from the sun (mm): the
     /// centre distance, plus the bore error of a [`Kinematics::reassembled`] train.
     pub fn carrier_distance(&self) -> f64 {
-        self.carrier_a
+        self.carrier_a[0]
     }
 
-    /// Distance from the carrier axis to a planet centre (mm): `2a·|cos(γ0/2)|`.
+    /// Distance from the carrier axis to a planet centre (mm): `|a_A + a_B·e^{iγ0}|`, in
+    /// the paper's train `2a·|cos(γ0/2)|`.
     pub fn planet_radius(&self) -> f64 {
-        2.0 * self.carrier_a * (self.gamma0 / 2.0).cos().abs()
+        let [a1, a2] = self.carrier_a;
+        (Vec2::new(a1, 0.0) + unit(self.gamma0) * a2).hypot()
     }
 
     /// The sun's pitch curve.
     pub fn curve(&self) -> &PitchCurve {
-        self.gears.pair.curve()
+        self.gears.first.pair.curve()
     }
 
     /// The train parameters.
@@ -538,7 +664,7 @@ impl Kinematics {
 
     /// The resolution that produced this motion.
     pub fn resolution(&self) -> Resolution {
-        self.gears.pair.resolution()
+        self.gears.first.pair.resolution()
     }
 
     /// Number of carrier-angle samples per turn.
@@ -607,41 +733,45 @@ impl Kinematics {
         ((u * (n as f64 / TAU)) as usize).min(n - 1)
     }
 
-    /// `g̃(u) = g(psi_start + σu)` and `g̃'(u)` at any carrier angle, from the curve itself.
-    fn ratio_at(&self, u: f64) -> (f64, f64) {
-        let a = self.centre_distance();
-        let p = self.curve().eval(self.psi_start + self.sigma * u);
-        let gap = a - p.rho;
-        (p.rho / gap, self.sigma * a * p.d1 / (gap * gap))
-    }
-
     /// The full state of arm I at any carrier angle `theta` (rad): positions, the tip's
     /// first two derivatives, orientations and the pusher-axis angle.
     pub fn state_at(&self, theta: f64) -> ArmState {
         let sigma = self.sigma;
-        let (big_phi, _) = self.phi_fn().eval(theta);
-        // Start the cell search where node ⌊θ/h⌋'s own θ_s lies: O(1) instead of O(N).
-        let hint = self.node_below(self.theta_s[self.node_below(theta)]);
-        let (ts, _) = self.phi_inverse().eval(big_phi - self.delay, hint);
+        let first = &self.gears.first;
+        let (big_phi, _) = first.phi().eval(theta);
+        let (g_t, dg_t) = first.ratio_at(theta);
+        // The planet's lag and its first two derivatives in θ.
+        let (lag, lag1, lag2) = match &self.gears.second {
+            None => {
+                // Start the cell search where node ⌊θ/h⌋'s own θ_s lies: O(1), not O(N).
+                let hint = self.node_below(self.planet_lag[self.node_below(theta)]);
+                let (ts, _) = first.phi_inverse().eval(big_phi - self.delay, hint);
+                let (g_s, dg_s) = first.ratio_at(ts);
+                let ts1 = g_t / g_s;
+                (ts, ts1, (dg_t * g_s - g_t * dg_s * ts1) / (g_s * g_s))
+            }
+            Some(second) => {
+                // lag = Φ_B(Φ_A(θ)): lag' = g_B·g_A, lag'' = g_B'·g_A² + g_B·g_A'.
+                let (lag, _) = second.phi().eval(big_phi);
+                let (g_b, dg_b) = second.ratio_at(big_phi);
+                (lag, g_b * g_t, dg_b * g_t * g_t + g_b * dg_t)
+            }
+        };
         let (gamma0, beta0) = (self.gamma0, self.beta0);
         let s = self.spec.arm_length_mm;
-        let a = self.carrier_a;
-        let theta3 = self.sun_angle + sigma * (theta - ts) + gamma0 + std::f64::consts::PI;
-        let (g_t, dg_t) = self.ratio_at(theta);
-        let (g_s, dg_s) = self.ratio_at(ts);
-        let ts1 = g_t / g_s;
-        let ts2 = (dg_t * g_s - g_t * dg_s * ts1) / (g_s * g_s);
-        let th1 = sigma * (1.0 - ts1);
-        let th2 = -sigma * ts2;
+        let [a1, a2] = self.carrier_a;
+        let theta3 = self.planet_base + sigma * (theta - lag) + gamma0 + std::f64::consts::PI;
+        let th1 = sigma * (1.0 - lag1);
+        let th2 = -sigma * lag2;
         let phi_h = self.phi0 + sigma * theta;
         let (e1, e2) = (unit(phi_h), unit(phi_h + gamma0));
-        let o2 = e1 * a;
-        let o3 = (e1 + e2) * a;
+        let o2 = e1 * a1;
+        let o3 = o2 + e2 * a2;
         let u = unit(theta3 + beta0);
         let tip = o3 + u * s;
-        // O3' = σ a (e1⊥ + e2⊥), O3'' = −a (e1 + e2); u' = θ3' u⊥.
-        let o3_d1 = (e1 + e2).turn_90() * (sigma * a);
-        let o3_d2 = (e1 + e2) * -a;
+        // O3' = σ O3⊥, O3'' = −O3; u' = θ3' u⊥.
+        let o3_d1 = o3.turn_90() * sigma;
+        let o3_d2 = -o3;
         let tip_d1 = o3_d1 + u.turn_90() * (s * th1);
         let tip_d2 = o3_d2 + u.turn_90() * (s * th2) - u * (s * th1 * th1);
         // Intermediate: the material point of sun parameter ψ sits at its own angle
@@ -653,7 +783,6 @@ impl Kinematics {
             o3,
             theta3,
             theta2,
-            psi_planet_mesh: self.psi_start + sigma * ts,
             tip,
             tip_d1,
             tip_d2,
@@ -665,9 +794,9 @@ impl Kinematics {
     /// (rad), as [`Kinematics::state_at`] gives them at the node, from the node's values.
     pub fn intermediate_at(&self, j: usize) -> (Vec2, f64) {
         let phi_h = self.phi0 + self.sigma * self.theta(j);
-        let big_phi = self.gears.pair.phi2_nodes()[j];
+        let big_phi = self.gears.first.pair.phi2_nodes()[j];
         (
-            unit(phi_h) * self.carrier_a,
+            unit(phi_h) * self.carrier_a[0],
             phi_h + std::f64::consts::PI + self.sigma * big_phi,
         )
     }

@@ -1,12 +1,13 @@
 //! Scenes: what is being designed and asked, as plain serialisable data (no I/O here).
 
 use crate::agronomy::Agronomy;
-use crate::curve::CurveSpec;
+use crate::curve::{CurveSpec, PitchCurve};
+use crate::error::{Error, Result};
 use crate::gear::ModuleRule;
 use crate::goal::Goal;
 use crate::moving_box::BoxSpec;
 use crate::objective_kind::{Bounds, ObjectiveKind};
-use crate::planetary::TrainSpec;
+use crate::planetary::{Kinematics, TrainSpec};
 use crate::resolution::Resolution;
 use crate::target::Target;
 use crate::teeth::ToothSpec;
@@ -22,6 +23,12 @@ pub struct GearSpec {
     /// The driving (sun) gear's pitch curve. Default: the three-arm paper's 12-point spline.
     #[serde(default = "CurveSpec::paper")]
     pub curve: CurveSpec,
+    /// The train with two pairs: the pitch curve of the intermediate's second layer (its
+    /// layer B, on the same shaft as the conjugate of `curve`), which drives the planet,
+    /// its conjugate. Its own angles are the intermediate's. Unset (left out of a written
+    /// scene): the paper's train, the planet congruent to the sun.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub second_curve: Option<CurveSpec>,
     /// Module rules (spec §1.4).
     #[serde(default)]
     pub module: ModuleRule,
@@ -32,10 +39,22 @@ pub struct GearSpec {
     pub teeth: ToothSpec,
 }
 
+impl GearSpec {
+    /// The sun's pitch curve and, for the train with two pairs, the intermediate's layer B
+    /// (its errors named as the second pair's).
+    pub fn curves(&self) -> Result<(PitchCurve, Option<PitchCurve>)> {
+        let second = (self.second_curve.as_ref())
+            .map(|c| c.build().map_err(|e| Error::SecondPair(Box::new(e))))
+            .transpose()?;
+        Ok((self.curve.build()?, second))
+    }
+}
+
 impl Default for GearSpec {
     fn default() -> Self {
         Self {
             curve: CurveSpec::paper(),
+            second_curve: None,
             module: ModuleRule::default(),
             teeth: ToothSpec::default(),
         }
@@ -214,5 +233,14 @@ impl Default for Scene {
             tolerances: Tolerances::default(),
             target: None,
         }
+    }
+}
+
+impl Scene {
+    /// The scene's train solved at `resolution`: its pitch curves built, its pairs closed
+    /// and arm I moved through one turn (a three-arm or transplanter scene's motion).
+    pub fn kinematics(&self, resolution: &Resolution) -> Result<Kinematics> {
+        let (curve, second) = self.gear.curves()?;
+        Kinematics::solve(&curve, second.as_ref(), &self.train, resolution)
     }
 }

@@ -156,6 +156,7 @@ fn core_kind(e: &noncirc::core::Error, message: String) -> Error {
     use noncirc::core::Error as E;
     // No catch-all: a new variant must be given its kind here.
     Error(match e {
+        E::SecondPair(inner) => return core_kind(inner, message),
         E::UnknownName { .. } => UnknownNameError::new_err(message),
         E::NonFinite { .. }
         | E::OutOfRange { .. }

@@ -94,6 +94,24 @@ pub fn paper_control_points() -> (Vec<f64>, Vec<f64>) {
 }
 
 impl CurveSpec {
+    /// The `table` through points of a closed curve in its own frame (mm, star-shaped about
+    /// the origin, in either sense): their polar angles wrapped into [0°, 360°) and sorted.
+    pub fn table_through(points: &[Vec2]) -> Self {
+        let mut polar: Vec<(f64, f64)> = (points.iter())
+            .map(|p| {
+                // `rem_euclid` rounds a tiny negative angle up to 360 itself.
+                let angle = p.y.atan2(p.x).to_degrees().rem_euclid(360.0);
+                (if angle < 360.0 { angle } else { 0.0 }, p.hypot())
+            })
+            .collect();
+        polar.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let (angles_deg, radii_mm) = polar.into_iter().unzip();
+        CurveSpec::Table {
+            radii_mm,
+            angles_deg,
+        }
+    }
+
     /// The paper's 12 control points fed to the periodic spline.
     pub fn paper() -> Self {
         let (radii_mm, angles_deg) = paper_control_points();

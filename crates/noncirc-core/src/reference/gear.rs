@@ -4,6 +4,21 @@ use super::{Field, Range};
 
 pub(super) const FIELDS: &[Field] = &[
     Field {
+        key: "gear.second_curve",
+        symbol: "",
+        unit: "",
+        range: Range::Rule("unset, or a pitch curve of any kind, as `gear.curve` takes it"),
+        meaning: "The train with two pairs: the pitch curve of the intermediate's second \
+                  layer (layer B, on the shaft of the sun's conjugate and in its own frame), \
+                  which drives the planet, its conjugate. Unset: the paper's train, whose \
+                  planet is congruent to the sun. `noncirc inverse` writes it as a `table`.",
+        refused: &[
+            "gear.second_curve={kind=\"ellipse\",semi_major_mm=30.0,eccentricity=1.5}",
+            "gear.second_curve={kind=\"circle\"}",
+        ],
+        number: None,
+    },
+    Field {
         key: "gear.curve.kind",
         symbol: "",
         unit: "",
