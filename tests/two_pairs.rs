@@ -40,7 +40,10 @@ fn the_paper_train_as_two_pairs_meets_the_same_objectives() {
         .second
         .expect("a two-pair train reports its second pair");
     let (a1, a2) = (gear.centre_distance_mm, second.centre_distance_mm);
-    assert!((a1 - a2).abs() < 1e-6 * a1, "centre distances {a1} and {a2} mm");
+    assert!(
+        (a1 - a2).abs() < 1e-6 * a1,
+        "centre distances {a1} and {a2} mm"
+    );
     for (o1, o2) in e1.objectives.iter().zip(&e2.objectives) {
         assert_eq!(o1.kind, o2.kind);
         let tol = 1e-3 * (1.0 + o1.value.abs());

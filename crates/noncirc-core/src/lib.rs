@@ -50,6 +50,7 @@ mod anatomy;
 mod evaluation;
 mod events;
 mod fit;
+mod inverse;
 mod measure_value;
 mod objectives;
 
@@ -100,6 +101,7 @@ pub use accuracy::{observed_order, output_errors, ErrorRow};
 pub use error::{Error, Result};
 pub use evaluation::{Evaluation, Evaluator, GearSummary, PairGeometry, StageCounts};
 pub use fit::{target_of, FitReport, PoseFit};
+pub use inverse::{invert, Branch, Condition, InverseOutcome, InverseSpec, Place};
 
 // Tolerances, robustness and global sensitivity.
 pub use robustness::{
