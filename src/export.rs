@@ -25,18 +25,28 @@ pub const PITCH_CHORD_TOLERANCE_MM: f64 = 1e-3;
 /// ground frame); driven points at its own angle `χ = −(φ2(ψ) − φ2(ψ₀))`, radius `a − ρ`,
 /// the angle 0 meeting the first sample.
 pub fn outlines(pair: &GearPair) -> Result<Vec<Outline>> {
+    outlines_named(pair, ["driver", "driven"])
+}
+
+/// As [`outlines`], with the two outlines named `names`.
+fn outlines_named(pair: &GearPair, names: [&'static str; 2]) -> Result<Vec<Outline>> {
     let track = PairTrack::new(pair.curve(), pair.centre_distance(), 256)?;
-    let [driver, driven] = pitch_points(&track, pair.psi(0), PITCH_CHORD_TOLERANCE_MM);
-    Ok(vec![
-        Outline {
-            name: "driver",
-            points: driver,
-        },
-        Outline {
-            name: "driven",
-            points: driven,
-        },
-    ])
+    let points = pitch_points(&track, pair.psi(0), PITCH_CHORD_TOLERANCE_MM);
+    Ok((names.into_iter().zip(points))
+        .map(|(name, points)| Outline { name, points })
+        .collect())
+}
+
+/// The outlines of a train's pairs: `driver` (the sun) and `driven` (the intermediate),
+/// and with two pairs `second_driver` (the intermediate's layer B, in the intermediate's
+/// frame) and `second_driven` (the planet), the planet's angle 0 meeting layer B's first
+/// sample, `γ0 − 180°`.
+pub fn train_outlines(pair: &GearPair, second: Option<&GearPair>) -> Result<Vec<Outline>> {
+    let mut out = outlines(pair)?;
+    if let Some(second) = second {
+        out.extend(outlines_named(second, ["second_driver", "second_driven"])?);
+    }
+    Ok(out)
 }
 
 /// Both pitch curves of `track` in their own frames from the driver's `psi0` (rad) on, the
@@ -123,10 +133,15 @@ fn csv(points: &[Vec2]) -> String {
     s
 }
 
-/// Writes `<name>.csv` per outline, `pitch_curves.svg` and `pitch_curves.dxf` into `dir`.
-pub fn export_gears(pair: &GearPair, dir: &Path) -> Result<Vec<PathBuf>> {
+/// Writes `<name>.csv` per outline of the pair (and of the `second` pair of a train with
+/// two), `pitch_curves.svg` and `pitch_curves.dxf` into `dir`.
+pub fn export_gears(
+    pair: &GearPair,
+    second: Option<&GearPair>,
+    dir: &Path,
+) -> Result<Vec<PathBuf>> {
     create_dir(dir)?;
-    let outlines = outlines(pair)?;
+    let outlines = train_outlines(pair, second)?;
     let mut files = Vec::new();
     for o in &outlines {
         let path = dir.join(format!("{}.csv", o.name));

@@ -13,6 +13,7 @@ pub mod export;
 pub mod figures;
 pub mod files;
 pub mod fit;
+pub mod inverse;
 #[cfg(feature = "figures")]
 pub mod plots;
 pub mod report;

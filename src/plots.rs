@@ -25,7 +25,8 @@ pub fn evaluation_outputs(
         files.push(export_trajectory(kin, dir)?);
     }
     if let Some(pair) = eval.pair() {
-        files.extend(export_gears(pair, dir)?);
+        let second = eval.kinematics.as_ref().and_then(|k| k.second_pair());
+        files.extend(export_gears(pair, second, dir)?);
     }
     Ok(files)
 }
@@ -103,52 +104,86 @@ pub fn fit_figures(
     let mut files = progress_figures(&outcome.search, dir, options)?;
     if let Some((scene, eval)) = &outcome.best {
         files.extend(evaluation_outputs(scene, eval, &dir.join("best"), options)?);
-        if let (Some(target), Some(fit), Some(kin)) = (&scene.target, &eval.fit, &eval.kinematics) {
-            let prepared = target.prepare()?;
-            files.extend(save(
-                &FitFigure {
-                    kin,
-                    target,
-                    prepared: &prepared,
-                    fit,
-                },
-                &dir.join("fit"),
-                options,
-            )?);
-            // Each target sample's distance to the path drawn densely (every 0.05° of
-            // carrier angle: chords far shorter than any tolerance shown).
-            let path: Vec<noncirc_core::Vec2> = (0..7200)
-                .map(|i| kin.state_at(std::f64::consts::TAU * i as f64 / 7200.0).tip)
-                .collect();
-            let samples = prepared.samples();
-            let step = prepared.length_mm() / samples.len() as f64;
-            let distances: Vec<(f64, f64)> = (samples.iter().enumerate())
-                .map(|(i, &q)| {
-                    let d = (0..path.len())
-                        .map(|k| {
-                            noncirc_core::segment_distance(q, path[k], path[(k + 1) % path.len()])
-                        })
-                        .fold(f64::INFINITY, f64::min);
-                    (i as f64 * step, d)
-                })
-                .collect();
-            files.extend(save(
-                &LinesFigure {
-                    title: format!(
-                        "Distance of the fitted tip path from the target (Hausdorff {:.3} mm)",
-                        fit.path_hausdorff_mm
-                    ),
-                    x_desc: "arc length along the target path from its first point (mm)".into(),
-                    y_desc: "distance to the tip path (mm)".into(),
-                    series: vec![("target samples".into(), distances)],
-                    points_only: false,
-                    markers: true,
-                    band: Some((None, Some(target.tolerance_mm))),
-                },
-                &dir.join("fit_distance"),
-                options,
-            )?);
-        }
+        files.extend(target_figures(scene, eval, "fitted", dir, options)?);
+    }
+    Ok(files)
+}
+
+/// An inversion's figures: the design's figures (`design/`, when one was built) and its
+/// path against the target (`fit.*`, `fit_distance.*`).
+pub fn inverse_figures(
+    outcome: &noncirc_core::InverseOutcome,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
+    create_dir(dir)?;
+    let mut files = Vec::new();
+    if let (Some(scene), Some(eval)) = (&outcome.scene, &outcome.evaluation) {
+        files.extend(evaluation_outputs(
+            scene,
+            eval,
+            &dir.join("design"),
+            options,
+        )?);
+        files.extend(target_figures(scene, eval, "inverted", dir, options)?);
+    }
+    Ok(files)
+}
+
+/// The design's path against its scene's target with the pose errors (`fit.*`), and each
+/// target sample's distance to the path (`fit_distance.*`); `how` names the design
+/// ("fitted", "inverted").
+fn target_figures(
+    scene: &Scene,
+    eval: &noncirc_core::Evaluation,
+    how: &str,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    if let (Some(target), Some(fit), Some(kin)) = (&scene.target, &eval.fit, &eval.kinematics) {
+        let prepared = target.prepare()?;
+        files.extend(save(
+            &FitFigure {
+                kin,
+                target,
+                prepared: &prepared,
+                fit,
+            },
+            &dir.join("fit"),
+            options,
+        )?);
+        // Each target sample's distance to the path drawn densely (every 0.05° of
+        // carrier angle: chords far shorter than any tolerance shown).
+        let path: Vec<noncirc_core::Vec2> = (0..7200)
+            .map(|i| kin.state_at(std::f64::consts::TAU * i as f64 / 7200.0).tip)
+            .collect();
+        let samples = prepared.samples();
+        let step = prepared.length_mm() / samples.len() as f64;
+        let distances: Vec<(f64, f64)> = (samples.iter().enumerate())
+            .map(|(i, &q)| {
+                let d = (0..path.len())
+                    .map(|k| noncirc_core::segment_distance(q, path[k], path[(k + 1) % path.len()]))
+                    .fold(f64::INFINITY, f64::min);
+                (i as f64 * step, d)
+            })
+            .collect();
+        files.extend(save(
+            &LinesFigure {
+                title: format!(
+                    "Distance of the {how} tip path from the target (Hausdorff {:.3} mm)",
+                    fit.path_hausdorff_mm
+                ),
+                x_desc: "arc length along the target path from its first point (mm)".into(),
+                y_desc: "distance to the tip path (mm)".into(),
+                series: vec![("target samples".into(), distances)],
+                points_only: false,
+                markers: true,
+                band: Some((None, Some(target.tolerance_mm))),
+            },
+            &dir.join("fit_distance"),
+            options,
+        )?);
     }
     Ok(files)
 }

@@ -260,6 +260,20 @@ struct Prepared {
 impl Prepared {
     fn from_scene(scene: &Scene) -> Result<Self> {
         scene.validate()?;
+        if scene.gear.second_curve.is_some() {
+            // The evaluation's teeth stage (module rule `teeth`) cuts and checks both pairs;
+            // the assembly, its files and the studio's teeth take one pair so far.
+            return Err(noncirc_core::Error::BadList {
+                list: "gear.second_curve",
+                problem: "the teeth command assembles and exports the paper's train (one \
+                          pair) so far; for a train with two pairs, the module objective \
+                          under gear.module.rule = \"teeth\" cuts and checks both pairs' \
+                          teeth (noncirc evaluate), and noncirc evaluate --plot DIR exports \
+                          both pairs' pitch curves"
+                    .into(),
+            }
+            .into());
+        }
         let curve = scene.gear.curve.build()?;
         let rule = &scene.gear.module;
         let train = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);

@@ -80,7 +80,7 @@ fn dxf_reads_back_the_pitch_curves() {
     let dir = temp("dxf");
     let scene = load_scene(None).unwrap();
     let pair = GearPair::solve(scene.gear.curve.build().unwrap(), scene.resolution).unwrap();
-    export_gears(&pair, &dir).unwrap();
+    export_gears(&pair, None, &dir).unwrap();
     let drawing = dxf::Drawing::load_file(dir.join("pitch_curves.dxf").to_str().unwrap()).unwrap();
     assert_eq!(drawing.header.version, dxf::enums::AcadVersion::R2000);
     assert_eq!(

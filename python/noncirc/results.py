@@ -116,6 +116,10 @@ class Evaluation:
     """(p, 2) driver pitch curve, mm (to a 1 µm chord)."""
     driven_curve: Optional[np.ndarray]
     """(p, 2) driven pitch curve, mm."""
+    second_driver_curve: Optional[np.ndarray]
+    """(p, 2) the train with two pairs: the intermediate's layer B, mm (None otherwise)."""
+    second_driven_curve: Optional[np.ndarray]
+    """(p, 2) the train with two pairs: the planet's pitch curve, mm (None otherwise)."""
     report: dict[str, Any]
     """Exactly `noncirc evaluate --format json`, as nested dicts."""
 
@@ -123,7 +127,17 @@ class Evaluation:
     def _from_raw(raw: dict[str, Any]) -> Evaluation:
         objectives = {name: Objective(name=name, **o) for name, o in raw["objectives"].items()}
         measures = {name: Quantity(**m) for name, m in raw["measures"].items()}
-        arrays = ["carrier_deg", "trajectory", "planet_centres", "ratio", "attitude_deg", "driver_curve", "driven_curve"]
+        arrays = [
+            "carrier_deg",
+            "trajectory",
+            "planet_centres",
+            "ratio",
+            "attitude_deg",
+            "driver_curve",
+            "driven_curve",
+            "second_driver_curve",
+            "second_driven_curve",
+        ]
         return Evaluation(
             samples_per_turn=raw["samples_per_turn"],
             feasible=raw["feasible"],

@@ -159,7 +159,12 @@ where
         }
         None => {
             let sun = kin.pair().driver_points();
-            let inter = kin.pair().driven_points();
+            // The intermediate's pitch curves: its conjugate of the sun and, with two
+            // pairs, its layer B (in the same frame), which drives the planet.
+            let layers: Vec<Vec<Vec2>> = std::iter::once(kin.pair().driven_points())
+                .chain(kin.second_pair().map(|p| p.driver_points()))
+                .collect();
+            let planet = kin.planet_points();
             shapes.push((
                 place(&sun, Vec2::ZERO, kin.spec().sun_angle()),
                 SUN_COLOUR,
@@ -167,8 +172,10 @@ where
             ));
             for (k, &colour) in ARM_COLOURS.iter().enumerate().take(kin.arms()) {
                 let st = kin.state_at(theta - kin.arm_lag(k));
-                shapes.push((place(&inter, st.o2, st.theta2), colour, Gear::Intermediate));
-                shapes.push((place(&sun, st.o3, st.theta3), colour, Gear::Planet));
+                for layer in &layers {
+                    shapes.push((place(layer, st.o2, st.theta2), colour, Gear::Intermediate));
+                }
+                shapes.push((place(&planet, st.o3, st.theta3), colour, Gear::Planet));
             }
         }
     }

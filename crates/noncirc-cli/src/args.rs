@@ -148,6 +148,41 @@ pub(crate) struct FitArgs {
 }
 
 #[derive(clap::Args)]
+pub(crate) struct InverseArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneArgs,
+    /// The target: a CSV of `x_mm,y_mm` points or a TOML file with a `[target]` table
+    /// (docs/inverse.md); default: the scene's own `[target]`.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) target: Option<std::path::PathBuf>,
+    /// How the overall ratio is shared between the pairs: equal, first-circular,
+    /// second-circular, or the first pair's share λ from 0 to 1.
+    #[arg(long, default_value = "equal")]
+    pub(crate) split: String,
+    /// a_B/a_A, the intermediate–planet centre distance over the sun–intermediate one;
+    /// default: the scene's own (1 for the paper's train).
+    #[arg(long)]
+    pub(crate) centre_ratio: Option<f64>,
+    /// The elbow's branch from the path's farthest point to its nearest; default: both
+    /// tried, the better kept.
+    #[arg(long, value_enum)]
+    pub(crate) branch: Option<BranchArg>,
+    /// Samples per turn of the curves written (and of the design's resolution).
+    #[arg(long, default_value_t = 720)]
+    pub(crate) samples: usize,
+    /// Write inverse.json and, when a design is built, inverse.toml into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<std::path::PathBuf>,
+}
+
+/// An elbow branch (`--branch`).
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum BranchArg {
+    Plus,
+    Minus,
+}
+
+#[derive(clap::Args)]
 pub(crate) struct TargetArgs {
     #[command(flatten)]
     pub(crate) scene: SceneSource,
@@ -244,6 +279,11 @@ pub(crate) enum Command {
     /// Print the scene's own tip path and its picking and planting poses as a `[target]`
     /// table (TOML): a start for a target to edit, or a design to fit again.
     Target(TargetArgs),
+    /// The train with two pairs from a target tip path: the arm length and planet circle
+    /// the path fixes, the carrier angle and arm direction along it, and both pitch
+    /// curves by closure (written as tables). Names each condition that fails and where.
+    /// With no scene: the paper's train. docs/inverse.md
+    Inverse(InverseArgs),
     /// The response of every objective to one parameter (three-arm paper §4.2).
     Sweep(SweepArgs),
     /// Cut teeth on the scene's gears (every gear of the train), check them over a full

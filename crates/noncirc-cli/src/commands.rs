@@ -18,7 +18,7 @@ pub(crate) fn gear(args: GearArgs) -> Result<(), Box<dyn Error>> {
     let (report, pair) = GearReport::from_scene(&scene)?;
     noncirc::report::check_finite(&report)?;
     for dir in [&args.export, &args.scene.plot].into_iter().flatten() {
-        for f in noncirc::export::export_gears(&pair, dir)? {
+        for f in noncirc::export::export_gears(&pair, None, dir)? {
             eprintln!("wrote {}", f.display());
         }
     }

@@ -1,7 +1,9 @@
 //! `noncirc fit`: the search for the design nearest a target, with its progress bar,
-//! signals, checkpoints and outputs (as `optimise`), then the local refinement.
+//! signals, checkpoints and outputs (as `optimise`), then the local refinement;
+//! `noncirc target`, a scene's own path as a target; `noncirc inverse`, the exact
+//! inversion for the train with two pairs.
 
-use crate::args::{FitArgs, Format, TargetArgs};
+use crate::args::{BranchArg, FitArgs, Format, InverseArgs, TargetArgs};
 use crate::commands::VerdictFailed;
 use crate::optimise::{prepare_search, PreparedSearch};
 use crate::output::{json, out};
@@ -111,5 +113,58 @@ pub(crate) fn target(args: TargetArgs) -> Result<(), Box<dyn std::error::Error>>
         noncirc::files::toml_text(&File { target: &target }, "the target")?
     );
     out(&text)?;
+    Ok(())
+}
+
+/// Invert a target for the train with two pairs; exit 3 when a condition fails or an
+/// objective is missed (the outputs written first), 2 on bad input (nothing written).
+pub(crate) fn inverse(args: InverseArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let input = &args.scene.input;
+    let scene = noncirc::scene_file::load_scene_with(
+        Some(input.scene.as_deref().unwrap_or("paper")),
+        &input.set,
+    )?;
+    let target = match (&args.target, &scene.target) {
+        (Some(path), _) => read_target(path)?,
+        (None, Some(target)) => (**target).clone(),
+        (None, None) => {
+            return Err(noncirc::Error::Input(
+                "no target: give --target FILE (a CSV of x_mm,y_mm or a [target] table), or \
+                 a scene with a [target]"
+                    .into(),
+            )
+            .into())
+        }
+    };
+    let split = noncirc::inverse::parse_split(&args.split)?;
+    let branch = args.branch.map(|b| match b {
+        BranchArg::Plus => noncirc::core::Branch::Plus,
+        BranchArg::Minus => noncirc::core::Branch::Minus,
+    });
+    let outcome = noncirc::inverse::inverse_scene(
+        &scene,
+        &target,
+        args.centre_ratio,
+        split,
+        branch,
+        args.samples,
+    )?;
+    if let Some(dir) = &args.out {
+        noncirc::inverse::write(&outcome, split, dir)?;
+    }
+    if let Some(dir) = &args.scene.plot {
+        for f in noncirc::plots::inverse_figures(&outcome, dir, &args.scene.figures()?)? {
+            eprintln!("wrote {}", f.display());
+        }
+    }
+    let summary = noncirc::inverse::summary(&outcome, split);
+    noncirc::report::check_finite(&summary)?;
+    match args.scene.format {
+        Format::Json => out(&json(&summary)?)?,
+        Format::Table => out(&summary.table())?,
+    }
+    if !summary.met {
+        return Err(VerdictFailed(summary.failures()).into());
+    }
     Ok(())
 }

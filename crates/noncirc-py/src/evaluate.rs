@@ -126,6 +126,18 @@ pub(crate) fn evaluate<'py>(
         let outlines = noncirc::export::outlines(pair)?;
         out.set_item("driver_curve", points(&outlines[0].points).into_pyarray(py))?;
         out.set_item("driven_curve", points(&outlines[1].points).into_pyarray(py))?;
+        // The train with two pairs: the intermediate's layer B and the planet.
+        if let Some(second) = eval.kinematics.as_ref().and_then(|k| k.second_pair()) {
+            let outlines = noncirc::export::outlines(second)?;
+            out.set_item(
+                "second_driver_curve",
+                points(&outlines[0].points).into_pyarray(py),
+            )?;
+            out.set_item(
+                "second_driven_curve",
+                points(&outlines[1].points).into_pyarray(py),
+            )?;
+        }
     }
     if let Some(b) = &eval.moving_box {
         out.set_item("moving_box", serde_json::to_string(b).map_err(internal)?)?;

@@ -294,7 +294,10 @@ impl Design {
         let pair = (self.evaluation.as_ref())
             .and_then(Evaluation::pair)
             .ok_or_else(|| js_error("no gear pair evaluated yet"))?;
-        let outlines = noncirc::export::outlines(pair).map_err(js_error)?;
+        let second = (self.evaluation.as_ref())
+            .and_then(|e| e.kinematics.as_ref())
+            .and_then(|k| k.second_pair());
+        let outlines = noncirc::export::train_outlines(pair, second).map_err(js_error)?;
         to_json(&[
             File {
                 name: "pitch_curves.dxf".into(),

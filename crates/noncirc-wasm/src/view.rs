@@ -134,6 +134,12 @@ impl Frame {
                 thinned(&pair.driven_points()),
             ),
         };
+        // The planet: the sun's copy in the paper's train, the second pair's driven gear
+        // with two pairs (whose teeth are not cut here: `TeethRun` refuses that train).
+        let planet_outline = match (teeth, kin.second_pair()) {
+            (None, Some(_)) => thinned(&kin.planet_points()),
+            _ => sun_outline.clone(),
+        };
         let sun_angle = kin.spec().sun_angle();
         let arms = (0..kin.arms())
             .map(|k| {
@@ -145,12 +151,12 @@ impl Frame {
                         let (i, p) = (&layout[1], &layout[2]);
                         (
                             place(&inter_outline, i.centre_mm, i.angle_deg.to_radians()),
-                            place(&sun_outline, p.centre_mm, p.angle_deg.to_radians()),
+                            place(&planet_outline, p.centre_mm, p.angle_deg.to_radians()),
                         )
                     }
                     None => (
                         place(&inter_outline, st.o2, st.theta2),
-                        place(&sun_outline, st.o3, st.theta3),
+                        place(&planet_outline, st.o3, st.theta3),
                     ),
                 };
                 ArmSet {
