@@ -2,8 +2,8 @@
 
 use crate::export::{export_gears, export_trajectory};
 use crate::figures::{
-    evaluation_figures, save, ConvergenceFigure, FigureOptions, FitFigure, LinesFigure,
-    FIGURE_SAMPLES,
+    evaluation_figures, save, ConvergenceFigure, FigureOptions, FitFigure, InverseFigure,
+    LinesFigure, FIGURE_SAMPLES,
 };
 use crate::search::Outcome;
 use crate::sweep::SweepRow;
@@ -109,15 +109,26 @@ pub fn fit_figures(
     Ok(files)
 }
 
-/// An inversion's figures: the design's figures (`design/`, when one was built) and its
-/// path against the target (`fit.*`, `fit_distance.*`).
+/// An inversion's figures: where its conditions fail on the target (`inverse.*`), the
+/// design's figures (`design/`, when one was built) and its path against the target
+/// (`fit.*`, `fit_distance.*`).
 pub fn inverse_figures(
     outcome: &noncirc_core::InverseOutcome,
+    target: &noncirc_core::Target,
     dir: &Path,
     options: &FigureOptions,
 ) -> Result<Vec<PathBuf>> {
     create_dir(dir)?;
     let mut files = Vec::new();
+    let prepared = target.prepare()?;
+    files.extend(save(
+        &InverseFigure {
+            outcome,
+            prepared: &prepared,
+        },
+        &dir.join("inverse"),
+        options,
+    )?);
     if let (Some(scene), Some(eval)) = (&outcome.scene, &outcome.evaluation) {
         files.extend(evaluation_outputs(
             scene,

@@ -153,7 +153,7 @@ pub(crate) fn inverse(args: InverseArgs) -> Result<(), Box<dyn std::error::Error
         noncirc::inverse::write(&outcome, split, dir)?;
     }
     if let Some(dir) = &args.scene.plot {
-        for f in noncirc::plots::inverse_figures(&outcome, dir, &args.scene.figures()?)? {
+        for f in noncirc::plots::inverse_figures(&outcome, &target, dir, &args.scene.figures()?)? {
             eprintln!("wrote {}", f.display());
         }
     }

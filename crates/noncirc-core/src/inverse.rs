@@ -434,7 +434,10 @@ pub fn invert(scene: &Scene, target: &Target, spec: &InverseSpec) -> Result<Inve
     scene.validate()?;
     spec.validate(scene.train.arms)?;
     let prepared = target.prepare()?;
-    let (path, smoothing_mm) = FourierPath::fit(prepared.polyline(), target.tolerance_mm / 10.0);
+    // The smoothest series within half the tolerance: the design follows the series
+    // exactly, so its path is within the tolerance of the points with room to spare, and
+    // a drawn spline's kinks in curvature are not copied into the gears.
+    let (path, smoothing_mm) = FourierPath::fit(prepared.polyline(), target.tolerance_mm / 2.0);
     let backwards = path.reversed();
     let branches = match spec.branch {
         Some(b) => vec![b],
@@ -776,8 +779,9 @@ fn design_conditions(scene: &Scene, evaluation: &Evaluation, node_s: &[f64]) -> 
                     .into_iter()
                     .map(|run| {
                         let (j0, j1) = (node(run[0]), node(run[1]));
-                        let worst = (0..n)
-                            .filter(|&k| fails[k])
+                        let len = (run[1] + n - run[0]) % n + 1;
+                        let worst = (0..len)
+                            .map(|i| (run[0] + i) % n)
                             .min_by(|&x, &y| kappa[x].total_cmp(&kappa[y]))
                             .unwrap_or(run[0]);
                         Place {
@@ -825,7 +829,13 @@ fn design_conditions(scene: &Scene, evaluation: &Evaluation, node_s: &[f64]) -> 
             value: o.value,
             bound,
             unit: o.kind.unit(),
-            meaning: format!("the objective {} within its bounds", o.kind.name()),
+            meaning: format!(
+                "{} within {} to {} {}",
+                o.kind.name(),
+                o.lower.map_or("−∞".into(), |l| format!("{l}")),
+                o.upper.map_or("∞".into(), |u| format!("{u}")),
+                o.kind.unit()
+            ),
             places: vec![],
         });
     }
