@@ -29,16 +29,19 @@ from ._noncirc import (
     robustness,
     sensitivity,
 )
-from .api import evaluate, evaluate_batch, fit, optimise
+from .api import evaluate, evaluate_batch, fit, inverse, optimise
 from .progress import ProgressBar
 from .results import (
     Batch,
+    Condition,
     Design,
     Evaluation,
     FitMeasure,
     FitResult,
     Goal,
+    InverseResult,
     Objective,
+    Place,
     PoseFit,
     Quantity,
     SearchResult,
@@ -46,16 +49,19 @@ from .results import (
 
 __all__ = [
     "Batch",
+    "Condition",
     "Design",
     "Evaluation",
     "FitMeasure",
     "FitResult",
     "Goal",
     "InternalError",
+    "InverseResult",
     "ModelError",
     "NoncircError",
     "Objective",
     "ParameterError",
+    "Place",
     "PoseFit",
     "ProgressBar",
     "Quantity",
@@ -66,6 +72,7 @@ __all__ = [
     "evaluate",
     "evaluate_batch",
     "fit",
+    "inverse",
     "measures",
     "optimise",
     "robustness",

@@ -135,6 +135,18 @@ def fit(
     fit, objectives, design, run) and best_scene. `target` is a CSV or TOML file replacing
     the scene's `[target]`."""
 
+def inverse(
+    scene: Optional[Scene] = None,
+    *,
+    target: Optional[str | os.PathLike[str]] = None,
+    split: str = "equal",
+    centre_ratio: Optional[float] = None,
+    branch: Optional[str] = None,
+    samples_per_turn: int = 720,
+) -> dict[str, Any]:
+    """The inversion for the train with two pairs (`noncirc inverse --format json`'s
+    summary: met, built, geometry, conditions) and `scene` when a design was built."""
+
 def emigrants(checkpoint: str | os.PathLike[str], count: int) -> str:
     """The `count` best members of the search in a checkpoint file, as JSON text, for
     another island of the same search (`noncirc.dask.islands`)."""

@@ -12,7 +12,7 @@ import numpy.typing as npt
 from . import _noncirc
 from ._noncirc import Scene
 from .progress import ProgressBar, interactive
-from .results import Batch, Evaluation, FitResult, SearchResult
+from .results import Batch, Evaluation, FitResult, InverseResult, SearchResult
 
 Progress = Union[bool, Callable[[dict[str, Any]], Optional[bool]], None]
 
@@ -157,3 +157,31 @@ def fit(
         ),
     )
     return FitResult._from_raw(raw)
+
+
+def inverse(
+    scene: Optional[Scene] = None,
+    *,
+    target: Optional[Union[str, os.PathLike[str]]] = None,
+    split: Union[str, float] = "equal",
+    centre_ratio: Optional[float] = None,
+    branch: Optional[str] = None,
+    samples_per_turn: int = 720,
+) -> InverseResult:
+    """The train with two pairs from a target tip path (docs/inverse.md §6), as
+    `noncirc inverse`: the path fixes the arm length and the planet circle, the carrier
+    angle and the arm's direction along it give the overall ratio, and `split` shares it
+    between the pairs ("equal", "first-circular", "second-circular" or the first pair's
+    share λ from 0 to 1); both pitch curves are built by closure. `scene` gives the train
+    (γ0, Φ0, H1, sense, arms; default the paper's), `target` a CSV or TOML file (default
+    the scene's own `[target]`), `centre_ratio` a_B/a_A (default the scene's). Failing
+    conditions are in the result, with their places; bad input raises `ParameterError`."""
+    raw = _noncirc.inverse(
+        scene,
+        target=target,
+        split=str(split),
+        centre_ratio=centre_ratio,
+        branch=branch,
+        samples_per_turn=samples_per_turn,
+    )
+    return InverseResult._from_raw(raw)

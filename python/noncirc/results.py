@@ -490,3 +490,131 @@ class FitResult:
         """The fit measures, one row each: name, value, unit, tolerance, met."""
         pd = _pandas()
         return pd.DataFrame([dataclasses.asdict(m) for m in self.measures.values()])
+
+
+@dataclass(frozen=True)
+class Place:
+    """Where on the target an inversion's condition fails."""
+
+    path_mm: tuple[float, float]
+    """The arc, in mm of arc length from the target's first point as the tip runs it."""
+    carrier_deg: Optional[tuple[float, float]]
+    """The carrier angles there (a pitch curve's concave arc), if known."""
+    point_mm: tuple[float, float]
+    """The worst point, mm."""
+
+
+@dataclass(frozen=True)
+class Condition:
+    """One condition of the inversion (docs/inverse.md §6)."""
+
+    name: str
+    """`pusher_within_arm`, `carrier_advances`, `carrier_turns_once`, `arm_turns_back`,
+    `ratio_positive`, `<gear>_convex`, `evaluates` or `objective:<name>`."""
+    holds: bool
+    blocks: bool
+    """Whether failing it leaves no design that can be made as it is."""
+    value: float
+    bound: float
+    unit: str
+    meaning: str
+    places: list[Place]
+
+
+@dataclass(frozen=True)
+class InverseResult:
+    """The train with two pairs inverted from a target: the geometry the path fixes, the
+    forward check, every condition, and the design (`scene`, with both pitch curves as
+    tables) when one was built."""
+
+    met: bool
+    """Every condition holds and every objective is met."""
+    built: bool
+    branch: str
+    """The elbow's branch from the path's farthest point to its nearest."""
+    reversed: bool
+    """Whether the target was read backwards to run in the carrier's sense."""
+    arm_length_mm: float
+    planet_radius_mm: float
+    centre_distances_mm: tuple[float, float]
+    split: float
+    """The first pair's share λ of the overall ratio (0: circular, 1: all of it)."""
+    harmonics: int
+    smoothing_mm: float
+    """Largest distance of the target's Fourier series from its points."""
+    path_hausdorff_mm: Optional[float]
+    """The design's path against the target (None: no design)."""
+    path_rms_mm: Optional[float]
+    conditions: list[Condition]
+    scene: Optional[Scene]
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any]) -> InverseResult:
+        def point(v: Any) -> tuple[float, float]:
+            return (float(v["x"]), float(v["y"])) if isinstance(v, dict) else (float(v[0]), float(v[1]))
+
+        conditions = [
+            Condition(
+                name=c["name"],
+                holds=c["holds"],
+                blocks=c["blocks"],
+                value=c["value"],
+                bound=c["bound"],
+                unit=c["unit"],
+                meaning=c["meaning"],
+                places=[
+                    Place(
+                        path_mm=(p["path_mm"][0], p["path_mm"][1]),
+                        carrier_deg=None if p.get("carrier_deg") is None else tuple(p["carrier_deg"]),
+                        point_mm=point(p["point_mm"]),
+                    )
+                    for p in c["places"]
+                ],
+            )
+            for c in raw["conditions"]
+        ]
+        return InverseResult(
+            met=raw["met"],
+            built=raw["built"],
+            branch=raw["branch"],
+            reversed=raw["reversed"],
+            arm_length_mm=raw["arm_length_mm"],
+            planet_radius_mm=raw["planet_radius_mm"],
+            centre_distances_mm=tuple(raw["centre_distances_mm"]),
+            split=raw["split"],
+            harmonics=raw["harmonics"],
+            smoothing_mm=raw["smoothing_mm"],
+            path_hausdorff_mm=raw.get("path_hausdorff_mm"),
+            path_rms_mm=raw.get("path_rms_mm"),
+            conditions=conditions,
+            scene=raw.get("scene"),
+        )
+
+    def failures(self) -> list[Condition]:
+        """The conditions that fail."""
+        return [c for c in self.conditions if not c.holds]
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data (the scene as its TOML text): JSON-ready."""
+        d = _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.name != "scene"})
+        d["scene"] = None if self.scene is None else self.scene.to_toml()
+        return d
+
+    def to_pandas(self) -> pandas.DataFrame:
+        """The conditions, one row each: name, holds, blocks, value, bound, unit, and how
+        many places it fails at."""
+        pd = _pandas()
+        return pd.DataFrame(
+            [
+                {
+                    "name": c.name,
+                    "holds": c.holds,
+                    "blocks": c.blocks,
+                    "value": c.value,
+                    "bound": c.bound,
+                    "unit": c.unit,
+                    "places": len(c.places),
+                }
+                for c in self.conditions
+            ]
+        )

@@ -445,3 +445,129 @@ fn fit_refuses_bad_targets_by_name_with_exit_2_and_writes_nothing() {
     assert_eq!(run.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&run.stderr).contains("a fit needs a target"));
 }
+
+/// `noncirc inverse` on the two drawn targets (scenes/targets/): the peach is blocked, and
+/// the inversion names each blocking condition with its arc; the loop is built, written as
+/// a scene the other commands read, and its failures (concave pitch curves, the module)
+/// are named. Both exit 3 with their outputs written.
+#[test]
+fn inverse_names_what_blocks_a_drawn_target_and_writes_what_it_builds() {
+    let targets = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/targets");
+    let dir = temp("inverse-drawn");
+    let run = |name: &str| {
+        let out = dir.join(name);
+        let run = noncirc()
+            .args(["inverse", "--format", "json", "--target"])
+            .arg(format!("{targets}/{name}.toml"))
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert_eq!(
+            run.status.code(),
+            Some(3),
+            "{name}: {}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+        let written: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("inverse.json")).unwrap())
+                .unwrap();
+        assert_eq!(json, written, "{name}: inverse.json is what was printed");
+        (json, out)
+    };
+    let failing = |json: &serde_json::Value| -> Vec<(String, bool, usize)> {
+        (json["conditions"].as_array().unwrap().iter())
+            .filter(|c| c["holds"] == false)
+            .map(|c| {
+                let name = c["name"].as_str().unwrap().to_string();
+                (
+                    name,
+                    c["blocks"] == true,
+                    c["places"].as_array().unwrap().len(),
+                )
+            })
+            .collect()
+    };
+    let (peach, out) = run("drawn-peach");
+    assert_eq!(peach["built"], false);
+    assert!(!out.join("inverse.toml").exists());
+    let blocked = failing(&peach);
+    for name in ["carrier_advances", "ratio_positive"] {
+        let c = blocked.iter().find(|c| c.0 == name).expect(name);
+        assert!(c.1 && c.2 > 0, "{name} blocks and says where: {c:?}");
+    }
+    let (lp, out) = run("drawn-loop");
+    assert_eq!(lp["built"], true);
+    assert!(
+        lp["path_hausdorff_mm"].as_f64().unwrap() <= 0.5,
+        "{}",
+        lp["path_hausdorff_mm"]
+    );
+    let missed = failing(&lp);
+    assert!(
+        missed.iter().any(|c| c.0 == "objective:module"),
+        "{missed:?}"
+    );
+    assert!(
+        (missed.iter()).any(|c| c.0.ends_with("_convex") && c.2 > 0),
+        "a concave curve is named with its arcs: {missed:?}"
+    );
+    // The written design is a scene like any other: evaluate reads it, and finds its
+    // path on the target within the tolerance.
+    let run = noncirc()
+        .args(["evaluate", "--format", "json"])
+        .arg(out.join("inverse.toml"))
+        .output()
+        .unwrap();
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let eval: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    let hausdorff = eval["fit"]["path_hausdorff_mm"].as_f64().unwrap();
+    assert!(hausdorff <= 0.5, "{hausdorff}");
+}
+
+#[test]
+fn inverse_refuses_bad_input_by_name_with_exit_2_and_writes_nothing() {
+    let dir = temp("inverse-bad");
+    let few = dir.join("few.csv");
+    std::fs::write(&few, "0,0\n10,0\n10,10\n").unwrap();
+    let cases: [(Vec<String>, &str); 3] = [
+        (
+            vec!["--target".into(), few.display().to_string()],
+            "needs at least 4 points, got 3",
+        ),
+        (vec![], "no target: give --target FILE"),
+        (
+            vec![
+                "--target".into(),
+                concat!(
+                    env!("CARGO_MANIFEST_DIR"),
+                    "/../../scenes/targets/drawn-loop.toml"
+                )
+                .into(),
+                "--split".into(),
+                "half".into(),
+            ],
+            "--split half: expected equal, first-circular, second-circular or a share",
+        ),
+    ];
+    for (args, says) in cases {
+        let out = dir.join("out");
+        let run = noncirc()
+            .arg("inverse")
+            .args(&args)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(says), "{args:?}: {stderr}");
+        assert!(!out.exists(), "{args:?}: wrote {}", out.display());
+    }
+}

@@ -316,3 +316,60 @@ pub(crate) fn immigrate(checkpoint: std::path::PathBuf, migrants: &str) -> Resul
         .map_err(|e| parameter(format!("migrants: not the text of emigrants(): {e}")))?;
     Ok(noncirc::search::immigrate(&checkpoint, &migrants)?)
 }
+
+/// The train with two pairs from a target (`noncirc inverse`): the summary
+/// (`noncirc inverse --format json`) and `scene`, the design, when one was built.
+#[pyfunction]
+#[pyo3(signature = (scene = None, *, target = None, split = "equal", centre_ratio = None, branch = None, samples_per_turn = 720))]
+pub(crate) fn inverse<'py>(
+    py: Python<'py>,
+    scene: Option<&Scene>,
+    target: Option<std::path::PathBuf>,
+    split: &str,
+    centre_ratio: Option<f64>,
+    branch: Option<&str>,
+    samples_per_turn: usize,
+) -> Result<Bound<'py, PyDict>> {
+    let s = match scene {
+        Some(scene) => scene.inner.clone(),
+        None => noncirc::scene_file::load_scene_with(Some("paper"), &[])?,
+    };
+    let target = match (&target, &s.target) {
+        (Some(path), _) => noncirc::fit::read_target(path)?,
+        (None, Some(t)) => (**t).clone(),
+        (None, None) => {
+            return Err(parameter(
+                "inverse needs a target: target= a file, or a scene with a [target]",
+            ))
+        }
+    };
+    let split = noncirc::inverse::parse_split(split).map_err(|e| parameter(&e.to_string()))?;
+    let branch = match branch {
+        None => None,
+        Some("plus") => Some(noncirc::core::Branch::Plus),
+        Some("minus") => Some(noncirc::core::Branch::Minus),
+        Some(other) => {
+            return Err(parameter(&format!(
+                "branch={other:?}: expected \"plus\", \"minus\" or None (both tried)"
+            )))
+        }
+    };
+    let outcome = py.allow_threads(|| {
+        noncirc::inverse::inverse_scene(&s, &target, centre_ratio, split, branch, samples_per_turn)
+    })?;
+    let summary = noncirc::inverse::summary(&outcome, split);
+    let json = serde_json::to_string(&summary).map_err(internal)?;
+    let out = py
+        .import("json")?
+        .call_method1("loads", (json,))?
+        .downcast_into::<PyDict>()?;
+    if let Some(design) = &outcome.scene {
+        out.set_item(
+            "scene",
+            Scene {
+                inner: design.clone(),
+            },
+        )?;
+    }
+    Ok(out)
+}
