@@ -343,13 +343,13 @@ pub(crate) fn inverse<'py>(
             ))
         }
     };
-    let split = noncirc::inverse::parse_split(split).map_err(|e| parameter(&e.to_string()))?;
+    let split = noncirc::inverse::parse_split(split).map_err(|e| parameter(e))?;
     let branch = match branch {
         None => None,
         Some("plus") => Some(noncirc::core::Branch::Plus),
         Some("minus") => Some(noncirc::core::Branch::Minus),
         Some(other) => {
-            return Err(parameter(&format!(
+            return Err(parameter(format!(
                 "branch={other:?}: expected \"plus\", \"minus\" or None (both tried)"
             )))
         }
