@@ -343,7 +343,7 @@ pub(crate) fn inverse<'py>(
             ))
         }
     };
-    let split = noncirc::inverse::parse_split(split).map_err(|e| parameter(e))?;
+    let split = noncirc::inverse::parse_split(split).map_err(parameter)?;
     let branch = match branch {
         None => None,
         Some("plus") => Some(noncirc::core::Branch::Plus),
