@@ -1,9 +1,12 @@
 //! What a target costs: one evaluation of paper-search's design with and without the round
 //! trip's target (512 points, two poses read at the events), at the screening and the
-//! default resolution. The difference is the fit's measures (docs/inverse.md).
+//! default resolution, the difference being the fit's measures; and the exact inversion
+//! (`noncirc inverse`, both senses and branches tried, the design evaluated against the
+//! target) of a two-pair design's path (4096 points) and of the drawn loop
+//! (docs/inverse.md).
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use noncirc::core::{Evaluator, Resolution};
+use noncirc::core::{invert, target_of, CurveSpec, Evaluator, InverseSpec, Resolution};
 use noncirc::fit::{read_target, with_target};
 use noncirc::scene_file::load_scene;
 use std::hint::black_box;
@@ -26,5 +29,48 @@ fn fit(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, fit);
+fn inverse(c: &mut Criterion) {
+    let paper = load_scene(Some("paper")).unwrap();
+    // The round trip of tests/inverse.rs: an ellipse sun, a Fourier layer B.
+    let mut design = paper.clone();
+    design.gear.curve = CurveSpec::Ellipse {
+        semi_major_mm: 32.0,
+        eccentricity: 0.12,
+    };
+    design.gear.second_curve = Some(CurveSpec::Fourier {
+        c0_mm: 28.0,
+        cos_mm: vec![1.5, -0.8],
+        sin_mm: vec![-2.0, 0.4],
+    });
+    design.resolution = design.resolution.with_samples(720);
+    let eval = Evaluator::new().evaluate(&design).unwrap();
+    let mut two_pair = target_of(
+        eval.kinematics.as_ref().unwrap(),
+        eval.events.as_ref().unwrap(),
+        4096,
+    );
+    two_pair.tolerance_mm = 0.01;
+    let [a1, a2] = eval.kinematics.as_ref().unwrap().centre_distances();
+    let drawn = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/targets/drawn-loop.toml");
+    let drawn = read_target(&drawn).unwrap();
+    let spec = |ratio: f64| InverseSpec {
+        centre_ratio: ratio,
+        split: 0.5,
+        branch: None,
+        samples_per_turn: 720,
+    };
+    let mut group = c.benchmark_group("inverse");
+    group.sample_size(20);
+    for (name, target, ratio) in [
+        ("two_pair_4096", &two_pair, a2 / a1),
+        ("drawn_loop", &drawn, 1.0),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| invert(black_box(&paper), target, &spec(ratio)).unwrap())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, fit, inverse);
 criterion_main!(benches);

@@ -40,3 +40,12 @@ def test_the_fit_example_runs_as_written(monkeypatch, capsys):
     lines = capsys.readouterr().out.splitlines()
     assert lines[0] == "True 0.084"
     assert lines[1].startswith("FitMeasure(name='pose1_position_mm'")
+
+
+def test_the_inverse_example_runs_as_written(monkeypatch, capsys):
+    block = next(b for b in blocks() if "noncirc.inverse(" in b)
+    monkeypatch.chdir(DOC.parents[1])  # the example names the target from the repository
+    exec(compile(block, str(DOC), "exec"), {})
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == "True False 160.9"
+    assert "objective:module 0" in lines and any(l.startswith("sun_convex ") for l in lines)
