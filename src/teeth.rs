@@ -1,5 +1,5 @@
-//! Teeth for a scene: its toothed pair, the train (or the pair) assembled at a carrier
-//! angle, and the manufacturing exports.
+//! Teeth for a scene: its toothed pair (both pairs of a train with two), the train (or the
+//! pair) assembled at a carrier angle, and the manufacturing exports.
 
 use noncirc_core::{
     Cutter, GearPair, Kinematics, Member, ModuleReading, PairTrack, PitchCurve, Scene, SceneKind,
@@ -17,10 +17,15 @@ use crate::Result;
 /// One gear of the assembly: which toothed gear, where its centre is, how it is turned.
 #[derive(Debug, Clone, Serialize)]
 pub struct PlacedGear {
-    /// `sun`, `intermediate_1`, `planet_1`, … (`driver`, `driven` for a gear pair).
+    /// `sun`, `intermediate_1`, `planet_1`, … (`driver`, `driven` for a gear pair); with two
+    /// pairs also `intermediate_1_b`, … (the intermediates' layer B).
     pub name: String,
     #[serde(skip)]
     pub member: Member,
+    /// The pair it is cut in: 0 the sun–intermediate pair, 1 the second pair (layer B and
+    /// the planet) of a train with two.
+    #[serde(skip)]
+    pub pair: usize,
     pub centre_mm: Vec2,
     /// Turn of the gear's own frame in the drawing (degrees).
     pub angle_deg: f64,
@@ -30,6 +35,8 @@ pub struct PlacedGear {
 #[derive(Debug, Clone)]
 pub struct TeethRun {
     pub pair: ToothedPair,
+    /// The train with two pairs: layer B and the planet, cut with the same tooth count.
+    pub second: Option<ToothedPair>,
     /// Where the tooth count came from.
     pub count_from: &'static str,
     /// Carrier angle of the assembly (degrees; `None` for a gear pair).
@@ -43,6 +50,9 @@ pub struct TeethSummary<'a> {
     pub count_from: &'static str,
     pub carrier_deg: Option<f64>,
     pub checks: &'a TeethReport,
+    /// The train with two pairs: the second pair's checks.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub second_checks: Option<&'a TeethReport>,
     pub layout: &'a [PlacedGear],
     /// Other settings tried when a check fails ([`Advice::for_scene`]).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -62,36 +72,78 @@ impl TeethRun {
         } = Prepared::from_scene(scene)?;
         let train = kin.is_some();
         let toothed = ToothedPair::cut(&curve, centre_distance, teeth, &scene.gear.teeth)?;
+        let second = match kin.as_ref().and_then(Kinematics::second_pair) {
+            Some(p) => Some(
+                ToothedPair::cut(p.curve(), p.centre_distance(), teeth, &scene.gear.teeth)
+                    .map_err(|e| noncirc_core::Error::SecondPair(Box::new(e)))?,
+            ),
+            None => None,
+        };
         let a = toothed.track.centre_distance();
         let layout = match &kin {
             None => vec![
                 PlacedGear {
                     name: "driver".into(),
                     member: Member::Driver,
+                    pair: 0,
                     centre_mm: Vec2::ZERO,
                     angle_deg: 0.0,
                 },
                 PlacedGear {
                     name: "driven".into(),
                     member: Member::Driven,
+                    pair: 0,
                     centre_mm: Vec2::new(a, 0.0),
                     angle_deg: 180.0,
                 },
             ],
-            Some(kin) => train_layout(kin, &toothed, carrier_deg.to_radians()),
+            Some(kin) => train_layout(kin, &toothed, second.as_ref(), carrier_deg.to_radians()),
         };
         Ok(Self {
             pair: toothed,
+            second,
             count_from,
             carrier_deg: train.then_some(carrier_deg),
             layout,
         })
     }
 
+    /// The toothed pairs: the sun–intermediate pair, then the second pair of a train with
+    /// two.
+    pub fn pairs(&self) -> impl Iterator<Item = &ToothedPair> {
+        std::iter::once(&self.pair).chain(self.second.as_ref())
+    }
+
+    /// The outline (in its own frame) of a gear of the layout.
+    pub fn outline(&self, g: &PlacedGear) -> &[Vec2] {
+        let pair = match (g.pair, &self.second) {
+            (1, Some(second)) => second,
+            _ => &self.pair,
+        };
+        pair.gears[usize::from(g.member == Member::Driven)].outline()
+    }
+
+    /// Every failed check, the second pair's named as its own.
+    pub fn failures(&self) -> Vec<String> {
+        let second = (self.second.iter()).flat_map(|p| {
+            p.report
+                .failures
+                .iter()
+                .map(|f| format!("second pair: {f}"))
+        });
+        self.pair
+            .report
+            .failures
+            .iter()
+            .cloned()
+            .chain(second)
+            .collect()
+    }
+
     /// The failed checks counted in words ("1 check", "3 checks"), as the CLI and the
     /// studio say why they do not export.
     pub fn failed_checks(&self) -> String {
-        let n = self.pair.report.failures.len();
+        let n = self.failures().len();
         format!("{n} check{}", if n == 1 { "" } else { "s" })
     }
 
@@ -100,79 +152,27 @@ impl TeethRun {
             count_from: self.count_from,
             carrier_deg: self.carrier_deg,
             checks: &self.pair.report,
+            second_checks: self.second.as_ref().map(|p| &p.report),
             layout: &self.layout,
             advice: None,
         }
     }
 
-    /// A table for people.
+    /// A table for people: the pair's (or each pair's) checks.
     pub fn table(&self) -> String {
-        let r = &self.pair.report;
-        let mut s = String::new();
-        let _ = writeln!(
-            s,
-            "teeth per gear      {} (from {})",
-            r.teeth, self.count_from
-        );
-        let _ = writeln!(s, "module              {:.4} mm", r.module_mm);
-        let _ = writeln!(s, "pressure angle      {:.1}°", r.pressure_angle_deg);
-        let _ = writeln!(s, "centre distance     {:.6} mm", r.centre_distance_mm);
-        let _ = writeln!(s, "pitch perimeter     {:.6} mm", r.perimeter_mm);
-        for g in &r.gears {
-            let _ = writeln!(
-                s,
-                "{:<7} undercut teeth {:>4} (flank lost up to {:.4} mm), least tip land {:.4} mm, pointed {}, {} outline points",
-                g.name, g.undercut_teeth, g.undercut_lost_height_mm, g.tip_land_min_mm, g.pointed_teeth, g.outline_points
-            );
-            let cut = g.mate_roots;
-            if cut.spaces > 0 {
-                let _ = writeln!(
-                    s,
-                    "{:<7} roots cut by the mate's tips in {} tooth spaces (the cutter's left them overlapped), up to {:.4} mm deeper",
-                    g.name, cut.spaces, cut.deepest_mm
-                );
-            }
-        }
-        let m = &r.mesh;
-        let _ = writeln!(
-            s,
-            "mesh over one turn  {} positions: least clearance {} mm (at pitch arc {:.3} mm)",
-            m.positions,
-            tenth_micrometres(m.least_clearance_mm),
-            m.least_clearance_at_mm
-        );
-        if let Some((lo, hi)) = m.backlash_mm {
-            let (lo, hi) = (tenth_micrometres(lo), tenth_micrometres(hi));
-            let _ = writeln!(s, "normal backlash     {lo} … {hi} mm");
-        }
-        let _ = writeln!(
-            s,
-            "contact ratio       least {:.3} (at pitch arc {:.3} mm), mean {:.3}",
-            m.contact_ratio_min, m.contact_ratio_min_at_mm, m.contact_ratio_mean
-        );
-        let a = r.accuracy;
-        let _ = writeln!(
-            s,
-            "accuracy            outline chords within {:.2} µm of the generated curves; flank lost \
-             and contact ratio from flank heights to {:.0e} µm (Newton); clearance and backlash \
-             measured to the curves, between probes to {:.2} µm",
-            a.chord_mm * 1e3,
-            a.flank_height_mm * 1e3,
-            a.gap_bottom_mm * 1e3
-        );
-        if r.failures.is_empty() {
-            let _ = writeln!(s, "verdict             every check passes");
-        } else {
-            for f in &r.failures {
-                let _ = writeln!(s, "FAILS               {f}");
-            }
+        let mut s = pair_table(&self.pair.report, self.count_from);
+        if let Some(second) = &self.second {
+            s += "\nthe second pair: the intermediates' layer B and the planets\n";
+            s += &pair_table(&second.report, self.count_from);
         }
         s
     }
 
-    /// Writes `driver.dxf`/`driven.dxf` (each gear in its own frame), `train.dxf` and
-    /// `train.svg` (the assembly), `driver.csv`/`driven.csv` (every outline point) and
-    /// `pitch_driver.csv` (the pitch curve to `tolerance_mm` of chord), into `dir`.
+    /// Writes `driver.dxf`/`driven.dxf` (each gear in its own frame; with two pairs also
+    /// `second_driver.*` for the intermediates' layer B and `second_driven.*` for the
+    /// planets), `train.dxf` and `train.svg` (the assembly), `driver.csv`/`driven.csv`
+    /// (every outline point) and `pitch_driver.csv` (the pitch curve to `tolerance_mm` of
+    /// chord), into `dir`.
     pub fn export(&self, dir: &Path, tolerance_mm: f64) -> Result<Vec<PathBuf>> {
         create_dir(dir)?;
         let mut paths = Vec::new();
@@ -187,29 +187,33 @@ impl TeethRun {
     /// The files [`Self::export`] writes, as `(name, contents)`, for front ends without a
     /// file system (the studio downloads them).
     pub fn files(&self, tolerance_mm: f64) -> Vec<(&'static str, String)> {
-        let gears = &self.pair.gears;
+        // Gear k of pair p is fitted[2p + k].
+        let gears: Vec<_> = self.pairs().flat_map(|p| p.gears.iter()).collect();
         let fitted: Vec<Vec<cad::Piece>> = gears
             .iter()
             .map(|g| cad::fit(g.outline(), &g.corners, tolerance_mm))
             .collect();
         let mark = 0.5 * self.pair.module_mm;
         let mut files = Vec::new();
-        for (k, name) in ["driver", "driven"].iter().enumerate() {
+        const NAMES: [[&str; 3]; 4] = [
+            ["DRIVER", "driver.dxf", "driver.csv"],
+            ["DRIVEN", "driven.dxf", "driven.csv"],
+            ["SECOND_DRIVER", "second_driver.dxf", "second_driver.csv"],
+            ["SECOND_DRIVEN", "second_driven.dxf", "second_driven.csv"],
+        ];
+        for (k, [layer, dxf, csv_name]) in NAMES.iter().enumerate().take(gears.len()) {
             let own = [cad::Placed {
-                layer: &name.to_uppercase(),
+                layer,
                 pieces: &fitted[k],
                 centre: Vec2::ZERO,
                 angle: 0.0,
             }];
-            files.push((
-                ["driver.dxf", "driven.dxf"][k],
-                cad::dxf(&own, &[Vec2::ZERO], mark, &[]),
-            ));
+            files.push((*dxf, cad::dxf(&own, &[Vec2::ZERO], mark, &[])));
             let mut csv = String::from("x_mm,y_mm\n");
             for p in gears[k].outline() {
                 let _ = writeln!(csv, "{:.9},{:.9}", p.x, p.y);
             }
-            files.push((["driver.csv", "driven.csv"][k], csv));
+            files.push((*csv_name, csv));
         }
         let layers: Vec<String> = self.layout.iter().map(|g| g.name.to_uppercase()).collect();
         let placed: Vec<cad::Placed> = self
@@ -218,7 +222,7 @@ impl TeethRun {
             .zip(&layers)
             .map(|(g, layer)| cad::Placed {
                 layer,
-                pieces: &fitted[usize::from(g.member == Member::Driven)],
+                pieces: &fitted[2 * g.pair + usize::from(g.member == Member::Driven)],
                 centre: g.centre_mm,
                 angle: g.angle_deg.to_radians(),
             })
@@ -235,7 +239,8 @@ impl TeethRun {
         files
     }
 
-    /// Lines and arcs per gear at `tolerance_mm`, and the raw point counts.
+    /// Lines and arcs per gear of the sun–intermediate pair at `tolerance_mm`, and the raw
+    /// point counts.
     pub fn entity_counts(&self, tolerance_mm: f64) -> [(usize, usize); 2] {
         [0, 1].map(|k| {
             let g = &self.pair.gears[k];
@@ -260,20 +265,6 @@ struct Prepared {
 impl Prepared {
     fn from_scene(scene: &Scene) -> Result<Self> {
         scene.validate()?;
-        if scene.gear.second_curve.is_some() {
-            // The evaluation's teeth stage (module rule `teeth`) cuts and checks both pairs;
-            // the assembly, its files and the studio's teeth take one pair so far.
-            return Err(noncirc_core::Error::BadList {
-                list: "gear.second_curve",
-                problem: "the teeth command assembles and exports the paper's train (one \
-                          pair) so far; for a train with two pairs, the module objective \
-                          under gear.module.rule = \"teeth\" cuts and checks both pairs' \
-                          teeth (noncirc evaluate), and noncirc evaluate --plot DIR exports \
-                          both pairs' pitch curves"
-                    .into(),
-            }
-            .into());
-        }
         let curve = scene.gear.curve.build()?;
         let rule = &scene.gear.module;
         let train = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
@@ -293,7 +284,10 @@ impl Prepared {
         let (teeth, count_from) = match rule.teeth {
             Some(z) => (z, "gear.module.teeth"),
             None => {
-                let m = pair.module(rule);
+                // A train's module is its limiting pair's (both pairs take its count).
+                let m = kin
+                    .as_ref()
+                    .map_or_else(|| pair.module(rule), |k| k.module(rule));
                 if m.teeth == 0 {
                     return Err(noncirc_core::Error::Infeasible(
                         "no tooth count: the module rule admits no module for this curve; set gear.module.teeth".into(),
@@ -341,19 +335,29 @@ pub struct Trial {
 }
 
 impl Advice {
-    /// Tries the cutters that fit the pitch curve's concave arcs (a shaper's pitch radius
+    /// Tries the cutters that fit the pitch curves' concave arcs (a shaper's pitch radius
     /// below their least radius of curvature; the rack and shapers of 40, 20 and 12 teeth
-    /// if it has none), tip roundings of 0.25 and 0.1 m and a root 0.25 m deeper, alone and
-    /// together: up to 41 cuts of a millisecond or a few (23 with a rack on a convex curve).
+    /// if they have none), tip roundings of 0.25 and 0.1 m and a root 0.25 m deeper, alone
+    /// and together: up to 41 cuts of a millisecond or a few (23 with a rack on a convex
+    /// curve), of both pairs for a train with two.
     pub fn for_scene(scene: &Scene) -> Result<Self> {
         let p = Prepared::from_scene(scene)?;
         let spec = scene.gear.teeth;
-        let track = PairTrack::new(&p.curve, p.centre_distance, spec.arc_panels)?;
-        let m = track.perimeter() / (PI * f64::from(p.teeth));
-        let least = [Member::Driver, Member::Driven]
-            .map(|member| track.least_curvature(member).0)
-            .into_iter()
-            .fold(f64::INFINITY, f64::min);
+        let second = (p.kin.as_ref())
+            .and_then(Kinematics::second_pair)
+            .map(|pair| (pair.curve().clone(), pair.centre_distance()));
+        let pairs: Vec<(&PitchCurve, f64)> = std::iter::once((&p.curve, p.centre_distance))
+            .chain(second.iter().map(|(c, a)| (c, *a)))
+            .collect();
+        let mut m = 0.0f64;
+        let mut least = f64::INFINITY;
+        for &(curve, a) in &pairs {
+            let track = PairTrack::new(curve, a, spec.arc_panels)?;
+            m = m.max(track.perimeter() / (PI * f64::from(p.teeth)));
+            for member in [Member::Driver, Member::Driven] {
+                least = least.min(track.least_curvature(member).0);
+            }
+        }
         let mut cutters: Vec<Cutter> = if least < 0.0 {
             // At most 200 teeth: a nearly straight concave arc admits any shaper.
             let largest = ((2.0 / (-least * m)).ceil() - 1.0).min(200.0) as u32;
@@ -426,10 +430,18 @@ impl Advice {
             .into_iter()
             .map(|(s, set)| Trial {
                 set,
-                failures: match ToothedPair::cut(&p.curve, p.centre_distance, p.teeth, &s) {
-                    Ok(pair) => pair.report.failures,
-                    Err(e) => vec![e.to_string()],
-                },
+                failures: (pairs.iter().enumerate())
+                    .flat_map(|(k, &(curve, a))| {
+                        let named = move |f: String| match k {
+                            0 => f,
+                            _ => format!("second pair: {f}"),
+                        };
+                        match ToothedPair::cut(curve, a, p.teeth, &s) {
+                            Ok(pair) => pair.report.failures.into_iter().map(named).collect(),
+                            Err(e) => vec![named(e.to_string())],
+                        }
+                    })
+                    .collect(),
             })
             .collect();
         let passes = tried.iter().position(|t| t.failures.is_empty());
@@ -459,35 +471,128 @@ impl Advice {
     }
 }
 
+/// One toothed pair's checks as a table for people.
+fn pair_table(r: &TeethReport, count_from: &str) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "teeth per gear      {} (from {})", r.teeth, count_from);
+    let _ = writeln!(s, "module              {:.4} mm", r.module_mm);
+    let _ = writeln!(s, "pressure angle      {:.1}°", r.pressure_angle_deg);
+    let _ = writeln!(s, "centre distance     {:.6} mm", r.centre_distance_mm);
+    let _ = writeln!(s, "pitch perimeter     {:.6} mm", r.perimeter_mm);
+    for g in &r.gears {
+        let _ = writeln!(
+            s,
+            "{:<7} undercut teeth {:>4} (flank lost up to {:.4} mm), least tip land {:.4} mm, pointed {}, {} outline points",
+            g.name, g.undercut_teeth, g.undercut_lost_height_mm, g.tip_land_min_mm, g.pointed_teeth, g.outline_points
+        );
+        let cut = g.mate_roots;
+        if cut.spaces > 0 {
+            let _ = writeln!(
+                s,
+                "{:<7} roots cut by the mate's tips in {} tooth spaces (the cutter's left them overlapped), up to {:.4} mm deeper",
+                g.name, cut.spaces, cut.deepest_mm
+            );
+        }
+    }
+    let m = &r.mesh;
+    let _ = writeln!(
+        s,
+        "mesh over one turn  {} positions: least clearance {} mm (at pitch arc {:.3} mm)",
+        m.positions,
+        tenth_micrometres(m.least_clearance_mm),
+        m.least_clearance_at_mm
+    );
+    if let Some((lo, hi)) = m.backlash_mm {
+        let (lo, hi) = (tenth_micrometres(lo), tenth_micrometres(hi));
+        let _ = writeln!(s, "normal backlash     {lo} … {hi} mm");
+    }
+    let _ = writeln!(
+        s,
+        "contact ratio       least {:.3} (at pitch arc {:.3} mm), mean {:.3}",
+        m.contact_ratio_min, m.contact_ratio_min_at_mm, m.contact_ratio_mean
+    );
+    let a = r.accuracy;
+    let _ = writeln!(
+        s,
+        "accuracy            outline chords within {:.2} µm of the generated curves; flank lost \
+         and contact ratio from flank heights to {:.0e} µm (Newton); clearance and backlash \
+         measured to the curves, between probes to {:.2} µm",
+        a.chord_mm * 1e3,
+        a.flank_height_mm * 1e3,
+        a.gap_bottom_mm * 1e3
+    );
+    if r.failures.is_empty() {
+        let _ = writeln!(s, "verdict             every check passes");
+    } else {
+        for f in &r.failures {
+            let _ = writeln!(s, "FAILS               {f}");
+        }
+    }
+    s
+}
+
 /// Every gear of the planetary train at carrier angle `theta` (rad): the sun turned by its
 /// installation angle; each intermediate turned so that its point meeting the sun's `ψ`
 /// faces the sun; each planet at the kinematics' orientation (its frame is the sun's).
-/// Arm set `k` stands where arm I stood at `theta − k·360°/arms`, as everywhere else.
-pub fn train_layout(kin: &Kinematics, toothed: &ToothedPair, theta: f64) -> Vec<PlacedGear> {
+/// With a `second` pair, each intermediate's layer B in the intermediate's own frame, and
+/// each planet (the second pair's driven gear) turned so that its point meeting layer B
+/// faces it. Arm set `k` stands where arm I stood at `theta − k·360°/arms`, as everywhere
+/// else.
+pub fn train_layout(
+    kin: &Kinematics,
+    toothed: &ToothedPair,
+    second: Option<&ToothedPair>,
+    theta: f64,
+) -> Vec<PlacedGear> {
     let sun_angle = kin.spec().sun_angle();
     let mut layout = vec![PlacedGear {
         name: "sun".into(),
         member: Member::Driver,
+        pair: 0,
         centre_mm: Vec2::ZERO,
         angle_deg: sun_angle.to_degrees(),
     }];
+    let direction = |from: Vec2, to: Vec2| (to.y - from.y).atan2(to.x - from.x);
     for k in 0..kin.arms() {
         let st = kin.state_at(theta - kin.arm_lag(k));
-        let towards_sun = (-st.o2.y).atan2(-st.o2.x);
+        let towards_sun = direction(st.o2, Vec2::ZERO);
         let psi = towards_sun + PI - sun_angle;
         let chi = toothed.track.driven_angle(psi);
         layout.push(PlacedGear {
             name: format!("intermediate_{}", k + 1),
             member: Member::Driven,
+            pair: 0,
             centre_mm: st.o2,
             angle_deg: (towards_sun - chi).to_degrees(),
         });
-        layout.push(PlacedGear {
-            name: format!("planet_{}", k + 1),
-            member: Member::Driver,
-            centre_mm: st.o3,
-            angle_deg: st.theta3.to_degrees(),
-        });
+        match second {
+            None => layout.push(PlacedGear {
+                name: format!("planet_{}", k + 1),
+                member: Member::Driver,
+                pair: 0,
+                centre_mm: st.o3,
+                angle_deg: st.theta3.to_degrees(),
+            }),
+            Some(second) => {
+                layout.push(PlacedGear {
+                    name: format!("intermediate_{}_b", k + 1),
+                    member: Member::Driver,
+                    pair: 1,
+                    centre_mm: st.o2,
+                    angle_deg: st.theta2.to_degrees(),
+                });
+                let towards_layer_b = direction(st.o3, st.o2);
+                let chi_b = direction(st.o2, st.o3) - st.theta2;
+                let own = second.track.driven_angle(chi_b);
+                layout.push(PlacedGear {
+                    name: format!("planet_{}", k + 1),
+                    member: Member::Driven,
+                    pair: 1,
+                    centre_mm: st.o3,
+                    angle_deg: (towards_layer_b - own).to_degrees(),
+                });
+            }
+        }
     }
     layout
 }

@@ -418,7 +418,7 @@ function drawMechanism() {
     return;
   }
   const frame = JSON.parse(state.design.frame(state.carrier));
-  const parts = [frame.sun, state.out.view.trajectory, ...frame.arms.flatMap((a) => [a.intermediate, a.planet, a.arm])];
+  const parts = [frame.sun, state.out.view.trajectory, ...frame.arms.flatMap((a) => [a.intermediate, a.intermediate_b ?? [], a.planet, a.arm])];
   state.mechanismBounds = P.stableBounds(state.mechanismBounds, P.bounds(parts, 0));
   const [x, y] = state.mechanismBounds;
   const { sx, sy, plot } = P.axes(svg, { x, y, equal: true, xlabel: 'x (mm)', ylabel: 'y (mm)' });
@@ -430,6 +430,8 @@ function drawMechanism() {
   frame.arms.forEach((arm, k) => {
     const colour = P.ARM_COLOURS[k];
     P.line(plot, closed(arm.intermediate), sx, sy, { stroke: colour, 'stroke-width': 1.2 });
+    // A train with two pairs: the intermediate's layer B (which drives the planet) dashed.
+    if (arm.intermediate_b) P.line(plot, closed(arm.intermediate_b), sx, sy, { stroke: colour, 'stroke-width': 1.2, 'stroke-dasharray': '5 3' });
     P.line(plot, closed(arm.planet), sx, sy, { stroke: colour, 'stroke-width': 1.2 });
     P.line(plot, arm.arm, sx, sy, { stroke: colour, 'stroke-width': 5, 'stroke-linecap': 'round', 'stroke-opacity': 0.8 });
     P.dot(plot, arm.arm[1], sx, sy, { fill: colour, r: 4 });

@@ -27,7 +27,7 @@ fn every_planet_meets_its_intermediate_at_the_sun_meshs_pitch_arc() {
         let a = track.centre_distance();
         for step in 0..24 {
             let theta = TAU * step as f64 / 24.0;
-            let layout = train_layout(&kin, &toothed, theta);
+            let layout = train_layout(&kin, &toothed, None, theta);
             for k in 0..kin.arms() {
                 let (inter, planet) = (&layout[1 + 2 * k], &layout[2 + 2 * k]);
                 let d = planet.centre_mm - inter.centre_mm;

@@ -123,3 +123,73 @@ fn a_bad_second_curve_is_named_as_the_second_pairs() {
     .to_string();
     assert!(err.contains("gear.second_curve"), "{err}");
 }
+
+/// A train with two unlike pairs, toothed with 40 teeth a gear.
+fn toothed_two_pair_scene() -> Scene {
+    apply_overrides(
+        paper(),
+        &[
+            "gear.curve={kind=\"ellipse\",semi_major_mm=32.0,eccentricity=0.12}".into(),
+            "gear.second_curve={kind=\"fourier\",c0_mm=28.0,cos_mm=[1.5,-0.8],sin_mm=[-2.0,0.4]}"
+                .into(),
+            "resolution.samples_per_turn=720".into(),
+            "gear.module.teeth=40".into(),
+        ],
+    )
+    .unwrap()
+}
+
+#[test]
+fn both_pairs_are_toothed_assembled_and_exported() {
+    let scene = toothed_two_pair_scene();
+    let run = noncirc::teeth::TeethRun::from_scene(&scene, 30.0).unwrap();
+    let kin = scene.kinematics(&scene.resolution).unwrap();
+    let second = run.second.as_ref().expect("the second pair is cut");
+    let a2 = kin.centre_distances()[1];
+    assert!((second.report.centre_distance_mm - a2).abs() < 1e-6 * a2);
+    assert_eq!(second.teeth, 40);
+    // The sun, then per arm set an intermediate, its layer B and a planet.
+    assert_eq!(run.layout.len(), 1 + 3 * kin.arms());
+    let names: Vec<&str> = run.layout.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(
+        &names[..4],
+        ["sun", "intermediate_1", "intermediate_1_b", "planet_1"]
+    );
+    let files: Vec<&str> = run.files(1e-3).into_iter().map(|(name, _)| name).collect();
+    for name in [
+        "second_driver.dxf",
+        "second_driven.dxf",
+        "second_driven.csv",
+        "train.dxf",
+    ] {
+        assert!(files.contains(&name), "{name} missing from {files:?}");
+    }
+    assert!(run.table().contains("the second pair"));
+}
+
+/// The toothed planet turns with the kinematics' planet: its drawing angle differs from
+/// θ3 by one constant (the toothed frame's angle 0 against the pitch curve's) at every
+/// carrier angle, so the assembly meshes wherever it is drawn.
+#[test]
+fn the_toothed_planet_turns_with_the_kinematic_planet() {
+    let scene = toothed_two_pair_scene();
+    let run = noncirc::teeth::TeethRun::from_scene(&scene, 0.0).unwrap();
+    let kin = scene.kinematics(&scene.resolution).unwrap();
+    let second = run.second.as_ref().unwrap();
+    let mut offsets = Vec::new();
+    for step in 0..36 {
+        let theta = std::f64::consts::TAU * step as f64 / 36.0;
+        let layout = noncirc::teeth::train_layout(&kin, &run.pair, Some(second), theta);
+        let theta3 = kin.state_at(theta).theta3;
+        let d = layout[3].angle_deg.to_radians() - theta3;
+        offsets.push(d - std::f64::consts::TAU * (d / std::f64::consts::TAU).round());
+    }
+    let spread = offsets
+        .iter()
+        .map(|o| (o - offsets[0]).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        spread < 1e-6,
+        "the toothed planet slips by {spread:e} rad against θ3"
+    );
+}

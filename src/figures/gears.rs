@@ -1,6 +1,7 @@
 //! The train's pitch curves on the carrier at one carrier angle, and the mechanism turning (GIF).
 
 use super::*;
+use crate::teeth::TeethRun;
 
 /// `outline` turned by `angle` (rad) and moved to `centre`, closed, as plot points.
 pub(super) fn place(outline: &[Vec2], centre: Vec2, angle: f64) -> Vec<(f64, f64)> {
@@ -112,7 +113,7 @@ const SUN_COLOUR: RGBColor = RGBColor(60, 60, 60);
 fn draw_train<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     kin: &Kinematics,
-    teeth: Option<&ToothedPair>,
+    teeth: Option<&TeethRun>,
     theta: f64,
     caption: &str,
     legend: bool,
@@ -128,13 +129,14 @@ where
     }
     match teeth {
         // Toothed gears where they stand (arm k at θ − k·360°/arms, as the arms above).
-        Some(toothed) => {
+        Some(run) => {
             for (k, colour) in ARM_COLOURS.into_iter().enumerate().take(kin.arms()) {
-                let layout = crate::teeth::train_layout(kin, toothed, theta - kin.arm_lag(k));
+                let at = theta - kin.arm_lag(k);
+                let layout = crate::teeth::train_layout(kin, &run.pair, run.second.as_ref(), at);
                 if k == 0 {
                     shapes.push((
                         place(
-                            toothed.gears[0].outline(),
+                            run.outline(&layout[0]),
                             Vec2::ZERO,
                             layout[0].angle_deg.to_radians(),
                         ),
@@ -142,17 +144,17 @@ where
                         Gear::Sun,
                     ));
                 }
-                for g in &layout[1..3] {
-                    let driven = g.member == noncirc_core::Member::Driven;
-                    let outline = &toothed.gears[usize::from(driven)].outline();
+                // Arm I's gears (layout[0] is the sun): intermediate, [layer B,] planet.
+                let own = &layout[1..1 + (layout.len() - 1) / kin.arms()];
+                for (i, g) in own.iter().enumerate() {
+                    let kind = match i + 1 == own.len() {
+                        true => Gear::Planet,
+                        false => Gear::Intermediate,
+                    };
                     shapes.push((
-                        place(outline, g.centre_mm, g.angle_deg.to_radians()),
+                        place(run.outline(g), g.centre_mm, g.angle_deg.to_radians()),
                         colour,
-                        if driven {
-                            Gear::Intermediate
-                        } else {
-                            Gear::Planet
-                        },
+                        kind,
                     ));
                 }
             }
@@ -244,7 +246,7 @@ pub const MAX_FRAMES: usize = 3600;
 /// drawn, as a GIF.
 pub fn animate(
     kin: &Kinematics,
-    teeth: Option<&ToothedPair>,
+    teeth: Option<&TeethRun>,
     path: &Path,
     frames: usize,
 ) -> Result<()> {

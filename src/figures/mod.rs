@@ -3,7 +3,7 @@
 
 use noncirc_core::{
     advance_per_rad, anatomy, box_curves, travel_sign, unit, BoxReport, BoxSpec, Evaluation,
-    Events, Kinematics, ObjectiveValue, Scene, Section, ToothedPair, Vec2, ARM_NAMES,
+    Events, Kinematics, ObjectiveValue, Scene, Section, Vec2, ARM_NAMES,
 };
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;

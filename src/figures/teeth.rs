@@ -12,8 +12,7 @@ pub struct TeethFigure<'a> {
 
 fn placed(run: &TeethRun, k: usize) -> Vec<(f64, f64)> {
     let g = &run.layout[k];
-    let outline = run.pair.gears[usize::from(g.member == Member::Driven)].outline();
-    super::gears::place(outline, g.centre_mm, g.angle_deg.to_radians())
+    super::gears::place(run.outline(g), g.centre_mm, g.angle_deg.to_radians())
 }
 
 impl Figure for TeethFigure<'_> {
@@ -29,13 +28,23 @@ impl Figure for TeethFigure<'_> {
         let run = self.run;
         let r = &run.pair.report;
         let all: Vec<Vec<(f64, f64)>> = (0..run.layout.len()).map(|k| placed(run, k)).collect();
-        let colour = |k: usize| match run.layout[k].member {
-            Member::Driver if k == 0 => RGBColor(40, 40, 40),
-            Member::Driver => ARM_COLOURS[(k - 1) / 2 % 3],
-            Member::Driven => {
-                let RGBColor(r, g, b) = ARM_COLOURS[(k - 1) / 2 % 3];
-                let light = |c: u8| c + (255 - c) / 2;
-                RGBColor(light(r), light(g), light(b))
+        // Gears per arm set after the sun: intermediate, [its layer B,] planet.
+        let per_arm = match run.carrier_deg {
+            Some(_) => 1 + run.pairs().count(),
+            None => 1,
+        };
+        let colour = |k: usize| {
+            let g = &run.layout[k];
+            let planet = (g.pair == 0 && g.member == Member::Driver)
+                || g.pair == 1 && g.member == Member::Driven;
+            match k {
+                0 => RGBColor(40, 40, 40),
+                _ if planet => ARM_COLOURS[(k - 1) / per_arm % 3],
+                _ => {
+                    let RGBColor(r, g, b) = ARM_COLOURS[(k - 1) / per_arm % 3];
+                    let light = |c: u8| c + (255 - c) / 2;
+                    RGBColor(light(r), light(g), light(b))
+                }
             }
         };
         let title = match run.carrier_deg {

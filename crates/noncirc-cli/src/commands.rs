@@ -78,7 +78,7 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
         Err(e) => return Err(e.into()),
     };
     noncirc::report::check_finite(&run.summary())?;
-    let failures = run.pair.report.failures.len();
+    let failures = run.failures().len();
     let checks = run.failed_checks();
     if let Some(dir) = &args.export {
         if failures == 0 || args.force {
@@ -111,7 +111,7 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
     if failures > 0 {
         return Err(Box::new(VerdictFailed(format!(
             "the teeth fail {checks}: {}",
-            run.pair.report.failures.join("; ")
+            run.failures().join("; ")
         ))));
     }
     Ok(())
@@ -122,7 +122,7 @@ pub(crate) fn animate(args: AnimateArgs) -> Result<(), Box<dyn Error>> {
     let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
     let kin = scene.kinematics(&scene.resolution)?;
     let teeth = if args.teeth {
-        Some(noncirc::teeth::TeethRun::from_scene(&scene, 0.0)?.pair)
+        Some(noncirc::teeth::TeethRun::from_scene(&scene, 0.0)?)
     } else {
         None
     };

@@ -333,7 +333,7 @@ impl Design {
     #[wasm_bindgen(js_name = teethFiles)]
     pub fn teeth_files(&self, carrier_deg: f64, force: bool) -> Result<String, JsError> {
         let run = TeethRun::from_scene(&self.scene, carrier_deg).map_err(js_error)?;
-        let failures = &run.pair.report.failures;
+        let failures = run.failures();
         if !failures.is_empty() && !force {
             return Err(JsError::new(&format!(
                 "not exported: the teeth fail {} ({}); tick \"even if a check fails\" to export \

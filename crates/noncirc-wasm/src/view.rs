@@ -98,6 +98,8 @@ fn tip_path(kin: &Kinematics, span_deg: [f64; 2]) -> Line {
 #[derive(Serialize)]
 struct ArmSet {
     intermediate: Line,
+    /// The train with two pairs: the intermediate's layer B, which drives the planet.
+    intermediate_b: Option<Line>,
     planet: Line,
     /// From the planet's centre to the tip (mm).
     arm: Line,
@@ -123,44 +125,46 @@ fn place(outline: &[Vec2], centre: Vec2, angle: f64) -> Line {
 
 impl Frame {
     pub fn new(kin: &Kinematics, teeth: Option<&TeethRun>, theta: f64) -> Self {
-        let pair = kin.pair();
-        let (sun_outline, inter_outline) = match teeth {
-            Some(run) => (
-                run.pair.gears[0].outline().to_vec(),
-                run.pair.gears[1].outline().to_vec(),
-            ),
-            None => (
-                thinned(&pair.driver_points()),
-                thinned(&pair.driven_points()),
-            ),
-        };
-        // The planet: the sun's copy in the paper's train, the second pair's driven gear
-        // with two pairs (whose teeth are not cut here: `TeethRun` refuses that train).
-        let planet_outline = match (teeth, kin.second_pair()) {
-            (None, Some(_)) => thinned(&kin.planet_points()),
-            _ => sun_outline.clone(),
-        };
         let sun_angle = kin.spec().sun_angle();
+        let sun = match teeth {
+            Some(run) => run.pair.gears[0].outline().to_vec(),
+            None => thinned(&kin.pair().driver_points()),
+        };
+        // Pitch curves: the intermediate's conjugate of the sun, its layer B with two
+        // pairs, and the planet (the sun's copy, or the second pair's driven gear).
+        let pitch = [
+            thinned(&kin.pair().driven_points()),
+            kin.second_pair()
+                .map_or_else(Vec::new, |p| thinned(&p.driver_points())),
+            thinned(&kin.planet_points()),
+        ];
         let arms = (0..kin.arms())
             .map(|k| {
                 let at = theta - kin.arm_lag(k);
                 let st = kin.state_at(at);
-                let (intermediate, planet) = match teeth {
+                // Arm I's gears of the layout at `at`: intermediate, [layer B,] planet.
+                let mut gears: Vec<Line> = match teeth {
                     Some(run) => {
-                        let layout = train_layout(kin, &run.pair, at);
-                        let (i, p) = (&layout[1], &layout[2]);
-                        (
-                            place(&inter_outline, i.centre_mm, i.angle_deg.to_radians()),
-                            place(&planet_outline, p.centre_mm, p.angle_deg.to_radians()),
-                        )
+                        let layout = train_layout(kin, &run.pair, run.second.as_ref(), at);
+                        let own = &layout[1..1 + (layout.len() - 1) / kin.arms()];
+                        (own.iter())
+                            .map(|g| place(run.outline(g), g.centre_mm, g.angle_deg.to_radians()))
+                            .collect()
                     }
-                    None => (
-                        place(&inter_outline, st.o2, st.theta2),
-                        place(&planet_outline, st.o3, st.theta3),
-                    ),
+                    None => {
+                        let mut lines = vec![place(&pitch[0], st.o2, st.theta2)];
+                        if kin.second_pair().is_some() {
+                            lines.push(place(&pitch[1], st.o2, st.theta2));
+                        }
+                        lines.push(place(&pitch[2], st.o3, st.theta3));
+                        lines
+                    }
                 };
+                let planet = gears.pop().expect("every arm set has a planet");
+                let intermediate_b = (gears.len() == 2).then(|| gears.pop()).flatten();
                 ArmSet {
-                    intermediate,
+                    intermediate: gears.pop().expect("and an intermediate"),
+                    intermediate_b,
                     planet,
                     arm: vec![st.o3.into(), st.tip.into()],
                 }
@@ -168,7 +172,7 @@ impl Frame {
             .collect();
         Self {
             carrier_deg: theta.to_degrees(),
-            sun: place(&sun_outline, Vec2::ZERO, sun_angle),
+            sun: place(&sun, Vec2::ZERO, sun_angle),
             arms,
         }
     }
