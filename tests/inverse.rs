@@ -58,6 +58,11 @@ fn a_two_pair_design_is_inverted_back_to_its_path() {
         let outcome = invert(&paper(), &target, &spec).unwrap();
         let blocking: Vec<_> = outcome.failures().filter(|c| c.blocks).collect();
         assert!(blocking.is_empty(), "split {split}: {blocking:#?}");
+        // The design's own picking and planting poses come back with its path.
+        for name in ["path_within_tolerance", "pose:picking", "pose:planting"] {
+            let c = outcome.conditions.iter().find(|c| c.name == name);
+            assert!(c.is_some_and(|c| c.holds), "split {split}: {name}: {c:?}");
+        }
         let eval = outcome.evaluation.as_ref().unwrap();
         let fit = eval.fit.as_ref().unwrap();
         assert!(

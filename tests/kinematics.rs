@@ -150,26 +150,32 @@ fn designs() -> Vec<(&'static str, CurveSpec)> {
     ]
 }
 
+/// Both meshes of `spec`'s train (with `second`, the train with two pairs) touch on the
+/// line of centres without slip, for both senses, both sun frames and two γ0.
+fn assert_meshes(name: &str, spec: &CurveSpec, second: Option<&CurveSpec>) {
+    for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
+        for sun_frame in [SunFrame::Installed, SunFrame::Ground] {
+            for gamma0_deg in [-53.0, 70.0] {
+                let train = TrainSpec {
+                    rotation,
+                    sun_frame,
+                    gamma0_deg,
+                    ..TrainSpec::default()
+                };
+                let (radius, tang, vel) = mesh_errors(spec, second, &train, 720);
+                let label = format!("{name} {rotation:?} {sun_frame:?} γ0={gamma0_deg}");
+                assert!(radius < 1e-4, "{label}: radii miss by {radius:e} mm");
+                assert!(tang < 1e-4, "{label}: tangents differ by {tang:e} rad");
+                assert!(vel < 1e-3, "{label}: slip velocity {vel:e} mm/rad");
+            }
+        }
+    }
+}
+
 #[test]
 fn both_meshes_touch_on_the_line_of_centres_without_slip() {
     for (name, spec) in designs() {
-        for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
-            for sun_frame in [SunFrame::Installed, SunFrame::Ground] {
-                for gamma0_deg in [-53.0, 70.0] {
-                    let train = TrainSpec {
-                        rotation,
-                        sun_frame,
-                        gamma0_deg,
-                        ..TrainSpec::default()
-                    };
-                    let (radius, tang, vel) = mesh_errors(&spec, None, &train, 720);
-                    let label = format!("{name} {rotation:?} {sun_frame:?} γ0={gamma0_deg}");
-                    assert!(radius < 1e-4, "{label}: radii miss by {radius:e} mm");
-                    assert!(tang < 1e-4, "{label}: tangents differ by {tang:e} rad");
-                    assert!(vel < 1e-3, "{label}: slip velocity {vel:e} mm/rad");
-                }
-            }
-        }
+        assert_meshes(name, &spec, None);
     }
 }
 
@@ -199,25 +205,7 @@ fn both_meshes_of_the_two_pair_train_touch_on_the_line_of_centres_without_slip()
     let designs = designs();
     for (name, spec) in [&designs[0], &designs[2]] {
         for (second_name, second) in second_curves() {
-            for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
-                for sun_frame in [SunFrame::Installed, SunFrame::Ground] {
-                    for gamma0_deg in [-53.0, 70.0] {
-                        let train = TrainSpec {
-                            rotation,
-                            sun_frame,
-                            gamma0_deg,
-                            ..TrainSpec::default()
-                        };
-                        let (radius, tang, vel) = mesh_errors(spec, Some(&second), &train, 720);
-                        let label = format!(
-                            "{name} + {second_name} {rotation:?} {sun_frame:?} γ0={gamma0_deg}"
-                        );
-                        assert!(radius < 1e-4, "{label}: radii miss by {radius:e} mm");
-                        assert!(tang < 1e-4, "{label}: tangents differ by {tang:e} rad");
-                        assert!(vel < 1e-3, "{label}: slip velocity {vel:e} mm/rad");
-                    }
-                }
-            }
+            assert_meshes(&format!("{name} + {second_name}"), spec, Some(&second));
         }
     }
 }

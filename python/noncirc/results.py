@@ -510,7 +510,8 @@ class Condition:
 
     name: str
     """`pusher_within_arm`, `carrier_advances`, `carrier_turns_once`, `arm_turns_back`,
-    `ratio_positive`, `<gear>_convex`, `evaluates` or `objective:<name>`."""
+    `ratio_positive`, `<gear>_convex`, `evaluates`, `path_within_tolerance`, `pose:<name>`
+    or `objective:<name>`."""
     holds: bool
     blocks: bool
     """Whether failing it leaves no design that can be made as it is."""

@@ -29,12 +29,9 @@ impl InverseFigure<'_> {
                 k
             }
         };
-        let (first, count) = {
-            let span = (s1 - s0).rem_euclid(length);
-            (s0, (span / length * n as f64).round() as usize + 1)
-        };
+        let count = ((s1 - s0).rem_euclid(length) / length * n as f64).round() as usize + 1;
         (0..count)
-            .map(|i| samples[index(first + length * i as f64 / n as f64)].into())
+            .map(|i| samples[index(s0 + length * i as f64 / n as f64)].into())
             .collect()
     }
 }

@@ -113,8 +113,9 @@ pub struct Place {
 /// means, and where it fails.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Condition {
-    /// `carrier_advances`, `carrier_turns_once`, `arm_turns_back`,
-    /// `ratio_positive`, `<gear>_convex`, or `objective:<name>`.
+    /// `pusher_within_arm`, `carrier_advances`, `carrier_turns_once`, `arm_turns_back`,
+    /// `ratio_positive`, `<gear>_convex`, `evaluates`, `path_within_tolerance`,
+    /// `pose:<name>` or `objective:<name>`.
     pub name: String,
     pub holds: bool,
     /// Whether failing it leaves no design (the curves cannot be built, or cannot be cut).
@@ -810,6 +811,51 @@ fn design_conditions(scene: &Scene, evaluation: &Evaluation, node_s: &[f64]) -> 
                     places,
                 });
             }
+        }
+    }
+    if let (Some(fit), Some(target)) = (&evaluation.fit, &scene.target) {
+        out.push(Condition {
+            name: "path_within_tolerance".into(),
+            holds: fit.path_hausdorff_mm <= target.tolerance_mm,
+            blocks: false,
+            value: fit.path_hausdorff_mm,
+            bound: target.tolerance_mm,
+            unit: "mm",
+            meaning: format!(
+                "the design's path within the target's tolerance (Hausdorff distance; \
+                 farthest at ({:.2}, {:.2}) mm)",
+                fit.hausdorff_at_mm.x, fit.hausdorff_at_mm.y
+            ),
+            places: vec![],
+        });
+        // The key poses: where the design's arm is at each, against the pose's tolerances.
+        for (pose, got) in target.poses.iter().zip(&fit.poses) {
+            let mut meaning = format!(
+                "the tip within {} mm of ({:.2}, {:.2}) mm",
+                pose.position_tolerance_mm, pose.x_mm, pose.y_mm
+            );
+            if let (Some(a), Some(e)) = (pose.attitude_deg, got.attitude_error_deg) {
+                meaning += &format!(
+                    " and the attitude within {}° of {a}° (off by {e:+.2}°)",
+                    pose.attitude_tolerance_deg
+                );
+            }
+            if let (Some(c), Some(e)) = (pose.carrier_deg, got.carrier_error_deg) {
+                meaning += &format!(
+                    " and the carrier within {}° of {c}° (off by {e:+.2}°)",
+                    pose.carrier_tolerance_deg
+                );
+            }
+            out.push(Condition {
+                name: format!("pose:{}", got.name),
+                holds: got.met || !got.counts,
+                blocks: false,
+                value: got.position_error_mm,
+                bound: pose.position_tolerance_mm,
+                unit: "mm",
+                meaning,
+                places: vec![],
+            });
         }
     }
     for o in &evaluation.objectives {
