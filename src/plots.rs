@@ -156,6 +156,7 @@ fn target_figures(
         let prepared = target.prepare()?;
         files.extend(save(
             &FitFigure {
+                how,
                 kin,
                 target,
                 prepared: &prepared,

@@ -7,6 +7,8 @@ use noncirc_core::{FitReport, PreparedTarget, Target};
 
 /// Figure: the target and the fitted trajectory overlaid, with the pose errors drawn.
 pub struct FitFigure<'a> {
+    /// How the design was found, as the legend says it: "fitted", "inverted".
+    pub how: &'a str,
     pub kin: &'a Kinematics,
     pub target: &'a Target,
     pub prepared: &'a PreparedTarget,
@@ -34,8 +36,8 @@ impl Figure for FitFigure<'_> {
             self.target.tolerance_mm
         );
         let path_label = format!(
-            "fitted tip path: Hausdorff {:.3} mm, RMS {:.3} mm",
-            fit.path_hausdorff_mm, fit.path_rms_mm
+            "{} tip path: Hausdorff {:.3} mm, RMS {:.3} mm",
+            self.how, fit.path_hausdorff_mm, fit.path_rms_mm
         );
         let farthest_label = "where the paths are farthest apart".to_string();
         let pose_labels: Vec<String> = (fit.poses.iter())
@@ -54,7 +56,10 @@ impl Figure for FitFigure<'_> {
             })
             .collect();
         let area = root
-            .titled("Fit of the tip path to the target", (FONT, 22))
+            .titled(
+                &format!("The {} tip path against the target", self.how),
+                (FONT, 22),
+            )
             .map_err(err)?;
         let (w, h) = area.dim_in_pixel();
         let place = legend_place(
