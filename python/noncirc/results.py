@@ -375,6 +375,10 @@ class FitMeasure:
     met: Optional[bool]
 
 
+def _point(v: Any) -> tuple[float, float]:
+    """A point of a summary (`{"x", "y"}` or `[x, y]`), mm."""
+    return (float(v["x"]), float(v["y"])) if isinstance(v, dict) else (float(v[0]), float(v[1]))
+
 @dataclass(frozen=True)
 class PoseFit:
     """Where a key pose was read on the fitted design's path, and its errors."""
@@ -441,9 +445,6 @@ class FitResult:
         run = raw["run"]
         local = run.get("local") or {}
 
-        def point(v: Any) -> tuple[float, float]:
-            return (float(v["x"]), float(v["y"])) if isinstance(v, dict) else (float(v[0]), float(v[1]))
-
         return FitResult(
             met=raw["met"],
             feasible=raw["feasible"],
@@ -452,7 +453,7 @@ class FitResult:
                 PoseFit(
                     name=p["name"],
                     carrier_deg=p["carrier_deg"],
-                    tip_mm=point(p["tip_mm"]),
+                    tip_mm=_point(p["tip_mm"]),
                     attitude_deg=p["attitude_deg"],
                     position_error_mm=p["position_error_mm"],
                     attitude_error_deg=p["attitude_error_deg"],
@@ -464,7 +465,7 @@ class FitResult:
             ],
             path_hausdorff_mm=fit.get("path_hausdorff_mm", float("nan")),
             path_rms_mm=fit.get("path_rms_mm", float("nan")),
-            hausdorff_at_mm=point(fit["hausdorff_at_mm"]) if fit else (float("nan"), float("nan")),
+            hausdorff_at_mm=_point(fit["hausdorff_at_mm"]) if fit else (float("nan"), float("nan")),
             cost=fit.get("cost", float("nan")),
             objectives={o["name"]: Quantity(o["value"], o["unit"]) for o in raw["objectives"]},
             violations={o["name"]: o["violation"] for o in raw["objectives"]},
@@ -551,9 +552,6 @@ class InverseResult:
 
     @staticmethod
     def _from_raw(raw: dict[str, Any]) -> InverseResult:
-        def point(v: Any) -> tuple[float, float]:
-            return (float(v["x"]), float(v["y"])) if isinstance(v, dict) else (float(v[0]), float(v[1]))
-
         conditions = [
             Condition(
                 name=c["name"],
@@ -567,7 +565,7 @@ class InverseResult:
                     Place(
                         path_mm=(p["path_mm"][0], p["path_mm"][1]),
                         carrier_deg=None if p.get("carrier_deg") is None else tuple(p["carrier_deg"]),
-                        point_mm=point(p["point_mm"]),
+                        point_mm=_point(p["point_mm"]),
                     )
                     for p in c["places"]
                 ],

@@ -401,8 +401,24 @@ fn unwrap(angles: &mut [f64]) {
     }
 }
 
+/// Runs of consecutive failing samples (cyclic) as index ranges `[first, last]`, each with
+/// its worst sample (the largest `badness`).
+fn runs(fails: &[bool], badness: impl Fn(usize) -> f64) -> Vec<([usize; 2], usize)> {
+    let n = fails.len();
+    (cyclic_runs(fails).into_iter())
+        .map(|run| {
+            let len = (run[1] + n - run[0]) % n + 1;
+            let worst = (0..len)
+                .map(|i| (run[0] + i) % n)
+                .max_by(|&x, &y| badness(x).total_cmp(&badness(y)))
+                .unwrap_or(run[0]);
+            (run, worst)
+        })
+        .collect()
+}
+
 /// Runs of consecutive failing samples (cyclic) as index ranges `[first, last]`.
-fn runs(fails: &[bool]) -> Vec<[usize; 2]> {
+fn cyclic_runs(fails: &[bool]) -> Vec<[usize; 2]> {
     let n = fails.len();
     let Some(start) = (0..n).find(|&i| !fails[i]) else {
         return if n == 0 { vec![] } else { vec![[0, n - 1]] };
@@ -518,16 +534,8 @@ fn invert_on(
         point_mm: chains[worst].point,
     };
     let places_where = |fails: &[bool], badness: &dyn Fn(usize) -> f64| -> Vec<Place> {
-        runs(fails)
-            .into_iter()
-            .map(|run| {
-                let len = (run[1] + m - run[0]) % m + 1;
-                let worst = (0..len)
-                    .map(|i| (run[0] + i) % m)
-                    .max_by(|&x, &y| badness(x).total_cmp(&badness(y)))
-                    .unwrap_or(run[0]);
-                place(run, worst)
-            })
+        (runs(fails, badness).into_iter())
+            .map(|(run, worst)| place(run, worst))
             .collect()
     };
     let mut conditions = Vec::new();
@@ -776,15 +784,10 @@ fn design_conditions(scene: &Scene, evaluation: &Evaluation, node_s: &[f64]) -> 
                         phi_a.partition_point(|&v| v < u).min(tips.len() - 1)
                     }
                 };
-                let places = runs(&fails)
+                let places = runs(&fails, |k| -kappa[k])
                     .into_iter()
-                    .map(|run| {
+                    .map(|(run, worst)| {
                         let (j0, j1) = (node(run[0]), node(run[1]));
-                        let len = (run[1] + n - run[0]) % n + 1;
-                        let worst = (0..len)
-                            .map(|i| (run[0] + i) % n)
-                            .min_by(|&x, &y| kappa[x].total_cmp(&kappa[y]))
-                            .unwrap_or(run[0]);
                         Place {
                             path_mm: [node_s[j0], node_s[j1]],
                             carrier_deg: Some([
