@@ -110,6 +110,7 @@ fn circle(centre: Vec2, radius: f64, count: usize, tolerance_mm: f64) -> Target 
         samples: 128,
         counts: true,
         poses: vec![],
+        design: vec![],
     }
 }
 

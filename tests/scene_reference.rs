@@ -73,7 +73,8 @@ fn scenes() -> Vec<noncirc_core::Scene> {
             "target={kind=\"spline\",x_mm=[200.0,0.0,-200.0,0.0],y_mm=[0.0,150.0,0.0,-300.0],\
            tolerance_mm=0.5,samples=128,counts=true,poses=[{name=\"picking\",at=\"picking\",\
            x_mm=200.0,y_mm=0.0,attitude_deg=10.0,carrier_deg=20.0,position_tolerance_mm=0.5,\
-           attitude_tolerance_deg=0.5,carrier_tolerance_deg=2.0,counts=true}]}",
+           attitude_tolerance_deg=0.5,carrier_tolerance_deg=2.0,counts=true}],\
+           design=[{name=\"train.phi0_deg\",value=86.0,scale=12.0}]}",
         ],
     ];
     for edit in edits {

@@ -5,7 +5,7 @@
 
 use crate::error::{finite, Error, Result};
 use crate::objective_kind::ObjectiveKind;
-use crate::params::Param;
+use crate::params::{pulled_values, Param};
 use crate::reference::{interval_checks, TABLES};
 use crate::scene::{Scene, SceneKind, SearchSpec};
 
@@ -143,12 +143,14 @@ impl Scene {
     }
 
     /// The target whole, as [`Target::prepare`](crate::target::Target::prepare) checks it
-    /// (closed, distinct points, no crossing): once when a scene is read, not per design
-    /// (an evaluation prepares it once and keeps it).
+    /// (closed, distinct points, no crossing), and the parameters it pulls: once when a
+    /// scene is read, not per design (an evaluation prepares it once and keeps it).
     pub fn validate_target(&self) -> Result<()> {
-        self.target
-            .as_ref()
-            .map_or(Ok(()), |t| t.prepare().map(drop))
+        let Some(target) = &self.target else {
+            return Ok(());
+        };
+        target.prepare()?;
+        pulled_values(self).map(drop)
     }
 
     /// The search settings: goals this scene can compute, each once; free parameters that

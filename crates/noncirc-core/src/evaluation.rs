@@ -12,6 +12,7 @@ use crate::gear::{GearPair, ModuleReport};
 use crate::moving_box::{evaluate_box_with, BoxReport};
 use crate::objective_kind::ObjectiveKind;
 use crate::objectives::{objective_value, ObjectiveValue};
+use crate::params::pulled_values;
 use crate::planetary::Kinematics;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
@@ -334,7 +335,8 @@ impl Evaluator {
         });
         if let Some((target, prepared)) = &target {
             self.counts.fit += 1;
-            out.fit = Some(fit_report(&kin, ev.as_ref(), target, prepared));
+            let design = pulled_values(scene)?;
+            out.fit = Some(fit_report(&kin, ev.as_ref(), target, prepared, &design));
         }
         out.events = ev;
         out.kinematics = Some(kin);
@@ -430,6 +432,50 @@ mod tests {
             evaluator.evaluate(&scene),
             Err(Error::OpenTarget { .. })
         ));
+    }
+
+    #[test]
+    fn a_design_pull_adds_its_scaled_change_to_the_residuals_and_the_cost() {
+        let mut scene = Scene::default();
+        let plain = Evaluator::new().evaluate(&scene).unwrap();
+        let kin = plain.kinematics.unwrap();
+        let mut target = crate::fit::target_of(&kin, plain.events.as_ref().unwrap(), 512);
+        scene.target = Some(Arc::new(target.clone()));
+        let unpulled = Evaluator::new().evaluate(&scene).unwrap().fit.unwrap();
+        assert_eq!(unpulled.design_rms, None);
+        // Φ0 = 86° pulled towards 92° with scale 2°: (86 − 92)/2 = −3; S = 145 mm towards
+        // itself: 0. RMS √(9/2), cost up by 9/2.
+        let pull = |name: &str, value: f64, scale: f64| crate::target::DesignPull {
+            name: name.into(),
+            value,
+            scale,
+        };
+        target.design = vec![
+            pull("train.phi0_deg", 92.0, 2.0),
+            pull("train.arm_length_mm", 145.0, 10.0),
+        ];
+        scene.target = Some(Arc::new(target.clone()));
+        scene.validate_target().unwrap();
+        let pulled = Evaluator::new().evaluate(&scene).unwrap().fit.unwrap();
+        let n = unpulled.residuals.len();
+        assert_eq!(pulled.residuals[..n], unpulled.residuals[..]);
+        assert_eq!(pulled.residuals[n..], [-3.0, 0.0]);
+        assert!((pulled.design_rms.unwrap() - 4.5f64.sqrt()).abs() < 1e-12);
+        assert!((pulled.cost - unpulled.cost - 4.5).abs() < 1e-9);
+        assert_eq!(
+            pulled.met, unpulled.met,
+            "a pull weighs in the cost, not in met"
+        );
+        // A parameter the scene does not have is named, with the nearest paths.
+        target.design = vec![pull("train.phi9_deg", 0.0, 1.0)];
+        scene.target = Some(Arc::new(target));
+        let e = scene.validate_target().unwrap_err();
+        assert!(
+            matches!(&e, Error::UnknownName { name, nearest, .. }
+                if name == "train.phi9_deg" && nearest.iter().any(|n| n == "train.phi0_deg")),
+            "{e:?}"
+        );
+        assert!(Evaluator::new().evaluate(&scene).is_err());
     }
 
     #[test]

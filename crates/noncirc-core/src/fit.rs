@@ -29,6 +29,9 @@ pub struct FitReport {
     pub hausdorff_at_mm: Vec2,
     /// Each key pose's fit, in `target.poses` order.
     pub poses: Vec<PoseFit>,
+    /// RMS of the design's changes from the pulled values, each over its scale
+    /// (`target.design`; none when it pulls nothing).
+    pub design_rms: Option<f64>,
     /// Half the squared norm of the residuals: path distances over the path's tolerance
     /// (`½ RMS²/τ²` when the path counts), each counting pose's errors over theirs.
     pub cost: f64,
@@ -37,7 +40,8 @@ pub struct FitReport {
     /// The residuals, as many for every design of a scene: per target sample
     /// `√(1/2M)·d/τ`, per node interval of the trajectory `√(Σ w d²/2L)/τ` over its
     /// points (w their arc lengths, L the path's), when the path counts; then each
-    /// counting pose's `(Δx, Δy)/tol`, `Δatt/tol` and `Δθ/tol` (those it names).
+    /// counting pose's `(Δx, Δy)/tol`, `Δatt/tol` and `Δθ/tol` (those it names); then
+    /// each design pull's `(x − value)/scale`.
     #[serde(skip)]
     pub residuals: Vec<f64>,
 }
@@ -124,6 +128,7 @@ pub fn target_of(kin: &Kinematics, events: &Events, points: usize) -> Target {
             pose("picking", PoseAt::Picking, &events.picking),
             pose("planting", PoseAt::Planting, &events.planting),
         ],
+        design: Vec::new(),
     }
 }
 
@@ -131,12 +136,14 @@ pub fn target_of(kin: &Kinematics, events: &Events, points: usize) -> Target {
 const PATH_ACCURACY: f64 = 0.05;
 
 /// The fit of `kin`'s arm I to `target` (prepared as `prepared`); `events` must be given
-/// when a pose is read at an event ([`Target::needs_events`]).
+/// when a pose is read at an event ([`Target::needs_events`]); `design` holds the current
+/// values of the parameters that `target.design` pulls, in its order.
 pub(crate) fn fit_report(
     kin: &Kinematics,
     events: Option<&Events>,
     target: &Target,
     prepared: &PreparedTarget,
+    design: &[f64],
 ) -> FitReport {
     let mut residuals = Vec::new();
     let path_residuals = target.counts.then_some(&mut residuals);
@@ -159,11 +166,19 @@ pub(crate) fn fit_report(
             fit
         })
         .collect();
+    let pulls = (target.design.iter().zip(design)).map(|(p, &x)| (x - p.value) / p.scale);
+    let before = residuals.len();
+    residuals.extend(pulls);
+    let pulled = &residuals[before..];
+    let squares = pulled.iter().map(|r| r * r).sum::<f64>();
+    cost += 0.5 * squares;
+    let design_rms = (!pulled.is_empty()).then(|| (squares / pulled.len() as f64).sqrt());
     FitReport {
         path_hausdorff_mm: path.hausdorff_mm,
         path_rms_mm: path.rms_mm,
         hausdorff_at_mm: path.hausdorff_at,
         poses,
+        design_rms,
         cost,
         met,
         residuals,
@@ -609,6 +624,7 @@ mod tests {
             samples,
             counts: true,
             poses: Vec::new(),
+            design: Vec::new(),
         }
     }
 
@@ -774,7 +790,7 @@ mod tests {
                 .collect();
             let target = target_of(&exact, 256);
             let prepared = target.prepare().unwrap();
-            let report = fit_report(&kin, None, &target, &prepared);
+            let report = fit_report(&kin, None, &target, &prepared, &[]);
             let accuracy = PATH_ACCURACY * target.tolerance_mm;
             assert!(
                 report.path_hausdorff_mm < accuracy,

@@ -78,7 +78,7 @@ pub use planetary::{PusherSide, SunFrame, TrainSpec, ARM_NAMES};
 pub use reference::{field, fields, symbol, Bound, Field, Range};
 pub use resolution::Resolution;
 pub use scene::{FreeParam, GearSpec, Scene, SceneKind, SearchSpec};
-pub use target::{Pose, PoseAt, PreparedTarget, Target, TargetKind};
+pub use target::{DesignPull, Pose, PoseAt, PreparedTarget, Target, TargetKind};
 
 // The model: gear pairs, the train's motion, events, sections, measures.
 pub use anatomy::{anatomy, Anatomy, SectionMeasures};

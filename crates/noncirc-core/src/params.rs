@@ -118,6 +118,32 @@ impl Param {
     }
 }
 
+/// The current values of the parameters that `scene`'s target pulls (`target.design`),
+/// in its order (none without a target). A name the scene does not have is
+/// [`Error::UnknownName`] with the nearest paths; an optional field left unset, refused.
+pub(crate) fn pulled_values(scene: &Scene) -> Result<Vec<f64>> {
+    let Some(target) = &scene.target else {
+        return Ok(Vec::new());
+    };
+    (target.design.iter().enumerate())
+        .map(|(k, pull)| {
+            let param = Param::parse(&pull.name, scene).map_err(|e| match e {
+                Error::UnknownName { name, nearest, .. } => Error::UnknownName {
+                    what: "parameter (target.design)",
+                    name,
+                    nearest,
+                },
+                e => e,
+            })?;
+            param.get(scene).ok_or_else(|| Error::OutOfRange {
+                name: format!("target.design[{k}].name"),
+                value: f64::NAN,
+                expected: format!("a parameter the scene sets ('{}' is unset)", pull.name),
+            })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

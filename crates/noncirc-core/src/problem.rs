@@ -273,7 +273,8 @@ impl SceneProblem {
             .filter(|p| p.counts)
             .map(|p| 2 + p.attitude_deg.is_some() as usize + p.carrier_deg.is_some() as usize)
             .sum();
-        path + poses + self.base.objectives.len()
+        let pulls = target.map_or(0, |t| t.design.len());
+        path + poses + pulls + self.base.objectives.len()
     }
 
     /// The residuals of design `u` for a fit at `resolution`: the fit's to the scene's
@@ -446,5 +447,33 @@ mod tests {
         let least = Goal::LeastMargin.value(&eval, &scene);
         assert_eq!(Goal::LeastMargin.physical(least, b), -least);
         assert!(Goal::PickingTipSpeed.physical(INVALID_CV, b).is_nan());
+    }
+
+    #[test]
+    fn the_fit_residuals_are_as_many_as_counted_with_poses_and_design_pulls() {
+        use crate::evaluation::Evaluator;
+        let mut scene = Scene::default();
+        let eval = Evaluator::new().evaluate(&scene).unwrap();
+        let kin = eval.kinematics.unwrap();
+        let mut target = crate::fit::target_of(&kin, eval.events.as_ref().unwrap(), 256);
+        target.design = vec![crate::target::DesignPull {
+            name: "train.gamma0_deg".into(),
+            value: -50.0,
+            scale: 1.5,
+        }];
+        scene.target = Some(std::sync::Arc::new(target));
+        let problem = SceneProblem::new(&scene).unwrap();
+        let u = vec![0.5; problem.dim()];
+        let (mut evaluator, mut scratch) = (Evaluator::new(), scene.clone());
+        for samples in [120, 720] {
+            let resolution = scene.resolution.with_samples(samples);
+            let (r, fitness) = problem.fit_residuals(&u, &mut evaluator, &mut scratch, &resolution);
+            assert_eq!(r.len(), problem.fit_residual_count(&resolution));
+            assert!(fitness.cv < INVALID_CV, "the design evaluates");
+            assert!(
+                r.iter().all(|x| *x != REFUSED_RESIDUAL),
+                "{samples}: refused"
+            );
+        }
     }
 }

@@ -88,6 +88,23 @@ pub struct Target {
     /// Key poses, at most [`Target::MAX_POSES`].
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub poses: Vec<Pose>,
+    /// Design parameters pulled towards values (a repair's own design): each adds
+    /// `(value now − value)/scale` to the residuals. They weigh in the cost, not in `met`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub design: Vec<DesignPull>,
+}
+
+/// A design parameter the fit pulls towards a value: a change of one `scale` costs as
+/// much as the path off by one tolerance (RMS) or a pose by one of its tolerances.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DesignPull {
+    /// Scene path of the parameter (`train.phi0_deg`, `gear.curve.radii_mm[3]`).
+    pub name: String,
+    /// The value it is pulled towards (the parameter's unit).
+    pub value: f64,
+    /// The change that costs one unit of the fit (the parameter's unit; above 0).
+    pub scale: f64,
 }
 
 fn half() -> f64 {
@@ -150,6 +167,8 @@ impl Target {
     pub const MAX_POSES: usize = 4;
     /// Range of [`Target::samples`].
     pub const SAMPLES: [usize; 2] = [16, 4096];
+    /// Most design pulls (as many as a search's free parameters).
+    pub const MAX_DESIGN: usize = 1_000;
 
     /// Checks every number and count, naming the bad one (cheap: no geometry).
     pub fn validate(&self) -> Result<()> {
@@ -194,10 +213,37 @@ impl Target {
         for (k, pose) in self.poses.iter().enumerate() {
             pose.validate(k)?;
         }
-        if !self.counts && !self.poses.iter().any(|p| p.counts) {
+        if self.design.len() > Self::MAX_DESIGN {
+            return Err(Error::OutOfRange {
+                name: "target.design (count)".into(),
+                value: self.design.len() as f64,
+                expected: format!("at most {}", Self::MAX_DESIGN),
+            });
+        }
+        for (k, pull) in self.design.iter().enumerate() {
+            let name = |field: &str| format!("target.design[{k}].{field}");
+            finite_with(|| name("value"), pull.value)?;
+            finite_with(|| name("scale"), pull.scale)?;
+            if pull.scale <= 0.0 {
+                return Err(Error::OutOfRange {
+                    name: name("scale"),
+                    value: pull.scale,
+                    expected: "above 0 (the parameter's unit)".into(),
+                });
+            }
+            if self.design[..k].iter().any(|p| p.name == pull.name) {
+                return Err(Error::BadList {
+                    list: "target.design",
+                    problem: format!("'{}' is pulled twice", pull.name),
+                });
+            }
+        }
+        if !self.counts && !self.poses.iter().any(|p| p.counts) && self.design.is_empty() {
             return Err(Error::BadList {
                 list: "target",
-                problem: "nothing counts: the path has counts = false and no pose counts".into(),
+                problem: "nothing counts: the path has counts = false, no pose counts and no \
+                          design parameter is pulled"
+                    .into(),
             });
         }
         Ok(())
@@ -426,6 +472,7 @@ mod tests {
             samples: 128,
             counts: true,
             poses: Vec::new(),
+            design: Vec::new(),
         }
     }
 

@@ -196,4 +196,45 @@ pub(super) const FIELDS: &[Field] = &[
         refused: &[posed!(",counts=1")],
         number: None,
     },
+    Field {
+        key: "target.design",
+        symbol: "",
+        unit: "",
+        range: Range::Rule("at most 1000, each parameter once"),
+        meaning: "Design parameters the fit pulls towards values, `{ name, value, scale }`: \
+                  each adds (value now − value)/scale to the residuals, so that the fit prefers \
+                  the design nearest the given one (`noncirc repair` pulls each free parameter \
+                  towards the given design's). They weigh in the cost, not in whether the fit \
+                  is met.",
+        refused: &[square!(",design=[{name=\"train.phi0_deg\",value=86.0,scale=1.0},{name=\"train.phi0_deg\",value=80.0,scale=1.0}]")],
+        number: None,
+    },
+    Field {
+        key: "target.design[i].name",
+        symbol: "",
+        unit: "",
+        range: Range::Rule("a parameter path the scene sets (as `--set` takes it)"),
+        meaning: "The parameter pulled (`train.phi0_deg`, `gear.curve.radii_mm[3]`).",
+        refused: &[square!(",design=[{name=\"train.phi9_deg\",value=86.0,scale=1.0}]")],
+        number: None,
+    },
+    Field {
+        key: "target.design[i].value",
+        symbol: "",
+        unit: "",
+        range: Range::Rule("finite (the parameter's unit)"),
+        meaning: "The value the parameter is pulled towards.",
+        refused: &[square!(",design=[{name=\"train.phi0_deg\",value=nan,scale=1.0}]")],
+        number: None,
+    },
+    Field {
+        key: "target.design[i].scale",
+        symbol: "",
+        unit: "",
+        range: Range::Rule("above 0, finite (the parameter's unit)"),
+        meaning: "The change that costs as much as the path off by its tolerance (RMS): \
+                  `noncirc repair` takes a tenth of the parameter's search interval.",
+        refused: &[square!(",design=[{name=\"train.phi0_deg\",value=86.0,scale=0.0}]")],
+        number: None,
+    },
 ];
