@@ -80,6 +80,7 @@ pub fn target_from_csv(text: &str, origin: &str) -> Result<Target> {
         samples: 128,
         counts: true,
         poses: Vec::new(),
+        design: Vec::new(),
     })
 }
 
@@ -187,6 +188,10 @@ fn local_resolution(scene: &Resolution) -> Resolution {
     scene.with_samples(scene.samples_per_turn.max(LOCAL_SAMPLES_PER_TURN))
 }
 
+/// Bisections back along the refinement's step when it ends beyond a constraint: the
+/// step's end located to 2⁻¹² of its length.
+const BISECTIONS: usize = 12;
+
 /// Fits `scene` to its target: the search (its `[search]` box, algorithm, budget and
 /// seed; the goal `fit`), then the local refinement. Refuses, before anything runs, a
 /// scene without a target and a target out of the box's reach.
@@ -231,8 +236,37 @@ pub fn fit_scene(
             resolution,
         };
         let report = refine(&mut residuals, &start, &opts.local);
-        let candidate = problem.scene_at(&report.u);
-        if let Ok(eval) = Evaluator::new().evaluate(&candidate) {
+        let evaluate = |u: &[f64]| {
+            let scene = problem.scene_at(u);
+            Evaluator::new().evaluate(&scene).ok().map(|e| (scene, e))
+        };
+        let mut candidate = evaluate(&report.u);
+        let misses = |c: &Option<(Scene, Evaluation)>| {
+            c.as_ref().is_none_or(|(_, e)| e.total_violation() > 0.0)
+        };
+        if misses(&candidate) && !misses(&evaluate(&start)) {
+            // The refinement crossed a constraint (the fit's best often lies on one):
+            // the point nearest its end on the segment from the search's design that
+            // still meets every objective.
+            let along = |t: f64| -> Vec<f64> {
+                (start.iter().zip(&report.u))
+                    .map(|(a, b)| a + t * (b - a))
+                    .collect()
+            };
+            let (mut met, mut missed) = (0.0, 1.0);
+            for _ in 0..BISECTIONS {
+                let mid = 0.5 * (met + missed);
+                if misses(&evaluate(&along(mid))) {
+                    missed = mid;
+                } else {
+                    met = mid;
+                }
+            }
+            if met > 0.0 {
+                candidate = evaluate(&along(met));
+            }
+        }
+        if let Some((candidate, eval)) = candidate {
             let cost = |e: &Evaluation| e.fit.as_ref().map_or(f64::INFINITY, |f| f.cost);
             // Violations compared as the search does: each over its objective's scale.
             let bounds = &problem.base().bounds;
