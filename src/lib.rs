@@ -16,6 +16,7 @@ pub mod fit;
 pub mod inverse;
 #[cfg(feature = "figures")]
 pub mod plots;
+pub mod repair;
 pub mod report;
 pub mod robustness;
 pub mod scene_file;

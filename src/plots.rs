@@ -104,7 +104,44 @@ pub fn fit_figures(
     let mut files = progress_figures(&outcome.search, dir, options)?;
     if let Some((scene, eval)) = &outcome.best {
         files.extend(evaluation_outputs(scene, eval, &dir.join("best"), options)?);
-        files.extend(target_figures(scene, eval, "fitted", dir, options)?);
+        files.extend(target_figures(
+            scene,
+            eval,
+            ["fitted", "target"],
+            dir,
+            options,
+        )?);
+    }
+    Ok(files)
+}
+
+/// A repair's figures: the repaired design's (`repaired/`) and its path against the
+/// given design's (`fit.*`, `fit_distance.*`).
+pub fn repair_figures(
+    outcome: &crate::repair::RepairOutcome,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>> {
+    create_dir(dir)?;
+    let mut files = Vec::new();
+    if let Some(r) = &outcome.repaired {
+        files.extend(evaluation_outputs(
+            &r.scene,
+            &r.evaluation,
+            &dir.join("repaired"),
+            options,
+        )?);
+        let mut scene = r.scene.clone();
+        scene.target = (outcome.fit.search.problem.base().target).clone();
+        let mut eval = r.evaluation.clone();
+        eval.fit = Some(r.fit.clone());
+        files.extend(target_figures(
+            &scene,
+            &eval,
+            ["repaired", "given design's"],
+            dir,
+            options,
+        )?);
     }
     Ok(files)
 }
@@ -136,18 +173,24 @@ pub fn inverse_figures(
             &dir.join("design"),
             options,
         )?);
-        files.extend(target_figures(scene, eval, "inverted", dir, options)?);
+        files.extend(target_figures(
+            scene,
+            eval,
+            ["inverted", "target"],
+            dir,
+            options,
+        )?);
     }
     Ok(files)
 }
 
 /// The design's path against its scene's target with the pose errors (`fit.*`), and each
-/// target sample's distance to the path (`fit_distance.*`); `how` names the design
-/// ("fitted", "inverted").
+/// target sample's distance to the path (`fit_distance.*`); `[how, against]` name the
+/// design ("fitted", "inverted", "repaired") and the target ("target", "given design's").
 fn target_figures(
     scene: &Scene,
     eval: &noncirc_core::Evaluation,
-    how: &str,
+    [how, against]: [&str; 2],
     dir: &Path,
     options: &FigureOptions,
 ) -> Result<Vec<PathBuf>> {
@@ -157,6 +200,7 @@ fn target_figures(
         files.extend(save(
             &FitFigure {
                 how,
+                against,
                 kin,
                 target,
                 prepared: &prepared,
@@ -183,12 +227,12 @@ fn target_figures(
         files.extend(save(
             &LinesFigure {
                 title: format!(
-                    "Distance of the {how} tip path from the target (Hausdorff {:.3} mm)",
+                    "Distance of the {how} tip path from the {against} path (Hausdorff {:.3} mm)",
                     fit.path_hausdorff_mm
                 ),
-                x_desc: "arc length along the target path from its first point (mm)".into(),
+                x_desc: format!("arc length along the {against} path from its first point (mm)"),
                 y_desc: "distance to the tip path (mm)".into(),
-                series: vec![("target samples".into(), distances)],
+                series: vec![(format!("{against} path's samples"), distances)],
                 points_only: false,
                 markers: true,
                 band: Some((None, Some(target.tolerance_mm))),

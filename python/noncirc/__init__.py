@@ -29,13 +29,15 @@ from ._noncirc import (
     robustness,
     sensitivity,
 )
-from .api import evaluate, evaluate_batch, fit, inverse, optimise
+from .api import evaluate, evaluate_batch, fit, inverse, optimise, repair
 from .progress import ProgressBar
 from .results import (
     Batch,
+    Change,
     Condition,
     Design,
     Evaluation,
+    EventShift,
     FitMeasure,
     FitResult,
     Goal,
@@ -44,14 +46,17 @@ from .results import (
     Place,
     PoseFit,
     Quantity,
+    RepairResult,
     SearchResult,
 )
 
 __all__ = [
     "Batch",
+    "Change",
     "Condition",
     "Design",
     "Evaluation",
+    "EventShift",
     "FitMeasure",
     "FitResult",
     "Goal",
@@ -65,6 +70,7 @@ __all__ = [
     "PoseFit",
     "ProgressBar",
     "Quantity",
+    "RepairResult",
     "Scene",
     "SceneError",
     "SearchResult",
@@ -75,6 +81,7 @@ __all__ = [
     "inverse",
     "measures",
     "optimise",
+    "repair",
     "robustness",
     "sensitivity",
     "__version__",

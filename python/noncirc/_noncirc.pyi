@@ -147,6 +147,21 @@ def inverse(
     """The inversion for the train with two pairs (`noncirc inverse --format json`'s
     summary: met, built, geometry, conditions) and `scene` when a design was built."""
 
+def repair(
+    scene: Scene,
+    *,
+    path_tolerance_mm: float = 1.0,
+    design_scale: float = 0.1,
+    algorithm: Optional[str] = None,
+    seed: Optional[int] = None,
+    budget: Optional[int] = None,
+    population: Optional[int] = None,
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,
+) -> dict[str, Any]:
+    """A repair (`noncirc repair --format json`'s summary: repaired, before, after,
+    changes, path distances, events, teeth, stages, run) and repaired_scene."""
+
 def emigrants(checkpoint: str | os.PathLike[str], count: int) -> str:
     """The `count` best members of the search in a checkpoint file, as JSON text, for
     another island of the same search (`noncirc.dask.islands`)."""

@@ -12,7 +12,7 @@ import numpy.typing as npt
 from . import _noncirc
 from ._noncirc import Scene
 from .progress import ProgressBar, interactive
-from .results import Batch, Evaluation, FitResult, InverseResult, SearchResult
+from .results import Batch, Evaluation, FitResult, InverseResult, RepairResult, SearchResult
 
 Progress = Union[bool, Callable[[dict[str, Any]], Optional[bool]], None]
 
@@ -185,3 +185,38 @@ def inverse(
         samples_per_turn=samples_per_turn,
     )
     return InverseResult._from_raw(raw)
+
+
+def repair(
+    scene: Scene,
+    *,
+    path_tolerance_mm: float = 1.0,
+    design_scale: float = 0.1,
+    algorithm: Optional[str] = None,
+    seed: Optional[int] = None,
+    budget: Optional[int] = None,
+    population: Optional[int] = None,
+    threads: Optional[int] = None,
+    progress: Progress = None,
+) -> RepairResult:
+    """The design nearest the scene's that meets every objective and whose teeth cut and
+    mesh (docs/inverse.md §5), as `noncirc repair`: a fit to the design's own tip path and
+    picking and planting poses, each free parameter pulled towards its value (a change of
+    `design_scale` of its interval costs as much as the path off by `path_tolerance_mm`),
+    in boxes about the design within the scene's search box. `progress` and Ctrl-C work as
+    for `optimise`; the same seed gives the same design whatever `threads`."""
+    raw = _with_progress(
+        progress,
+        lambda callback: _noncirc.repair(
+            scene,
+            path_tolerance_mm=path_tolerance_mm,
+            design_scale=design_scale,
+            algorithm=algorithm,
+            seed=seed,
+            budget=budget,
+            population=population,
+            threads=threads,
+            progress=callback,
+        ),
+    )
+    return RepairResult._from_raw(raw)

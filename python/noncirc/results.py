@@ -617,3 +617,96 @@ class InverseResult:
                 for c in self.conditions
             ]
         )
+
+
+@dataclass(frozen=True)
+class Change:
+    """A free parameter's change in a repair."""
+
+    name: str
+    symbol: str
+    """The papers' symbol (r1 … r12, Φ0, β0, S, H1, γ0), if it has one."""
+    before: float
+    after: float
+    delta: float
+    """`after − before`, in the parameter's unit."""
+    delta_percent_of_box: float
+    """The change as a percentage of the parameter's search interval."""
+
+
+@dataclass(frozen=True)
+class EventShift:
+    """Where a repair moved the picking or planting instant."""
+
+    name: str
+    position_mm: float
+    """Distance between the tips before and after, mm."""
+    attitude_deg: float
+    """Attitude after minus before, deg."""
+    carrier_deg: float
+    """Carrier angle after minus before, wrapped to ±180°, deg."""
+
+
+@dataclass(frozen=True)
+class RepairResult:
+    """A repair's outcome (docs/inverse.md §5): the given and the repaired design's
+    objectives, every change, how far the tip path moved, and the teeth's verdict."""
+
+    repaired: bool
+    """Every objective met and the teeth cut and mesh."""
+    before: dict[str, Quantity]
+    """The given design's objectives."""
+    after: dict[str, Quantity]
+    """The repaired design's (empty when no design evaluated)."""
+    violations_before: dict[str, float]
+    violations_after: dict[str, float]
+    changes: list[Change]
+    """The free parameters' changes, largest (in % of the box) first."""
+    path_hausdorff_mm: Optional[float]
+    """Hausdorff distance of the repaired tip path from the given one (None: no design)."""
+    path_rms_mm: Optional[float]
+    events: list[EventShift]
+    teeth_failures: Optional[list[str]]
+    """The repaired teeth's failed checks (empty: they cut and mesh; None: not cut, as the
+    design misses an objective)."""
+    teeth_set: list[str]
+    """Teeth settings changed so that they cut, as `--set` assignments."""
+    evaluations: int
+    """Designs searched over every box."""
+    seed: int
+    threads: int
+    scene: Optional[Scene]
+    """The given scene with the repaired design (and teeth settings)."""
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any]) -> RepairResult:
+        run = raw["run"]
+        return RepairResult(
+            repaired=raw["repaired"],
+            before={o["name"]: Quantity(o["value"], o["unit"]) for o in raw["before"]},
+            after={o["name"]: Quantity(o["value"], o["unit"]) for o in raw["after"]},
+            violations_before={o["name"]: o["violation"] for o in raw["before"]},
+            violations_after={o["name"]: o["violation"] for o in raw["after"]},
+            changes=[Change(**c) for c in raw["changes"]],
+            path_hausdorff_mm=raw.get("path_hausdorff_mm"),
+            path_rms_mm=raw.get("path_rms_mm"),
+            events=[EventShift(**e) for e in raw["events"]],
+            teeth_failures=raw.get("teeth_failures"),
+            teeth_set=raw["teeth_set"],
+            evaluations=sum(st["evaluations"] for st in raw["stages"]),
+            seed=run["seed"],
+            threads=run["threads"],
+            scene=raw.get("repaired_scene"),
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data (the scene as its TOML text): JSON-ready."""
+        d = _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.name != "scene"})
+        d["scene"] = None if self.scene is None else self.scene.to_toml()
+        return d
+
+    def to_pandas(self) -> pandas.DataFrame:
+        """The changes, one row each: name, symbol, before, after, delta,
+        delta_percent_of_box."""
+        pd = _pandas()
+        return pd.DataFrame([dataclasses.asdict(c) for c in self.changes])

@@ -49,3 +49,10 @@ def test_the_inverse_example_runs_as_written(monkeypatch, capsys):
     lines = capsys.readouterr().out.splitlines()
     assert lines[0] == "True False 160.9"
     assert "objective:module 0" in lines and any(l.startswith("sun_convex ") for l in lines)
+
+
+def test_the_repair_example_runs_as_written(capsys):
+    block = next(b for b in blocks() if "noncirc.repair(" in b)
+    exec(compile(block, str(DOC), "exec"), {})
+    lines = capsys.readouterr().out.splitlines()
+    assert lines == ["True 20.6", "True", "r8 34.5"]

@@ -9,6 +9,8 @@ use noncirc_core::{FitReport, PreparedTarget, Target};
 pub struct FitFigure<'a> {
     /// How the design was found, as the legend says it: "fitted", "inverted".
     pub how: &'a str,
+    /// What the target is, as the legend and title name it: "target", "given design's".
+    pub against: &'a str,
     pub kin: &'a Kinematics,
     pub target: &'a Target,
     pub prepared: &'a PreparedTarget,
@@ -31,7 +33,8 @@ impl Figure for FitFigure<'_> {
         let (kin, fit) = (self.kin, self.fit);
         root.fill(&WHITE).map_err(err)?;
         let target_label = format!(
-            "target path ({} points, tolerance {} mm)",
+            "{} path ({} points, tolerance {} mm)",
+            self.against,
             self.target.x_mm.len(),
             self.target.tolerance_mm
         );
@@ -57,7 +60,10 @@ impl Figure for FitFigure<'_> {
             .collect();
         let area = root
             .titled(
-                &format!("The {} tip path against the target", self.how),
+                &format!(
+                    "The {} tip path against the {} path",
+                    self.how, self.against
+                ),
                 (FONT, 22),
             )
             .map_err(err)?;

@@ -148,6 +148,20 @@ pub(crate) struct FitArgs {
 }
 
 #[derive(clap::Args)]
+pub(crate) struct RepairArgs {
+    #[command(flatten)]
+    pub(crate) search: OptimiseArgs,
+    /// The tip path's tolerance (mm): a path off by this (RMS) costs as much as a
+    /// parameter moved by its scale.
+    #[arg(long, default_value_t = noncirc::repair::RepairOptions::PATH_TOLERANCE_MM)]
+    pub(crate) path_tolerance_mm: f64,
+    /// Each parameter's scale as a fraction of its search interval: a move of this much
+    /// costs as much as the path off by its tolerance.
+    #[arg(long, default_value_t = noncirc::repair::RepairOptions::DESIGN_SCALE)]
+    pub(crate) design_scale: f64,
+}
+
+#[derive(clap::Args)]
 pub(crate) struct InverseArgs {
     #[command(flatten)]
     pub(crate) scene: SceneArgs,
@@ -284,6 +298,12 @@ pub(crate) enum Command {
     /// curves by closure (written as tables). Names each condition that fails and where.
     /// With no scene: the paper's train. docs/inverse.md
     Inverse(InverseArgs),
+    /// The design nearest the scene's that meets every objective and whose teeth cut and
+    /// mesh: a fit to the design's own tip path and events with each free parameter pulled
+    /// towards its value, in boxes about it within the scene's search box; the changes
+    /// listed. With no scene: `paper-search` (the paper's design in the box it searched).
+    /// docs/inverse.md
+    Repair(RepairArgs),
     /// The response of every objective to one parameter (three-arm paper §4.2).
     Sweep(SweepArgs),
     /// Cut teeth on the scene's gears (every gear of the train), check them over a full

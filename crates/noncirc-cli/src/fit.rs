@@ -3,13 +3,14 @@
 //! `noncirc target`, a scene's own path as a target; `noncirc inverse`, the exact
 //! inversion for the train with two pairs.
 
-use crate::args::{BranchArg, FitArgs, Format, InverseArgs, TargetArgs};
+use crate::args::{BranchArg, FitArgs, Format, InverseArgs, RepairArgs, TargetArgs};
 use crate::commands::VerdictFailed;
 use crate::optimise::{prepare_search, PreparedSearch};
 use crate::output::{json, out};
 use crate::Finished;
 use noncirc::core::LocalSettings;
 use noncirc::fit::{fit_scene, read_target, with_target, FitOptions};
+use noncirc::repair::{repair_scene, RepairOptions};
 use std::sync::atomic::Ordering;
 
 /// Fit the scene's design to a target; exit 3 when the fit misses a tolerance or an
@@ -74,6 +75,57 @@ pub(crate) fn fit(args: FitArgs) -> Result<Finished, Box<dyn std::error::Error>>
         return Ok(Finished::Interrupted);
     }
     if !summary.met {
+        return Err(VerdictFailed(summary.failures()).into());
+    }
+    Ok(Finished::Completed)
+}
+
+/// Repair the scene's design; exit 3 when no design within the budget meets every
+/// objective with teeth that cut and mesh (its outputs written), 130 when a signal stopped
+/// it.
+pub(crate) fn repair(args: RepairArgs) -> Result<Finished, Box<dyn std::error::Error>> {
+    if args.search.resume.is_some() || args.search.checkpoint.is_some() {
+        return Err(noncirc::Error::Input(
+            "repair starts from the scene's design and takes seconds: it neither writes nor \
+             resumes a checkpoint (drop --checkpoint and --resume)"
+                .into(),
+        )
+        .into());
+    }
+    let PreparedSearch {
+        scene,
+        opts,
+        stop,
+        mut progress,
+    } = prepare_search(&args.search, "paper-search")?;
+    let options = RepairOptions {
+        path_tolerance_mm: args.path_tolerance_mm,
+        design_scale: args.design_scale,
+        ..RepairOptions::new(opts)
+    };
+    let outcome = repair_scene(&scene, &options, &mut [&mut progress])?;
+    if let Some(bar) = progress.bar {
+        bar.finish_and_clear();
+    }
+    if let Some(dir) = &args.search.out {
+        outcome.write(dir)?;
+    }
+    if let Some(dir) = &args.search.scene.plot {
+        for f in noncirc::plots::repair_figures(&outcome, dir, &args.search.scene.figures()?)? {
+            eprintln!("wrote {}", f.display());
+        }
+    }
+    let summary = outcome.summary();
+    noncirc::report::check_finite(&summary)?;
+    match args.search.scene.format {
+        Format::Json => out(&json(&summary)?)?,
+        Format::Table => out(&summary.table())?,
+    }
+    if stop.load(Ordering::SeqCst) {
+        eprintln!("interrupted: the results so far are above (and in --out)");
+        return Ok(Finished::Interrupted);
+    }
+    if !summary.repaired {
         return Err(VerdictFailed(summary.failures()).into());
     }
     Ok(Finished::Completed)

@@ -55,6 +55,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
         Command::Fit(args) => return fit::fit(args),
         Command::Target(args) => fit::target(args)?,
         Command::Inverse(args) => fit::inverse(args)?,
+        Command::Repair(args) => return fit::repair(args),
         Command::Gear(args) => commands::gear(args)?,
         Command::Teeth(args) => commands::teeth(args)?,
         Command::Animate(args) => commands::animate(args)?,

@@ -571,3 +571,62 @@ fn inverse_refuses_bad_input_by_name_with_exit_2_and_writes_nothing() {
         assert!(!out.exists(), "{args:?}: wrote {}", out.display());
     }
 }
+
+#[test]
+fn repair_writes_the_repaired_scene_and_refuses_bad_input_with_exit_2() {
+    let dir = temp("repair");
+    let out = dir.join("out");
+    let run = noncirc()
+        .args(["repair", "--quiet", "--format", "json", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(0), "{stderr}");
+    let summary: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    assert_eq!(summary["scene"], "paper-search");
+    assert_eq!(summary["repaired"], true);
+    // The written scene is a scene every command takes, and its design meets every
+    // objective: `evaluate` exits 0 on it.
+    let repaired = out.join("repaired.toml");
+    let evaluate = noncirc().arg("evaluate").arg(&repaired).output().unwrap();
+    assert_eq!(
+        evaluate.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&evaluate.stdout)
+    );
+    assert!(out.join("repair.json").exists());
+    let cases: [(&[&str], &str); 4] = [
+        (
+            &["--design-scale", "0"],
+            "repair's design scale 0: expected above 0",
+        ),
+        (
+            &["--path-tolerance-mm", "nan"],
+            "repair's path tolerance (mm) NaN",
+        ),
+        (
+            &["--resume", "x.json"],
+            "neither writes nor resumes a checkpoint",
+        ),
+        (
+            &["ellipse-gear"],
+            "repair needs a three_arm or transplanter scene",
+        ),
+    ];
+    for (args, says) in cases {
+        let out = dir.join("bad");
+        let run = noncirc()
+            .arg("repair")
+            .args(args)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(says), "{args:?}: {stderr}");
+        assert!(!out.exists(), "{args:?}: wrote {}", out.display());
+    }
+}

@@ -28,6 +28,7 @@ fn _noncirc(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(search::optimise, m)?)?;
     m.add_function(wrap_pyfunction!(search::fit, m)?)?;
     m.add_function(wrap_pyfunction!(search::inverse, m)?)?;
+    m.add_function(wrap_pyfunction!(search::repair, m)?)?;
     m.add_function(wrap_pyfunction!(search::emigrants, m)?)?;
     m.add_function(wrap_pyfunction!(search::immigrate, m)?)?;
     m.add_function(wrap_pyfunction!(studies::robustness, m)?)?;

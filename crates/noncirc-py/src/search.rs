@@ -299,6 +299,57 @@ pub(crate) fn fit<'py>(
     Ok(out)
 }
 
+/// Repairs the scene's design (GIL released; `noncirc repair`): the design nearest it that
+/// meets every objective and whose teeth cut and mesh. `path_tolerance_mm` and
+/// `design_scale` weigh the tip path against the parameters. Progress and Ctrl-C as for
+/// `optimise`. Returns the summary (`noncirc repair --format json`) and `repaired_scene`.
+#[pyfunction]
+#[pyo3(signature = (scene, *, path_tolerance_mm = noncirc::repair::RepairOptions::PATH_TOLERANCE_MM, design_scale = noncirc::repair::RepairOptions::DESIGN_SCALE, algorithm = None, seed = None, budget = None, population = None, threads = None, progress = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn repair<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    path_tolerance_mm: f64,
+    design_scale: f64,
+    algorithm: Option<&str>,
+    seed: Option<u64>,
+    budget: Option<u64>,
+    population: Option<usize>,
+    threads: Option<usize>,
+    progress: Option<PyObject>,
+) -> Result<Bound<'py, PyDict>> {
+    let mut s = scene.inner.clone();
+    search_settings(algorithm, budget, population, seed)?.apply(&mut s)?;
+    let options = noncirc::repair::RepairOptions {
+        path_tolerance_mm,
+        design_scale,
+        ..noncirc::repair::RepairOptions::new(RunOptions::new(threads)?)
+    };
+    let mut observer = PythonObserver {
+        progress,
+        error: None,
+    };
+    let outcome =
+        py.allow_threads(|| noncirc::repair::repair_scene(&s, &options, &mut [&mut observer]))?;
+    if let Some(e) = observer.error {
+        return Err(e.into());
+    }
+    let json = serde_json::to_string(&outcome.summary()).map_err(internal)?;
+    let out = py
+        .import("json")?
+        .call_method1("loads", (json,))?
+        .downcast_into::<PyDict>()?;
+    if let Some(r) = &outcome.repaired {
+        out.set_item(
+            "repaired_scene",
+            Scene {
+                inner: r.scene.clone(),
+            },
+        )?;
+    }
+    Ok(out)
+}
+
 /// The `count` best members of the search in the checkpoint file `checkpoint`, as JSON
 /// text, to send to another island of the same search (`noncirc.dask.islands`).
 #[pyfunction]
