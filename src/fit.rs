@@ -28,20 +28,26 @@ pub fn read_target(path: &Path) -> Result<Target> {
     let is_toml = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    parse_target(&text, &path.display().to_string(), is_toml)
+}
+
+/// A target from text: TOML with a `[target]` table, or CSV of `x_mm,y_mm` rows;
+/// `origin` names it in errors. Checked whole.
+pub fn parse_target(text: &str, origin: &str, is_toml: bool) -> Result<Target> {
     let target = if is_toml {
         #[derive(serde::Deserialize)]
         #[serde(deny_unknown_fields)]
         struct File {
             target: Target,
         }
-        toml::from_str::<File>(&text)
-            .map_err(|e| Error::Input(format!("{}: {e}", path.display())))?
+        toml::from_str::<File>(text)
+            .map_err(|e| Error::Input(format!("{origin}: {e}")))?
             .target
     } else {
-        target_from_csv(&text, &path.display().to_string())?
+        target_from_csv(text, origin)?
     };
     target.prepare().map_err(|source| Error::Content {
-        path: path.into(),
+        path: origin.into(),
         source,
     })?;
     Ok(target)
@@ -150,10 +156,11 @@ pub struct FitOutcome {
     pub best: Option<(Scene, Evaluation)>,
 }
 
-/// The fit's residuals of a batch of designs, evaluated in parallel at one resolution.
+/// The fit's residuals of a batch of designs at one resolution, evaluated in order: on
+/// the pool's threads, or in the caller's thread without one (the studio's worker).
 struct FitResiduals<'a> {
     problem: &'a SceneProblem,
-    pool: rayon::ThreadPool,
+    pool: Option<rayon::ThreadPool>,
     planned: Evaluator,
     resolution: Resolution,
 }
@@ -164,13 +171,18 @@ impl ResidualBatch for FitResiduals<'_> {
     }
     fn residuals(&mut self, points: &[Vec<f64>]) -> Vec<Vec<f64>> {
         let (problem, resolution) = (self.problem, self.resolution);
-        map_batch(
-            &self.pool,
-            &self.planned,
-            problem.base(),
-            points,
-            |(evaluator, scratch), u| problem.fit_residuals(u, evaluator, scratch, &resolution).0,
-        )
+        let residuals = |(evaluator, scratch): &mut (Evaluator, Scene), u: &Vec<f64>| {
+            problem.fit_residuals(u, evaluator, scratch, &resolution).0
+        };
+        match &self.pool {
+            Some(pool) => map_batch(pool, &self.planned, problem.base(), points, residuals),
+            None => {
+                let mut planned = self.planned.clone();
+                planned.prepare_target(problem.base());
+                let mut state = (planned, problem.base().clone());
+                points.iter().map(|u| residuals(&mut state, u)).collect()
+            }
+        }
     }
 }
 
@@ -204,19 +216,37 @@ pub fn fit_scene(
         // The checkpoint holds the scene (with its target and goal) that ran.
         scene.clone()
     } else {
-        let target = scene.target.as_ref().ok_or_else(|| {
-            Error::Input(
-                "a fit needs a target: a file (CSV of x_mm,y_mm, or TOML with a [target] \
-                 table; the CLI's --target, Python's target=) or a [target] table in the scene"
-                    .into(),
-            )
-        })?;
-        let mut scene = scene.clone();
-        scene.search.goals = vec![Goal::Fit];
-        check_reach(&SceneProblem::new(&scene)?, target)?;
-        scene
+        prepare_fit(scene)?
     };
     let search = crate::search::run(&scene, &opts.run, observers)?;
+    refine_search(search, Some(opts.run.threads), &opts.local)
+}
+
+/// The scene a fit searches: `scene` with the goal `fit`. Refuses a scene without a
+/// target and a target out of the box's reach.
+pub fn prepare_fit(scene: &Scene) -> Result<Scene> {
+    let target = scene.target.as_ref().ok_or_else(|| {
+        Error::Input(
+            "a fit needs a target: a file (CSV of x_mm,y_mm, or TOML with a [target] \
+             table; the CLI's --target, Python's target=) or a [target] table in the scene"
+                .into(),
+        )
+    })?;
+    let mut scene = scene.clone();
+    scene.search.goals = vec![Goal::Fit];
+    check_reach(&SceneProblem::new(&scene)?, target)?;
+    Ok(scene)
+}
+
+/// The fit's refinement of a finished search (not of a stopped one): Levenberg–Marquardt
+/// from its reported design on `threads` threads (`None`: in this thread, as the studio's
+/// worker runs it; the same numbers either way), kept if it meets as many objectives and
+/// fits better.
+pub fn refine_search(
+    search: Outcome,
+    threads: Option<usize>,
+    settings: &LocalSettings,
+) -> Result<FitOutcome> {
     let problem = &search.problem;
     let resolution = local_resolution(&problem.base().resolution);
     let start = search.state.reported().map(|c| c.u.clone());
@@ -231,11 +261,11 @@ pub fn fit_scene(
     if let (Some(start), false) = (start, interrupted) {
         let mut residuals = FitResiduals {
             problem,
-            pool: thread_pool(opts.run.threads)?,
+            pool: threads.map(thread_pool).transpose()?,
             planned: Evaluator::planned(&resolution),
             resolution,
         };
-        let report = refine(&mut residuals, &start, &opts.local);
+        let report = refine(&mut residuals, &start, settings);
         let evaluate = |u: &[f64]| {
             let scene = problem.scene_at(u);
             Evaluator::new().evaluate(&scene).ok().map(|e| (scene, e))
@@ -292,6 +322,44 @@ pub fn fit_scene(
         refined,
         best,
     })
+}
+
+/// The fit measures of `fit` to `target`, each with its tolerance: the path's Hausdorff
+/// distance (held to the path's tolerance when the path counts), its RMS distance
+/// (reported), then each pose's position, attitude and carrier errors (those it names).
+pub fn fit_measure_rows(fit: &FitReport, target: &Target) -> Vec<FitMeasureRow> {
+    let mut measures = Vec::new();
+    // Named, measured and held to a tolerance as the core's fit measures are.
+    let mut row = |m: FitMeasure, tolerance: Option<f64>| {
+        if let Some(value) = fit.value(m) {
+            measures.push(FitMeasureRow {
+                name: Measure::Fit(m).name(),
+                value,
+                unit: Measure::Fit(m).unit(),
+                tolerance,
+                met: tolerance.map(|limit| value <= limit),
+            });
+        }
+    };
+    row(
+        FitMeasure::PathHausdorff,
+        target.counts.then_some(target.tolerance_mm),
+    );
+    row(FitMeasure::PathRms, None);
+    for (k, pose) in target.poses.iter().enumerate() {
+        for (quantity, tolerance) in [
+            (PoseQuantity::Position, pose.position_tolerance_mm),
+            (PoseQuantity::Attitude, pose.attitude_tolerance_deg),
+            (PoseQuantity::Carrier, pose.carrier_tolerance_deg),
+        ] {
+            let slot = Some(k as u8);
+            row(
+                FitMeasure::Pose { slot, quantity },
+                pose.counts.then_some(tolerance),
+            );
+        }
+    }
+    measures
 }
 
 /// A fit measure with its tolerance.
@@ -471,39 +539,10 @@ impl FitOutcome {
         let eval = self.best.as_ref().map(|(_, e)| e);
         let fit = eval.and_then(|e| e.fit.clone());
         let target = base.target.as_deref();
-        let mut measures = Vec::new();
-        if let (Some(f), Some(t)) = (&fit, target) {
-            // Named, measured and held to a tolerance as the core's fit measures are.
-            let mut row = |m: FitMeasure, tolerance: Option<f64>| {
-                if let Some(value) = f.value(m) {
-                    measures.push(FitMeasureRow {
-                        name: Measure::Fit(m).name(),
-                        value,
-                        unit: Measure::Fit(m).unit(),
-                        tolerance,
-                        met: tolerance.map(|t| value <= t),
-                    });
-                }
-            };
-            row(
-                FitMeasure::PathHausdorff,
-                t.counts.then_some(t.tolerance_mm),
-            );
-            row(FitMeasure::PathRms, None);
-            for (k, pose) in t.poses.iter().enumerate() {
-                for (quantity, tolerance) in [
-                    (PoseQuantity::Position, pose.position_tolerance_mm),
-                    (PoseQuantity::Attitude, pose.attitude_tolerance_deg),
-                    (PoseQuantity::Carrier, pose.carrier_tolerance_deg),
-                ] {
-                    let slot = Some(k as u8);
-                    row(
-                        FitMeasure::Pose { slot, quantity },
-                        pose.counts.then_some(tolerance),
-                    );
-                }
-            }
-        }
+        let measures = match (&fit, target) {
+            (Some(f), Some(t)) => fit_measure_rows(f, t),
+            _ => Vec::new(),
+        };
         let objectives = eval.map_or(Vec::new(), |e| {
             e.objectives.iter().map(ObjectiveRow::from).collect()
         });

@@ -3,7 +3,9 @@
 //! the round trip's data.
 
 use noncirc::core::{target_of, Evaluator, LocalSettings, Scene, Target};
-use noncirc::fit::{fit_scene, read_target, with_target, FitOptions, FitOutcome};
+use noncirc::fit::{
+    fit_scene, prepare_fit, read_target, refine_search, with_target, FitOptions, FitOutcome,
+};
 use noncirc::scene_file::load_scene;
 use noncirc::search::{RunOptions, SearchSettings};
 use std::path::{Path, PathBuf};
@@ -104,6 +106,16 @@ fn a_fit_is_the_same_on_one_and_two_threads_and_after_a_resume() {
     );
     assert_eq!(design(&resumed), design(&one));
     std::fs::remove_dir_all(dir).ok();
+    // The refinement in this thread (the studio's worker) is the pooled one's.
+    let search = noncirc::search::run(
+        &prepare_fit(&scene).unwrap(),
+        &RunOptions::new(Some(1)).unwrap(),
+        &mut [],
+    )
+    .unwrap();
+    let serial = refine_search(search, None, &LocalSettings::default()).unwrap();
+    assert_eq!(design(&serial), design(&one));
+    assert_eq!(serial.local, one.local);
 }
 
 #[test]
