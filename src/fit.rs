@@ -584,14 +584,22 @@ impl FitOutcome {
         }
     }
 
+    /// The fitted design's scene as `best.toml` holds it: named `<scene>-fit`, its target
+    /// inline.
+    pub fn fitted_scene(&self) -> Option<Scene> {
+        self.best.as_ref().map(|(scene, _)| {
+            let mut scene = scene.clone();
+            scene.name = format!("{}-fit", self.search.problem.base().name);
+            scene
+        })
+    }
+
     /// Writes the search's outputs (`optimise`'s), then `best.toml` (the fitted design,
     /// its target inline) and `fit.json` into `dir`.
     pub fn write(&self, dir: &Path) -> Result<()> {
         create_dir(dir)?;
         self.search.write(dir)?;
-        if let Some((scene, _)) = &self.best {
-            let mut scene = scene.clone();
-            scene.name = format!("{}-fit", self.search.problem.base().name);
+        if let Some(scene) = self.fitted_scene() {
             write_file(
                 &dir.join("best.toml"),
                 toml_text(&scene, "the fitted scene")?.as_bytes(),

@@ -202,6 +202,14 @@ pub struct StageRow {
 }
 
 impl RepairStages {
+    /// The most boxes a repair searches.
+    pub const MOST_BOXES: usize = REACHES.len();
+
+    /// The boxes searched so far.
+    pub fn boxes_searched(&self) -> usize {
+        self.stages.len()
+    }
+
     /// Evaluates `scene` and builds the repair's target; refuses bad options and a design
     /// that does not evaluate.
     pub fn new(scene: &Scene, opts: &RepairOptions) -> Result<Self> {
@@ -520,13 +528,20 @@ impl RepairOutcome {
         }
     }
 
+    /// The repaired scene as `repaired.toml` holds it: named `<scene>-repaired`.
+    pub fn repaired_scene(&self) -> Option<Scene> {
+        self.repaired.as_ref().map(|r| {
+            let mut scene = r.scene.clone();
+            scene.name = format!("{}-repaired", self.original.name);
+            scene
+        })
+    }
+
     /// Writes `repaired.toml` (the given scene with the repaired design) and `repair.json`
     /// into `dir`.
     pub fn write(&self, dir: &Path) -> Result<()> {
         create_dir(dir)?;
-        if let Some(r) = &self.repaired {
-            let mut scene = r.scene.clone();
-            scene.name = format!("{}-repaired", self.original.name);
+        if let Some(scene) = self.repaired_scene() {
             write_file(
                 &dir.join("repaired.toml"),
                 toml_text(&scene, "the repaired scene")?.as_bytes(),

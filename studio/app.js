@@ -56,8 +56,27 @@ const state = {
    *  that a drag does not rescale the picture at every step). */
   mechanismBounds: null,
   trajectoryBounds: null,
+  /** What a click on the trajectory does: null, 'draw' (add a target point), 'picking' or
+   *  'planting' (place that pose). */
+  tool: null,
+  /** The target's points while it is drawn (mm), before it has the four a path needs. */
+  draft: [],
+  /** Whether the worker's job is a fit or a repair, and its last result. */
+  fitJob: null,
+  fitResult: null,
 };
-window.studio = { state, ready: null };
+window.studio = {
+  state,
+  ready: null,
+  /** Where the point `[x, y]` (mm) of a plot is on the screen (client px), for the tests. */
+  toScreen(id, [x, y]) {
+    const svg = $(id);
+    const { sx, sy } = svg.axesCache;
+    const pt = svg.createSVGPoint(); pt.x = sx(x); pt.y = sy(y);
+    const p = pt.matrixTransform(svg.getScreenCTM());
+    return { x: p.x, y: p.y };
+  },
+};
 
 // ---------------------------------------------------------------- fields and messages
 
@@ -252,6 +271,7 @@ function show(out, except) {
   state.out = out;
   refreshFields(except);
   drawGauges(out.report);
+  drawFitGauges(out);
   drawPolar(out.view);
   drawTrajectory(out.view, out.report);
   drawMechanism();
@@ -388,7 +408,10 @@ function wireDragging() {
 function drawTrajectory(view, report) {
   const svg = $('trajectory');
   if (!view.trajectory.length) { P.clear(svg); return; }
-  state.trajectoryBounds = P.stableBounds(state.trajectoryBounds, P.bounds([view.trajectory, view.tray ?? [], [[0, 0]]], 0));
+  const target = view.target;
+  const asked = (target?.table.poses ?? []).map((p) => [p.x_mm, p.y_mm]);
+  state.trajectoryBounds = P.stableBounds(state.trajectoryBounds,
+    P.bounds([view.trajectory, view.tray ?? [], [[0, 0]], target?.path ?? [], asked, state.draft], 0));
   const [x, y] = state.trajectoryBounds;
   const { sx, sy, plot, overlay, box } = P.axes(svg, { x, y, equal: true, xlabel: 'x (mm)', ylabel: 'y (mm)' });
   P.el('circle', { cx: sx(0), cy: sy(0), r: 3, fill: '#5b6573' }, plot);
@@ -397,9 +420,11 @@ function drawTrajectory(view, report) {
   for (const [name, , pts] of view.sections) P.line(plot, pts, sx, sy, { stroke: P.SECTION_COLOURS[name], 'stroke-width': 2.5 });
   if (view.picking_mm) P.dot(plot, view.picking_mm, sx, sy, { fill: '#000', r: 5 });
   if (view.planting_mm) P.dot(plot, view.planting_mm, sx, sy, { fill: '#fff', stroke: '#000', 'stroke-width': 2, r: 5 });
+  drawTarget(plot, sx, sy, target, report.fit);
   const ev = report.events;
   const items = view.sections.map(([name, label]) => [label, P.SECTION_COLOURS[name]]);
   items.push(['ground', '#8d5a2b'], ['tray surface', '#7f8c8d']);
+  if (target || state.draft.length) items.push(['target', TARGET_COLOUR]);
   P.legend(overlay, box, items);
   if (ev) {
     const anchor = (p) => (sx(p[0]) > box[0] + box[2] * 0.6 ? { x: sx(p[0]) - 8, 'text-anchor': 'end' } : { x: sx(p[0]) + 8 });
@@ -408,6 +433,156 @@ function drawTrajectory(view, report) {
     P.el('text', { ...anchor(view.planting_mm), y: sy(view.planting_mm[1]) + 16, fill: '#000' }, plot).textContent =
       `planting θ=${ev.planting_carrier_deg.toFixed(1)}°`;
   }
+}
+
+// ---------------------------------------------------------------- the target
+
+const TARGET_COLOUR = '#6a1b9a';
+/** Length (mm) of the attitude strokes drawn at the poses. */
+const ATTITUDE_STROKE_MM = 40;
+
+/** The target on the trajectory plot: its path dashed, its points (handles of a drawn
+ *  spline), each asked pose with its attitude stroke joined to where the arm is, and where
+ *  the paths are farthest apart; or the points of a target being drawn. */
+function drawTarget(plot, sx, sy, target, fit) {
+  const points = target ? target.table.x_mm.map((x, i) => [x, target.table.y_mm[i]]) : [];
+  const drawing = state.tool === 'draw' ? state.draft : [];
+  if (target) P.line(plot, target.path, sx, sy, { stroke: TARGET_COLOUR, 'stroke-width': 2, 'stroke-dasharray': '7 4', fill: 'none' });
+  if (drawing.length > 1 && drawing.length < MIN_TARGET_POINTS) P.line(plot, drawing, sx, sy, { stroke: TARGET_COLOUR, 'stroke-dasharray': '2 3', fill: 'none' });
+  const handles = drawing.length ? drawing : points.length <= MAX_HANDLES ? points : [];
+  handles.forEach(([x, y], i) => {
+    P.el('rect', { x: sx(x) - 3.5, y: sy(y) - 3.5, width: 7, height: 7, fill: '#fff', stroke: TARGET_COLOUR, 'stroke-width': 1.5, class: 'target-point', 'data-target-point': i }, plot);
+  });
+  for (const [k, pose] of (target?.table.poses ?? []).entries()) {
+    const at = [pose.x_mm, pose.y_mm];
+    if (pose.attitude_deg !== undefined) {
+      // The pusher's dip below the horizontal, drawn forward from the asked position.
+      const a = -pose.attitude_deg * Math.PI / 180;
+      P.line(plot, [at, [at[0] + ATTITUDE_STROKE_MM * Math.cos(a), at[1] + ATTITUDE_STROKE_MM * Math.sin(a)]], sx, sy, { stroke: TARGET_COLOUR, 'stroke-width': 2 });
+    }
+    P.el('path', { d: `M${sx(at[0]) - 6},${sy(at[1]) - 6}L${sx(at[0]) + 6},${sy(at[1]) + 6}M${sx(at[0]) - 6},${sy(at[1]) + 6}L${sx(at[0]) + 6},${sy(at[1]) - 6}`, stroke: TARGET_COLOUR, 'stroke-width': 2, class: 'target-pose', 'data-pose': pose.name }, plot);
+    const got = fit?.poses[k];
+    if (got) {
+      P.line(plot, [at, got.tip_mm], sx, sy, { stroke: TARGET_COLOUR, 'stroke-width': 1 });
+      P.dot(plot, got.tip_mm, sx, sy, { fill: 'none', stroke: TARGET_COLOUR, 'stroke-width': 1.5, r: 6 });
+    }
+  }
+  if (fit && target?.table.counts) P.dot(plot, fit.hausdorff_at_mm, sx, sy, { fill: 'none', stroke: '#c62828', 'stroke-width': 2, r: 8, class: 'farthest' });
+}
+
+/** Fewest distinct points of a target path (the core's `Target::MIN_POINTS`). */
+const MIN_TARGET_POINTS = 4;
+/** Most points drawn as handles (a measured CSV path has thousands). */
+const MAX_HANDLES = 64;
+
+/** A value as TOML inline text: numbers of lengths and angles as floats. */
+function toml(value, key = '') {
+  if (Array.isArray(value)) return `[${value.map((v) => toml(v, key)).join(',')}]`;
+  if (value !== null && typeof value === 'object') {
+    return `{${Object.entries(value).filter(([, v]) => v !== undefined && v !== null).map(([k, v]) => `${k}=${toml(v, k)}`).join(',')}}`;
+  }
+  if (typeof value === 'number') return /(_mm|_deg|^value|^scale)$/.test(key) && Number.isInteger(value) ? value.toFixed(1) : String(value);
+  return JSON.stringify(value);
+}
+
+/** The scene's target table with `changes` (points, poses, tolerance) over it. */
+function targetWith(changes) {
+  const table = state.out.view.target?.table ?? { kind: 'spline', x_mm: [], y_mm: [], tolerance_mm: +$('target-tolerance').value || 0.5 };
+  return { ...table, ...changes };
+}
+
+/** Sets the scene's target to `table`; false (the message shown) if the core refuses it. */
+function applyTarget(table) {
+  const ok = apply(`target=${toml(table)}`, $('target-tolerance'));
+  if (ok) commit();
+  return ok;
+}
+
+/** A click on the trajectory in mm (0.1 mm), through the plot's axes. */
+function clickMm(ev) {
+  const svg = $('trajectory');
+  const pt = svg.createSVGPoint(); pt.x = ev.clientX; pt.y = ev.clientY;
+  const p = pt.matrixTransform(svg.getScreenCTM().inverse());
+  const { ix, iy } = svg.axesCache;
+  return [+ix(p.x).toFixed(1), +iy(p.y).toFixed(1)];
+}
+
+function setTool(tool) {
+  state.tool = state.tool === tool ? null : tool;
+  if (state.tool !== 'draw') state.draft = [];
+  for (const [id, t] of [['target-draw', 'draw'], ['pose-picking', 'picking'], ['pose-planting', 'planting']]) {
+    $(id).setAttribute('aria-pressed', String(state.tool === t));
+  }
+  $('target-draw').textContent = state.tool === 'draw' ? 'Done' : 'Draw target';
+  $('trajectory').classList.toggle('placing', state.tool !== null);
+  $('target-msg').textContent = state.tool === 'draw'
+    ? 'click the path\'s points in the order of motion (at least four; the spline closes itself); Done ends'
+    : state.tool ? `click where the arm's tip should be at ${state.tool}` : '';
+  drawTrajectory(state.out.view, state.out.report);
+}
+
+/** What a click on the trajectory does with the tool in hand. */
+function trajectoryClick(ev) {
+  if (!state.tool || !state.out?.view.trajectory.length) return;
+  const [x, y] = clickMm(ev);
+  if (state.tool === 'draw') {
+    state.draft.push([x, y]);
+    if (state.draft.length >= MIN_TARGET_POINTS) {
+      const table = targetWith({ kind: 'spline', x_mm: state.draft.map((p) => p[0]), y_mm: state.draft.map((p) => p[1]) });
+      if (!applyTarget(table)) $('target-msg').textContent = $('target-tolerance').closest('.row').querySelector('.msg').textContent;
+      else $('target-msg').textContent = `${state.draft.length} points: Done ends the path, another click adds one`;
+    }
+    drawTrajectory(state.out.view, state.out.report);
+    return;
+  }
+  // A pose: at the located event, with the attitude the design has there now.
+  const ev0 = state.out.report.events;
+  const attitude = ev0 ? +ev0[`${state.tool}_attitude_deg`].toFixed(2) : undefined;
+  const poses = (state.out.view.target?.table.poses ?? []).filter((p) => p.name !== state.tool);
+  poses.push({ name: state.tool, at: state.tool, x_mm: x, y_mm: y, attitude_deg: attitude });
+  if (applyTarget(targetWith({ poses }))) setTool(null);
+  else $('target-msg').textContent = $('target-tolerance').closest('.row').querySelector('.msg').textContent;
+}
+
+/** The fit measures as gauges (`fit.json`'s rows): each against its tolerance. */
+function drawFitGauges(out) {
+  const box = $('fit-gauges');
+  const rows = out.fit_measures ?? [];
+  const target = out.view.target;
+  for (const id of ['target-save', 'target-clear', 'pose-picking', 'pose-planting']) $(id).disabled = !target;
+  $('fit-start').disabled = !target || state.searching;
+  if (target && document.activeElement !== $('target-tolerance')) $('target-tolerance').value = target.table.tolerance_mm;
+  const names = rows.map((m) => m.name).join();
+  if (box.dataset.names !== names) {
+    box.replaceChildren();
+    for (const m of rows) {
+      const g = document.createElement('div');
+      g.dataset.fit = m.name;
+      g.innerHTML = `<div class="head"><span>${m.name}</span><span><b class="value-text"></b> ${m.unit} <span class="unit bound"></span> <span class="verdict"></span></span></div>
+        <div class="bar" role="meter" aria-label="${m.name}"><div class="ok"></div><div class="value"></div></div>`;
+      box.appendChild(g);
+    }
+    box.dataset.names = names;
+  }
+  rows.forEach((m, k) => {
+    const g = box.children[k];
+    const tol = m.tolerance;
+    // The bar spans twice the tolerance (or the value, for the reported RMS).
+    const top = Math.max(2 * (tol ?? m.value), 1e-9);
+    g.className = `gauge ${m.met === false ? 'missed' : 'met'}`;
+    g.querySelector('.value-text').textContent = P.fmt(+m.value.toPrecision(4));
+    g.querySelector('.bound').textContent = tol === null ? '' : `≤ ${tol}`;
+    g.querySelector('.verdict').textContent = m.met === null ? 'reported' : m.met ? 'met' : 'missed';
+    g.querySelector('.bar').setAttribute('aria-valuenow', m.value);
+    const band = g.querySelector('.ok');
+    band.style.left = '0%';
+    band.style.right = tol === null ? '100%' : '50%';
+    g.querySelector('.value').style.left = `calc(${Math.min(100, m.value / top * 100)}% - 1px)`;
+  });
+  const v = $('fit-verdict');
+  const fit = out.report.fit;
+  v.textContent = fit ? (fit.met ? 'within its tolerances' : 'not within its tolerances') : '';
+  v.className = fit?.met ? 'met' : 'missed';
 }
 
 function drawMechanism() {
@@ -529,14 +704,8 @@ function drawConvergence(history) {
  *  checkpoint's text, resumes it with its own scene, settings and budget. */
 function startSearch(checkpoint = null) {
   if (state.searching) { $('search-status').textContent = 'a search is running: stop it first'; return; }
-  const budget = Number($('budget').value), seed = Number($('seed').value);
-  for (const [field, v] of checkpoint ? [] : [[$('budget'), budget], [$('seed'), seed]]) {
-    if (!Number.isSafeInteger(v) || v < (field.id === 'budget' ? 1 : 0)) {
-      fieldMessage(field, `${field.id} = '${field.value}': expected a whole number${field.id === 'budget' ? ' ≥ 1' : ' ≥ 0'}`);
-      return;
-    }
-    fieldMessage(field, null);
-  }
+  const settings = checkpoint ? {} : searchSettings();
+  if (!settings) return;
   state.worker ??= new Worker('worker.js', { type: 'module' });
   state.searching = true;
   const history = [];
@@ -575,8 +744,92 @@ function startSearch(checkpoint = null) {
     }
   };
   state.worker.postMessage(checkpoint
-    ? { type: 'start', checkpoint }
-    : { type: 'start', scene: state.design.toToml(), algorithm: $('algorithm').value, budget, seed });
+    ? { type: 'start', job: 'search', checkpoint }
+    : { type: 'start', job: 'search', scene: state.design.toToml(), ...settings });
+}
+
+/** The search panel's budget and seed, checked as the CLI checks its flags; null (the
+ *  message shown beside the field) if one is not a whole number in range. */
+function searchSettings() {
+  const budget = Number($('budget').value), seed = Number($('seed').value);
+  for (const [field, v] of [[$('budget'), budget], [$('seed'), seed]]) {
+    if (!Number.isSafeInteger(v) || v < (field.id === 'budget' ? 1 : 0)) {
+      fieldMessage(field, `${field.id} = '${field.value}': expected a whole number${field.id === 'budget' ? ' ≥ 1' : ' ≥ 0'}`);
+      return null;
+    }
+    fieldMessage(field, null);
+  }
+  return { algorithm: $('algorithm').value, budget, seed };
+}
+
+/** Fits the design to its target (`job` 'fit') or repairs it ('repair') in the worker,
+ *  with the search panel's settings: the CLI's `noncirc fit` and `noncirc repair` on one
+ *  thread. */
+function startJob(job) {
+  if (state.searching) { $('fit-status').textContent = 'the worker is busy: stop its job first'; return; }
+  const settings = searchSettings();
+  if (!settings) return;
+  state.worker ??= new Worker('worker.js', { type: 'module' });
+  state.searching = true;
+  state.fitJob = job;
+  state.fitResult = null;
+  for (const id of ['fit-start', 'repair-start', 'fit-load', 'search-start']) $(id).disabled = true;
+  $('fit-stop').disabled = false;
+  $('fit-status').textContent = 'starting…';
+  $('fit-result').textContent = '';
+  const done = () => {
+    state.searching = false;
+    $('fit-stop').disabled = true;
+    $('repair-start').disabled = false; $('search-start').disabled = false;
+    $('fit-start').disabled = !state.out.view.target;
+  };
+  state.worker.onmessage = ({ data }) => {
+    if (data.type === 'error') {
+      done();
+      $('fit-status').textContent = data.message;
+    } else if (data.type === 'progress') {
+      const p = data.progress;
+      const search = job === 'repair' ? p.search : p;
+      const box = job === 'repair' ? `box ${p.stage} of at most ${p.stages}: ` : '';
+      if (data.phase === 'refining') $('fit-status').textContent = `${box}refining (Levenberg–Marquardt)…`;
+      else if (search) {
+        $('fit-progress').value = Math.min(1, search.evaluations / search.budget);
+        $('fit-status').textContent = `${box}${search.evaluations} / ${search.budget} evaluations` +
+          (search.first_feasible_evaluations !== null ? `, feasible since ${search.first_feasible_evaluations}` : ', none feasible yet');
+      }
+    } else if (data.type === 'result') {
+      done();
+      state.fitResult = data.result;
+      $('fit-load').disabled = !(data.result.best_toml ?? data.result.repaired_toml);
+      if (job === 'fit') {
+        const f = data.result.fit;
+        $('fit-status').textContent = f.met ? 'done: the fit is within its tolerances and meets every objective' : f.feasible ? 'done: every objective met, the target not within its tolerances' : 'done: the fitted design misses an objective';
+        $('fit-result').textContent = f.measures.map((m) => `${m.name} = ${+m.value.toPrecision(6)} ${m.unit}`).join('\n');
+        window.studio.lastFit = data.result;
+      } else {
+        const r = data.result.repair;
+        $('fit-status').textContent = r.repaired ? 'done: repaired, every objective met, the teeth cut and mesh' : 'done: not repaired within the budget';
+        $('fit-result').textContent = [
+          r.path_hausdorff_mm === null ? '' : `tip path moved: Hausdorff ${r.path_hausdorff_mm.toFixed(2)} mm, RMS ${r.path_rms_mm.toFixed(2)} mm`,
+          ...r.changes.map((c) => `${c.name} (${c.symbol}) ${+c.before.toPrecision(6)} → ${+c.after.toPrecision(6)} (${c.delta_percent_of_box >= 0 ? '+' : ''}${c.delta_percent_of_box.toFixed(1)} % of its interval)`),
+          ...r.teeth_set.map((t) => `teeth: ${t}`),
+        ].filter(Boolean).join('\n');
+        window.studio.lastRepair = data.result;
+      }
+    }
+  };
+  state.worker.postMessage({ type: 'start', job, scene: state.design.toToml(), ...settings });
+}
+
+/** Loads the fit's or the repair's scene into the editor (an undo step). */
+function loadFitResult() {
+  const r = state.fitResult;
+  const text = r?.best_toml ?? r?.repaired_toml;
+  if (!text) return;
+  const before = state.design.toToml();
+  if (load(text, state.fitJob === 'fit' ? 'the fit' : 'the repair')) {
+    state.undo.push(before); state.redo = []; state.committed = state.design.toToml(); updateUndoButtons();
+  }
 }
 
 function loadSearchResult() {
@@ -673,6 +926,33 @@ function wire() {
   });
   $('search-stop').addEventListener('click', () => state.worker?.postMessage({ type: 'stop' }));
   $('search-load').addEventListener('click', loadSearchResult);
+  $('trajectory').addEventListener('click', trajectoryClick);
+  $('target-draw').addEventListener('click', () => setTool('draw'));
+  $('pose-picking').addEventListener('click', () => setTool('picking'));
+  $('pose-planting').addEventListener('click', () => setTool('planting'));
+  $('target-open').addEventListener('change', async (ev) => {
+    const file = ev.target.files[0];
+    if (!file) return;
+    try {
+      show(JSON.parse(state.design.setTarget(await file.text(), file.name, /\.toml$/i.test(file.name))), null);
+      $('target-msg').textContent = '';
+      commit();
+    } catch (e) { $('target-msg').textContent = e.message; }
+    ev.target.value = '';
+  });
+  $('target-save').addEventListener('click', () => P.download('target.toml', state.design.targetToml(), 'application/toml'));
+  $('target-clear').addEventListener('click', () => {
+    setTool(null);
+    show(JSON.parse(state.design.clearTarget()), null);
+    commit();
+  });
+  $('target-tolerance').addEventListener('change', (ev) => {
+    if (state.out.view.target) applyTarget(targetWith({ tolerance_mm: Number(ev.target.value) }));
+  });
+  $('fit-start').addEventListener('click', () => startJob('fit'));
+  $('repair-start').addEventListener('click', () => startJob('repair'));
+  $('fit-stop').addEventListener('click', () => state.worker?.postMessage({ type: 'stop' }));
+  $('fit-load').addEventListener('click', loadFitResult);
   $('search-checkpoint').addEventListener('click', () => P.download('checkpoint.json', state.searchResult.checkpoint, 'application/json'));
   wireDragging();
 }

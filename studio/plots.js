@@ -64,7 +64,7 @@ export function stableBounds(previous, next) {
 
 /**
  * Axes in `svg` (its viewBox size) for data ranges `x`, `y`; `equal` keeps one scale for
- * both (a plane in mm). Returns the maps from data to pixels, the clipped plot group and an
+ * both (a plane in mm). Returns the maps from data to pixels and back, the clipped plot group and an
  * overlay group (legends), both empty. Axes asked for again with the same settings are
  * kept: only the two groups are emptied (redrawing tick labels is most of a redraw's cost).
  */
@@ -89,6 +89,9 @@ export function axes(svg, options) {
   }
   const sx = (v) => l + (v - x0) / (x1 - x0) * pw;
   const sy = (v) => t + (y1 - v) / (y1 - y0) * ph;
+  // Their inverses: a point of the viewBox (a click) back to data.
+  const ix = (px) => x0 + (px - l) / pw * (x1 - x0);
+  const iy = (py) => y1 - (py - t) / ph * (y1 - y0);
   const g = el('g', {}, svg);
   for (const v of ticks(x0, x1, equal ? 6 : 6)) {
     el('line', { x1: sx(v), x2: sx(v), y1: t, y2: t + ph, stroke: '#edf0f3' }, g);
@@ -105,7 +108,7 @@ export function axes(svg, options) {
   el('clipPath', { id: `${svg.id}-clip` }, svg).appendChild(el('rect', { x: l, y: t, width: pw, height: ph }));
   const plot = el('g', { 'clip-path': `url(#${svg.id}-clip)` }, svg);
   const overlay = el('g', {}, svg);
-  svg.axesCache = { key, sx, sy, plot, overlay, box: [l, t, pw, ph] };
+  svg.axesCache = { key, sx, sy, ix, iy, plot, overlay, box: [l, t, pw, ph] };
   return svg.axesCache;
 }
 

@@ -26,7 +26,25 @@ const speed = {};
 
 /** The CLI's output for `args`, as JSON. */
 function cliJson(...args) {
-  return JSON.parse(execFileSync(cli, [...args, '--format', 'json'], { encoding: 'utf8' }));
+  return JSON.parse(execFileSync(cli, [...args, '--format', 'json'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] }));
+}
+
+/** The CLI's JSON output for `args` when it exits with one of `codes` (a fit or a repair
+ *  that misses exits 3, its summary printed). */
+function cliJsonExit(codes, ...args) {
+  try {
+    return cliJson(...args);
+  } catch (e) {
+    if (!codes.includes(e.status)) throw e;
+    return JSON.parse(e.stdout);
+  }
+}
+
+/** `value` without its `seconds` fields (the page's clock is not the CLI's). */
+function withoutSeconds(value) {
+  if (Array.isArray(value)) return value.map(withoutSeconds);
+  if (value === null || typeof value !== 'object') return value;
+  return Object.fromEntries(Object.entries(value).filter(([k]) => k !== 'seconds').map(([k, v]) => [k, withoutSeconds(v)]));
 }
 
 /** Writes `text` to a temporary scene file and returns its path. */
@@ -356,6 +374,101 @@ test('a stopped search\'s checkpoint resumes in the CLI to the uninterrupted run
   const inPage = await page.evaluate(() => window.studio.lastSearch.result.summary);
   assert.deepEqual(inPage.best, whole.best);
   assert.equal(inPage.stopped_early, false);
+});
+
+test('a target drawn by clicking spline points and two placed poses shows the CLI\'s fit measures as gauges', async () => {
+  await page.selectOption('#builtin', 'paper-search');
+  await page.waitForFunction(() => window.studio.state.design.get('gear.curve.radii_mm[7]') === 12 && !window.studio.state.out.view.target);
+  assert.equal(await page.locator('#fit-gauges .gauge').count(), 0);
+  // The repository's drawn peach: twelve points along the paper's trajectory.
+  const drawn = readFileSync(join(repo, 'scenes/targets/drawn-peach.toml'), 'utf8');
+  const list = (key) => JSON.parse(drawn.match(new RegExp(`^${key} = (\\[.*\\])$`, 'm'))[1]);
+  const [xs, ys] = [list('x_mm'), list('y_mm')];
+  await page.click('#target-draw');
+  for (let i = 0; i < xs.length; i++) {
+    // Where the point is now: the plot rescales as the target grows.
+    const at = await page.evaluate((q) => window.studio.toScreen('trajectory', q), [xs[i], ys[i]]);
+    await page.mouse.click(at.x, at.y);
+  }
+  await page.click('#target-draw');
+  const target = await page.evaluate(() => window.studio.state.out.view.target);
+  assert.equal(target.table.kind, 'spline');
+  assert.equal(target.table.x_mm.length, xs.length);
+  for (let i = 0; i < xs.length; i++) {
+    const miss = Math.hypot(target.table.x_mm[i] - xs[i], target.table.y_mm[i] - ys[i]);
+    assert.ok(miss < 2, `point ${i} landed ${miss} mm from where it was clicked`);
+  }
+  assert.ok(target.path.length > 100, 'the spline is drawn through the points');
+  // The picking and planting poses, clicked where the paper's design picks and plants.
+  for (const [pose, at] of [['picking', [277.9, -98.3]], ['planting', [3.3, -293.9]]]) {
+    await page.click(`#pose-${pose}`);
+    const p = await page.evaluate((q) => window.studio.toScreen('trajectory', q), at);
+    await page.mouse.click(p.x, p.y);
+  }
+  const report = await pageReport();
+  assert.deepEqual(report.fit.poses.map((p) => p.name), ['picking', 'planting']);
+  const expected = cliJson('evaluate', sceneFile('drawn.toml', await pageScene()));
+  // 1e-9, not 1e-12: a pose's errors are differences of nearly equal numbers (an attitude
+  // asked to 0.01° of the design's own), where the last bit of an angle is 1e-11 of them.
+  speed.target_fit_max_relative_difference = assertClose(report.fit, expected.fit, 1e-9);
+  // A gauge per fit measure, showing fit.json's value.
+  const rows = await page.evaluate(() => window.studio.state.out.fit_measures);
+  assert.ok(rows.length >= 6, `${rows.length} fit measures`);
+  // As the page writes a gauge's value (plots.js fmt: four digits, small ones in e-notation).
+  const fmt = (v) => (Math.abs(v) !== 0 && (Math.abs(v) < 1e-3 || Math.abs(v) >= 1e5) ? v.toExponential(1) : String(+v.toPrecision(6)));
+  for (const m of rows) {
+    const shown = await page.locator(`[data-fit="${m.name}"] .value-text`).textContent();
+    assert.equal(shown, fmt(+m.value.toPrecision(4)), m.name);
+  }
+  // The saved target is the page's, and the CLI reads it.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#target-save')]);
+  await download.saveAs(join(tmp, 'target.toml'));
+  assert.match(readFileSync(join(tmp, 'target.toml'), 'utf8'), /^\[target\]$/m);
+  await page.locator('#see').screenshot({ path: join(results, 'studio_target.png') });
+});
+
+test('a fit in the worker gives the CLI\'s noncirc fit for the same scene, target and seed', async () => {
+  await page.selectOption('#algorithm', 'de');
+  await page.fill('#budget', '3000');
+  await page.fill('#seed', '1');
+  // The scene with its target inline; the CLI takes the saved file's, the same target.
+  const scene = await pageScene();
+  await page.click('#fit-start');
+  await page.waitForSelector('#fit-load:not([disabled])', { timeout: 300000 });
+  const run = await page.evaluate(() => window.studio.lastFit);
+  const native = cliJsonExit([0, 3], 'fit', sceneFile('fit.toml', scene), '--target', join(tmp, 'target.toml'),
+    '--algorithm', 'de', '--budget', '3000', '--seed', '1', '--threads', '1');
+  // The same search (its evaluations) and the same refinement's path (its evaluations and
+  // ending); the numbers within 1e-6: Levenberg–Marquardt's difference Jacobian magnifies
+  // the last bit by which WebAssembly's sine and cosine differ from the native libm
+  // (about 2e-9 of a parameter after a thousand evaluations).
+  assert.equal(run.fit.run.evaluations, native.run.evaluations);
+  assert.equal(run.fit.run.local.evaluations, native.run.local.evaluations);
+  assert.equal(run.fit.run.local.termination, native.run.local.termination);
+  speed.fit_max_relative_difference = assertClose(withoutSeconds(run.fit), withoutSeconds(native), 1e-6);
+  await page.click('#fit-load');
+  const loaded = await pageReport();
+  assert.ok(Math.abs(loaded.fit.path_hausdorff_mm - native.fit.path_hausdorff_mm) <= 1e-6 * native.fit.path_hausdorff_mm);
+  await page.screenshot({ path: join(results, 'studio_fit.png'), fullPage: true });
+  // Clearing the target takes its gauges away; undo brings it back.
+  await page.click('#target-clear');
+  assert.equal(await page.locator('#fit-gauges .gauge').count(), 0);
+  await page.click('#undo');
+  assert.ok(await page.evaluate(() => window.studio.state.out.view.target !== null));
+});
+
+test('Repair in the worker gives the CLI\'s noncirc repair for the same scene and seed', async () => {
+  await page.selectOption('#builtin', 'paper-search');
+  await page.waitForFunction(() => window.studio.state.design.get('gear.curve.radii_mm[7]') === 12);
+  await page.fill('#budget', '3000');
+  await page.fill('#seed', '1');
+  const scene = await pageScene();
+  await page.click('#repair-start');
+  await page.waitForFunction(() => window.studio.lastRepair?.repair.scene === 'paper-search', null, { timeout: 300000 });
+  const run = await page.evaluate(() => window.studio.lastRepair.repair);
+  const native = cliJsonExit([0, 3], 'repair', sceneFile('repair.toml', scene), '--algorithm', 'de', '--budget', '3000', '--seed', '1', '--threads', '1');
+  assert.equal(run.repaired, native.repaired);
+  speed.repair_max_relative_difference = assertClose(withoutSeconds(run), withoutSeconds(native), 1e-9);
 });
 
 test('the two-arm scene draws two arm sets half a turn apart, as the CLI reports them', async () => {

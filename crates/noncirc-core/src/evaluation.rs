@@ -183,6 +183,12 @@ impl Evaluator {
         }
     }
 
+    /// `scene`'s target prepared, if it has one (kept while scenes bring the same target:
+    /// what the evaluations measure against).
+    pub fn prepared_target(&mut self, scene: &Scene) -> Option<Result<Arc<PreparedTarget>>> {
+        scene.target.as_ref().map(|t| self.prepared(t))
+    }
+
     /// `target` prepared (once for a run of scenes that share it, by pointer or value).
     fn prepared(&mut self, target: &Arc<Target>) -> Result<Arc<PreparedTarget>> {
         let cached =

@@ -2,10 +2,12 @@
 //! parameter guide, the live sweep and the exports the studio shows.
 
 use noncirc::core::{scale, Evaluation, Evaluator, ObjectiveValue, Param, Scene, SceneProblem};
+use noncirc::fit::{fit_measure_rows, parse_target};
 use noncirc::report::{check_finite, EvaluationReport};
 use noncirc::scene_file::{apply_overrides, parse_scene, BUILTIN};
 use noncirc::teeth::TeethRun;
 use serde::Serialize;
+use std::sync::Arc;
 use wasm_bindgen::prelude::*;
 
 use crate::{js_error, to_json};
@@ -125,6 +127,12 @@ impl Design {
         // The page shows the message beside the field, which names the key: without the
         // CLI's `--set key=value:`.
         let scene = apply_overrides(self.scene.clone(), &list).map_err(|e| js_error(e.detail()))?;
+        self.replace_scene(scene)
+    }
+
+    /// Evaluates `scene` in place of the design's; on an error the design and its
+    /// evaluation are unchanged.
+    fn replace_scene(&mut self, scene: Scene) -> Result<String, JsError> {
         let previous = std::mem::replace(&mut self.scene, scene);
         match self.evaluate() {
             Ok(json) => {
@@ -136,6 +144,44 @@ impl Design {
                 Err(e)
             }
         }
+    }
+
+    /// Replaces the scene's target with one read from a file's text (TOML with a
+    /// `[target]` table if `is_toml`, else CSV of `x_mm,y_mm` rows) and evaluates, as
+    /// [`Design::set`] does; on an error (a bad target named by field) nothing changes.
+    #[wasm_bindgen(js_name = setTarget)]
+    pub fn set_target(
+        &mut self,
+        text: &str,
+        origin: &str,
+        is_toml: bool,
+    ) -> Result<String, JsError> {
+        let target = parse_target(text, origin, is_toml).map_err(js_error)?;
+        let mut scene = self.scene.clone();
+        scene.target = Some(Arc::new(target));
+        scene.validate_target().map_err(js_error)?;
+        self.replace_scene(scene)
+    }
+
+    /// Removes the scene's target and evaluates.
+    #[wasm_bindgen(js_name = clearTarget)]
+    pub fn clear_target(&mut self) -> Result<String, JsError> {
+        let mut scene = self.scene.clone();
+        scene.target = None;
+        self.replace_scene(scene)
+    }
+
+    /// The scene's target as a file's `[target]` table (TOML; `noncirc fit --target` and
+    /// `setTarget` read it); an error without a target.
+    #[wasm_bindgen(js_name = targetToml)]
+    pub fn target_toml(&self) -> Result<String, JsError> {
+        #[derive(Serialize)]
+        struct TargetFile<'a> {
+            target: &'a noncirc::core::Target,
+        }
+        let target =
+            (self.scene.target.as_deref()).ok_or_else(|| js_error("the scene has no target"))?;
+        noncirc::files::toml_text(&TargetFile { target }, "the target").map_err(js_error)
     }
 
     /// The pitch curve's kind (`spline`, `bspline`, `fourier`, …).
@@ -183,9 +229,22 @@ impl Design {
         let eval = self.evaluator.evaluate(&self.scene).map_err(js_error)?;
         let report = EvaluationReport::new(&self.scene, &eval);
         check_finite(&report).map_err(js_error)?;
-        let view = crate::view::View::new(&self.scene, &eval);
+        // The evaluation has prepared the target (it would have refused a bad one).
+        let prepared = self
+            .evaluator
+            .prepared_target(&self.scene)
+            .transpose()
+            .map_err(js_error)?;
+        let view = crate::view::View::new(&self.scene, &eval, prepared.as_deref());
+        // The fit measures with their tolerances, as `fit.json` lists them.
+        let fit_measures = match (&eval.fit, &self.scene.target) {
+            (Some(fit), Some(target)) => fit_measure_rows(fit, target),
+            _ => Vec::new(),
+        };
         self.evaluation = Some(eval);
-        to_json(&serde_json::json!({ "report": report, "view": view }))
+        to_json(
+            &serde_json::json!({ "report": report, "view": view, "fit_measures": fit_measures }),
+        )
     }
 
     /// The mechanism at carrier angle `carrier_deg` (after [`Design::evaluate`]), as JSON.

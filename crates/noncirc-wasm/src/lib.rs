@@ -6,10 +6,12 @@
 //! errors as `Error` objects carrying the core's message.
 
 mod design;
+mod fit;
 mod search;
 mod view;
 
 pub use design::Design;
+pub use fit::{Fit, Repair};
 pub use search::Search;
 
 use wasm_bindgen::JsError;

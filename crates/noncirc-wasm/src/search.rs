@@ -5,11 +5,11 @@
 //! one-thread run with the same scene and seed.
 
 use noncirc::core::{
-    execute, stop_after_generations, Algorithm, BatchEvaluator, Checkpoint, Ending, SceneProblem,
-    SearchState, SerialEvaluator,
+    execute, stop_after_generations, Algorithm, BatchEvaluator, Checkpoint, Ending, Scene,
+    SceneProblem, SearchState, SerialEvaluator,
 };
 use noncirc::scene_file::parse_scene;
-use noncirc::search::{best_scene, Confirmed, SearchSettings, Summary};
+use noncirc::search::{best_scene, Confirmed, Outcome as SearchOutcome, SearchSettings, Summary};
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
@@ -18,10 +18,114 @@ use crate::{js_error, to_json};
 /// A search being run.
 #[wasm_bindgen]
 pub struct Search {
+    runner: Runner,
+}
+
+/// A search run a few generations at a time on the serial evaluator (a search's, a fit's
+/// and each of a repair's boxes).
+pub(crate) struct Runner {
     evaluator: SerialEvaluator,
     state: SearchState,
     budget: u64,
     stopped: bool,
+}
+
+/// The studio's scene text with the search settings the page gives over the scene's own
+/// (`algorithm` by name, `budget`, `seed`; `None` keeps the scene's), checked as the CLI
+/// checks its flags.
+pub(crate) fn scene_with_settings(
+    scene_text: &str,
+    algorithm: Option<String>,
+    budget: Option<u64>,
+    seed: Option<u64>,
+) -> Result<Scene, JsError> {
+    let mut scene = parse_scene(scene_text, "the studio's scene").map_err(js_error)?;
+    let settings = SearchSettings {
+        algorithm: algorithm
+            .map(|a| Algorithm::parse(&a))
+            .transpose()
+            .map_err(js_error)?,
+        budget,
+        seed,
+        ..SearchSettings::default()
+    };
+    settings.apply(&mut scene).map_err(js_error)?;
+    Ok(scene)
+}
+
+impl Runner {
+    /// A new search of `scene` (its `[search]` settings).
+    pub(crate) fn new(scene: &Scene) -> Result<Self, JsError> {
+        scene.validate_search().map_err(js_error)?;
+        let problem = SceneProblem::new(scene).map_err(js_error)?;
+        let search = &scene.search;
+        let state = SearchState::new(
+            search.algorithm,
+            problem.dim(),
+            problem.goals(),
+            search.population,
+            search.seed,
+        );
+        Ok(Self {
+            budget: search.budget,
+            evaluator: SerialEvaluator::new(problem),
+            state,
+            stopped: false,
+        })
+    }
+
+    /// Runs at most `generations` generations; true once the budget is spent.
+    pub(crate) fn run(&mut self, generations: u32) -> bool {
+        let mut limit = stop_after_generations(u64::from(generations));
+        let ending = execute(
+            &mut self.state,
+            &mut self.evaluator as &mut dyn BatchEvaluator,
+            self.budget,
+            &mut [&mut limit],
+        );
+        ending == Ending::Budget
+    }
+
+    pub(crate) fn stop(&mut self) {
+        self.stopped = true;
+    }
+
+    pub(crate) fn stopped(&self) -> bool {
+        self.stopped
+    }
+
+    pub(crate) fn progress(&self) -> Result<String, JsError> {
+        to_json(&Progress {
+            generation: self.state.generation,
+            evaluations: self.state.evaluations,
+            budget: self.budget,
+            done: self.state.evaluations >= self.budget,
+            first_feasible_evaluations: self.state.first_feasible_at,
+            last: self.state.history.last(),
+        })
+    }
+
+    fn stopped_early(&self) -> bool {
+        self.stopped && self.state.evaluations < self.budget
+    }
+
+    /// The finished (or stopped) search as the CLI's one-thread run gives it, the reported
+    /// designs confirmed.
+    pub(crate) fn outcome(&self, seconds: f64) -> SearchOutcome {
+        let problem = self.evaluator.problem().clone();
+        let confirmed = Confirmed::new(&problem, &self.state);
+        SearchOutcome {
+            problem,
+            state: self.state.clone(),
+            budget: self.budget,
+            seconds,
+            seconds_to_first_feasible: None,
+            threads: 1,
+            stopped_early: self.stopped_early(),
+            checkpoint_failures: Vec::new(),
+            confirmed,
+        }
+    }
 }
 
 /// Where a search is, for the progress bar and the convergence plot.
@@ -58,31 +162,9 @@ impl Search {
         budget: Option<u64>,
         seed: Option<u64>,
     ) -> Result<Search, JsError> {
-        let mut scene = parse_scene(scene_text, "the studio's scene").map_err(js_error)?;
-        let settings = SearchSettings {
-            algorithm: algorithm
-                .map(|a| Algorithm::parse(&a))
-                .transpose()
-                .map_err(js_error)?,
-            budget,
-            seed,
-            ..SearchSettings::default()
-        };
-        settings.apply(&mut scene).map_err(js_error)?;
-        let problem = SceneProblem::new(&scene).map_err(js_error)?;
-        let search = &scene.search;
-        let state = SearchState::new(
-            search.algorithm,
-            problem.dim(),
-            problem.goals(),
-            search.population,
-            search.seed,
-        );
+        let scene = scene_with_settings(scene_text, algorithm, budget, seed)?;
         Ok(Self {
-            budget: search.budget,
-            evaluator: SerialEvaluator::new(problem),
-            state,
-            stopped: false,
+            runner: Runner::new(&scene)?,
         })
     }
 
@@ -95,62 +177,51 @@ impl Search {
             .check(problem.dim(), problem.goals())
             .map_err(js_error)?;
         Ok(Self {
-            budget: budget.unwrap_or(cp.budget),
-            evaluator: SerialEvaluator::new(problem),
-            state: cp.state,
-            stopped: false,
+            runner: Runner {
+                budget: budget.unwrap_or(cp.budget),
+                evaluator: SerialEvaluator::new(problem),
+                state: cp.state,
+                stopped: false,
+            },
         })
     }
 
     /// Runs at most `generations` generations; true once the budget is spent.
     pub fn run(&mut self, generations: u32) -> bool {
-        let mut limit = stop_after_generations(u64::from(generations));
-        let ending = execute(
-            &mut self.state,
-            &mut self.evaluator as &mut dyn BatchEvaluator,
-            self.budget,
-            &mut [&mut limit],
-        );
-        ending == Ending::Budget
+        self.runner.run(generations)
     }
 
     /// Ends the run before its budget (the result says it stopped early).
     pub fn stop(&mut self) {
-        self.stopped = true;
+        self.runner.stop();
     }
 
     /// Where the run is, as JSON.
     pub fn progress(&self) -> Result<String, JsError> {
-        to_json(&Progress {
-            generation: self.state.generation,
-            evaluations: self.state.evaluations,
-            budget: self.budget,
-            done: self.state.evaluations >= self.budget,
-            first_feasible_evaluations: self.state.first_feasible_at,
-            last: self.state.history.last(),
-        })
+        self.runner.progress()
     }
 
     /// A checkpoint of the run (the CLI's format: `noncirc optimise --resume` reads it).
     pub fn checkpoint(&self) -> String {
-        let cp = Checkpoint::new(self.evaluator.problem(), self.budget, &self.state);
+        let r = &self.runner;
+        let cp = Checkpoint::new(r.evaluator.problem(), r.budget, &r.state);
         String::from_utf8_lossy(&cp.to_json()).into_owned()
     }
 
     /// The reported design confirmed at the scene's resolution: the CLI's summary (with the
     /// page's `seconds`) and best scene, and the history, as JSON.
     pub fn result(&self, seconds: f64) -> Result<String, JsError> {
-        let problem = self.evaluator.problem();
-        let confirmed = Confirmed::new(problem, &self.state);
-        let stopped_early = self.stopped && self.state.evaluations < self.budget;
+        let r = &self.runner;
+        let problem = r.evaluator.problem();
+        let confirmed = Confirmed::new(problem, &r.state);
         let summary = Summary::new(
             problem,
-            &self.state,
+            &r.state,
             &confirmed,
             1,
             seconds,
             None,
-            stopped_early,
+            r.stopped_early(),
         );
         let best_toml = best_scene(problem, &confirmed)
             .map(|s| noncirc::files::toml_text(&s, "the best scene"))
@@ -159,7 +230,7 @@ impl Search {
         to_json(&Outcome {
             summary,
             best_toml,
-            history: self.state.history.clone(),
+            history: r.state.history.clone(),
         })
     }
 }

@@ -2,7 +2,7 @@
 //! the tip trajectory by section with its events, tray and ground, and the mechanism at a
 //! carrier angle. The page only scales and strokes them.
 
-use noncirc::core::{unit, Evaluation, Kinematics, Scene, Section, Vec2};
+use noncirc::core::{unit, Evaluation, Kinematics, PreparedTarget, Scene, Section, Target, Vec2};
 use noncirc::teeth::{train_layout, TeethRun};
 use serde::Serialize;
 use std::f64::consts::TAU;
@@ -38,10 +38,23 @@ pub struct View {
     tray: Option<Line>,
     /// The ground's height (mm): the planting depth above the lowest point.
     ground_y_mm: Option<f64>,
+    /// The scene's target: its table (points, poses, tolerances) and its path as drawn.
+    target: Option<TargetView>,
+}
+
+/// The target as the page draws and edits it.
+#[derive(Serialize)]
+struct TargetView {
+    /// The `[target]` table as a scene file holds it.
+    table: Target,
+    /// The path through its points (the spline's fine polyline, thinned; mm).
+    path: Line,
 }
 
 impl View {
-    pub fn new(scene: &Scene, eval: &Evaluation) -> Self {
+    /// The drawings of `eval`, the evaluation of `scene`, whose target (if it has one) is
+    /// prepared as `prepared`.
+    pub fn new(scene: &Scene, eval: &Evaluation, prepared: Option<&PreparedTarget>) -> Self {
         let curve = eval.pair().map_or_else(Vec::new, |pair| {
             (0..=CURVE_POINTS)
                 .map(|i| {
@@ -58,7 +71,19 @@ impl View {
             planting_mm: None,
             tray: None,
             ground_y_mm: None,
+            target: None,
         };
+        if let (Some(table), Some(prepared)) = (&scene.target, prepared) {
+            let path = thinned(prepared.polyline());
+            view.target = Some(TargetView {
+                table: (**table).clone(),
+                path: path
+                    .into_iter()
+                    .chain(prepared.polyline().first().copied())
+                    .map(Into::into)
+                    .collect(),
+            });
+        }
         let (Some(kin), Some(events)) = (&eval.kinematics, &eval.events) else {
             return view;
         };
