@@ -65,19 +65,39 @@ pub(crate) fn fit(args: FitArgs) -> Result<Finished, Box<dyn std::error::Error>>
         }
     }
     let summary = outcome.summary();
-    noncirc::report::check_finite(&summary)?;
-    match args.search.scene.format {
-        Format::Json => out(&json(&summary)?)?,
-        Format::Table => out(&summary.table())?,
+    conclude(
+        &summary,
+        summary.table(),
+        args.search.scene.format,
+        stop.load(Ordering::SeqCst)
+            .then_some("and in the checkpoint and --out"),
+        (!summary.met).then(|| summary.failures()),
+    )
+}
+
+/// Prints a run's summary (its JSON, or `table`) and gives its exit: interrupted (its
+/// results so far printed, and where else they are, `saved`), a verdict failed with
+/// `failures`, or completed.
+fn conclude(
+    summary: &impl serde::Serialize,
+    table: String,
+    format: Format,
+    interrupted: Option<&str>,
+    failures: Option<String>,
+) -> Result<Finished, Box<dyn std::error::Error>> {
+    noncirc::report::check_finite(summary)?;
+    match format {
+        Format::Json => out(&json(summary)?)?,
+        Format::Table => out(&table)?,
     }
-    if stop.load(Ordering::SeqCst) {
-        eprintln!("interrupted: the results so far are above (and in the checkpoint and --out)");
+    if let Some(saved) = interrupted {
+        eprintln!("interrupted: the results so far are above ({saved})");
         return Ok(Finished::Interrupted);
     }
-    if !summary.met {
-        return Err(VerdictFailed(summary.failures()).into());
+    match failures {
+        Some(failures) => Err(VerdictFailed(failures).into()),
+        None => Ok(Finished::Completed),
     }
-    Ok(Finished::Completed)
 }
 
 /// Repair the scene's design; exit 3 when no design within the budget meets every
@@ -116,19 +136,13 @@ pub(crate) fn repair(args: RepairArgs) -> Result<Finished, Box<dyn std::error::E
         }
     }
     let summary = outcome.summary();
-    noncirc::report::check_finite(&summary)?;
-    match args.search.scene.format {
-        Format::Json => out(&json(&summary)?)?,
-        Format::Table => out(&summary.table())?,
-    }
-    if stop.load(Ordering::SeqCst) {
-        eprintln!("interrupted: the results so far are above (and in --out)");
-        return Ok(Finished::Interrupted);
-    }
-    if !summary.repaired {
-        return Err(VerdictFailed(summary.failures()).into());
-    }
-    Ok(Finished::Completed)
+    conclude(
+        &summary,
+        summary.table(),
+        args.search.scene.format,
+        stop.load(Ordering::SeqCst).then_some("and in --out"),
+        (!summary.repaired).then(|| summary.failures()),
+    )
 }
 
 /// Print the scene's own path and events as a `[target]` table.

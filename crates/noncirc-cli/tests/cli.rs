@@ -16,6 +16,27 @@ fn temp(name: &str) -> PathBuf {
     dir
 }
 
+/// Runs `noncirc COMMAND ARGS --out OUT` and asserts that it is refused as bad input:
+/// exit 2, `says` in its message, nothing written at `out`.
+fn assert_refused<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(
+    command: &str,
+    args: &[S],
+    says: &str,
+    out: &std::path::Path,
+) {
+    let run = noncirc()
+        .arg(command)
+        .args(args)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(stderr.contains(says), "{args:?}: {stderr}");
+    assert!(!out.exists(), "{args:?}: wrote {}", out.display());
+}
+
 #[test]
 fn exit_codes_tell_bad_input_from_runtime_failure() {
     let code = |args: &[&str]| noncirc().args(args).output().unwrap().status.code();
@@ -427,18 +448,12 @@ fn fit_refuses_bad_targets_by_name_with_exit_2_and_writes_nothing() {
     for (name, text, says) in cases {
         let file = dir.join(name);
         std::fs::write(&file, text).unwrap();
-        let out_dir = dir.join(format!("out-{name}"));
-        let run = noncirc()
-            .args(["fit", "--quiet", "--target"])
-            .arg(&file)
-            .arg("--out")
-            .arg(&out_dir)
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&run.stderr);
-        assert_eq!(run.status.code(), Some(2), "{name}: {stderr}");
-        assert!(stderr.contains(says), "{name}: {stderr}");
-        assert!(!out_dir.exists(), "{name}: wrote {}", out_dir.display());
+        let args = [
+            std::ffi::OsStr::new("--quiet"),
+            "--target".as_ref(),
+            file.as_os_str(),
+        ];
+        assert_refused("fit", &args, says, &dir.join(format!("out-{name}")));
     }
     // No target at all.
     let run = noncirc().args(["fit", "--quiet"]).output().unwrap();
@@ -557,18 +572,7 @@ fn inverse_refuses_bad_input_by_name_with_exit_2_and_writes_nothing() {
         ),
     ];
     for (args, says) in cases {
-        let out = dir.join("out");
-        let run = noncirc()
-            .arg("inverse")
-            .args(&args)
-            .arg("--out")
-            .arg(&out)
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&run.stderr);
-        assert_eq!(run.status.code(), Some(2), "{args:?}: {stderr}");
-        assert!(stderr.contains(says), "{args:?}: {stderr}");
-        assert!(!out.exists(), "{args:?}: wrote {}", out.display());
+        assert_refused("inverse", &args, says, &dir.join("out"));
     }
 }
 
@@ -616,17 +620,6 @@ fn repair_writes_the_repaired_scene_and_refuses_bad_input_with_exit_2() {
         ),
     ];
     for (args, says) in cases {
-        let out = dir.join("bad");
-        let run = noncirc()
-            .arg("repair")
-            .args(args)
-            .arg("--out")
-            .arg(&out)
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&run.stderr);
-        assert_eq!(run.status.code(), Some(2), "{args:?}: {stderr}");
-        assert!(stderr.contains(says), "{args:?}: {stderr}");
-        assert!(!out.exists(), "{args:?}: wrote {}", out.display());
+        assert_refused("repair", args, says, &dir.join("bad"));
     }
 }

@@ -35,6 +35,18 @@ pub(crate) fn py_to_json(value: &Bound<'_, PyAny>, call: &str) -> Result<serde_j
     serde_json::from_str(&text).map_err(internal)
 }
 
+/// A serialisable summary as a Python dict (through its JSON, as the CLI prints it).
+pub(crate) fn summary_dict<'py>(
+    py: Python<'py>,
+    summary: &impl serde::Serialize,
+) -> Result<Bound<'py, PyDict>> {
+    let text = serde_json::to_string(summary).map_err(internal)?;
+    Ok(py
+        .import("json")?
+        .call_method1("loads", (text,))?
+        .downcast_into::<PyDict>()?)
+}
+
 /// A JSON value as a Python value (`json.loads`).
 pub(crate) fn json_to_py(py: Python<'_>, value: &serde_json::Value) -> Result<PyObject> {
     let text = serde_json::to_string(value).map_err(internal)?;

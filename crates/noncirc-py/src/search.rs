@@ -1,6 +1,7 @@
 //! Searches from Python: `optimise` with its progress callback, Ctrl-C and checkpoints
 //! (an observer of the core's executor), and the island model's migrants.
 
+use crate::convert::summary_dict;
 use crate::errors::{internal, invalid, parameter, Result};
 use crate::scene::Scene;
 use noncirc::core::{Algorithm, Control, Observer, SearchState};
@@ -158,11 +159,7 @@ pub(crate) fn optimise<'py>(
             2,
         )?;
     }
-    let json = serde_json::to_string(&summary).map_err(internal)?;
-    let out = py
-        .import("json")?
-        .call_method1("loads", (json,))?
-        .downcast_into::<PyDict>()?;
+    let out = summary_dict(py, &summary)?;
     let names = outcome.problem.names();
     out.set_item("parameter_names", &names)?;
     out.set_item(
@@ -283,11 +280,7 @@ pub(crate) fn fit<'py>(
         return Err(e.into());
     }
     let summary = outcome.summary();
-    let json = serde_json::to_string(&summary).map_err(internal)?;
-    let out = py
-        .import("json")?
-        .call_method1("loads", (json,))?
-        .downcast_into::<PyDict>()?;
+    let out = summary_dict(py, &summary)?;
     if let Some((best, _)) = &outcome.best {
         out.set_item(
             "best_scene",
@@ -334,11 +327,7 @@ pub(crate) fn repair<'py>(
     if let Some(e) = observer.error {
         return Err(e.into());
     }
-    let json = serde_json::to_string(&outcome.summary()).map_err(internal)?;
-    let out = py
-        .import("json")?
-        .call_method1("loads", (json,))?
-        .downcast_into::<PyDict>()?;
+    let out = summary_dict(py, &outcome.summary())?;
     if let Some(r) = &outcome.repaired {
         out.set_item(
             "repaired_scene",
@@ -409,11 +398,7 @@ pub(crate) fn inverse<'py>(
         noncirc::inverse::inverse_scene(&s, &target, centre_ratio, split, branch, samples_per_turn)
     })?;
     let summary = noncirc::inverse::summary(&outcome, split);
-    let json = serde_json::to_string(&summary).map_err(internal)?;
-    let out = py
-        .import("json")?
-        .call_method1("loads", (json,))?
-        .downcast_into::<PyDict>()?;
+    let out = summary_dict(py, &summary)?;
     if let Some(design) = &outcome.scene {
         out.set_item(
             "scene",
