@@ -2,9 +2,9 @@
 //! one that meets every objective and whose teeth cut and mesh. It is the fit with the
 //! design as its own target: the design's tip path with its picking and planting poses,
 //! and each free parameter pulled towards its value over a tenth of its search interval
-//! (`target.design`), searched in the scene's box with every objective a constraint. The
-//! fitted design's teeth are then cut and checked over a full turn, with the teeth
-//! advice's settings if the scene's own fail.
+//! (`target.design`), searched in boxes about it within the scene's box with every
+//! objective a constraint. The fitted design's teeth are then cut and checked over a full
+//! turn, with the teeth advice's settings if the scene's own fail.
 
 use crate::files::{create_dir, json_text, toml_text, write_file};
 use crate::fit::{fit_scene, FitOptions, FitOutcome, FitRun};
@@ -51,8 +51,9 @@ impl RepairOptions {
     /// The pull scale by default: a tenth of each parameter's interval.
     pub const DESIGN_SCALE: f64 = 0.1;
     /// The refinement's evaluations at most, for each box: the repaired design sits on a
-    /// constraint (the module), where Levenberg–Marquardt gains little (about 1 % of the
-    /// cost for the paper's design) and a box with no feasible design gains nothing.
+    /// constraint (the module), where Levenberg–Marquardt gains a tenth of the cost for the
+    /// paper's design (its step cut back to feasibility), and a box with no feasible design
+    /// gains nothing.
     pub const LOCAL_EVALUATIONS: u64 = 2_000;
 
     /// The repair's options by default, with `run`'s search settings.
@@ -110,7 +111,7 @@ pub struct RepairOutcome {
     pub before: Evaluation,
     /// The boxes searched.
     pub stages: Vec<StageRow>,
-    /// The fit of the last box searched (the one where a design works).
+    /// The fit of the box whose design is reported: the nearest that works, else the last.
     pub fit: FitOutcome,
     /// The repaired design, if the fit found one that evaluates.
     pub repaired: Option<Repaired>,
