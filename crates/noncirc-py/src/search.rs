@@ -51,6 +51,24 @@ impl Observer for PythonObserver {
     }
 }
 
+/// Runs `work` with the GIL released and a [`PythonObserver`] calling `progress`; the
+/// callback's error (or Ctrl-C's `KeyboardInterrupt`) is raised once the work has stopped.
+fn observed<T: Send>(
+    py: Python<'_>,
+    progress: Option<PyObject>,
+    work: impl FnOnce(&mut PythonObserver) -> noncirc::Result<T> + Send,
+) -> Result<T> {
+    let mut observer = PythonObserver {
+        progress,
+        error: None,
+    };
+    let outcome = py.allow_threads(|| work(&mut observer))?;
+    match observer.error {
+        Some(e) => Err(e.into()),
+        None => Ok(outcome),
+    }
+}
+
 /// The search settings a call's keywords give (the algorithm by name).
 fn search_settings(
     algorithm: Option<&str>,
@@ -129,14 +147,9 @@ pub(crate) fn optimise<'py>(
         resume,
         ..RunOptions::new(threads)?
     };
-    let mut observer = PythonObserver {
-        progress,
-        error: None,
-    };
-    let outcome = py.allow_threads(|| noncirc::search::run(&s, &opts, &mut [&mut observer]))?;
-    if let Some(e) = observer.error {
-        return Err(e.into());
-    }
+    let outcome = observed(py, progress, |observer| {
+        noncirc::search::run(&s, &opts, &mut [observer])
+    })?;
     let summary = outcome.summary();
     if !summary.feasible {
         // Said, not only flagged: a run that found nothing must not pass for a result.
@@ -270,15 +283,9 @@ pub(crate) fn fit<'py>(
         run,
         local: noncirc::core::LocalSettings::default(),
     };
-    let mut observer = PythonObserver {
-        progress,
-        error: None,
-    };
-    let outcome =
-        py.allow_threads(|| noncirc::fit::fit_scene(&s, &options, &mut [&mut observer]))?;
-    if let Some(e) = observer.error {
-        return Err(e.into());
-    }
+    let outcome = observed(py, progress, |observer| {
+        noncirc::fit::fit_scene(&s, &options, &mut [observer])
+    })?;
     let summary = outcome.summary();
     let out = summary_dict(py, &summary)?;
     if let Some((best, _)) = &outcome.best {
@@ -318,15 +325,9 @@ pub(crate) fn repair<'py>(
         design_scale,
         ..noncirc::repair::RepairOptions::new(RunOptions::new(threads)?)
     };
-    let mut observer = PythonObserver {
-        progress,
-        error: None,
-    };
-    let outcome =
-        py.allow_threads(|| noncirc::repair::repair_scene(&s, &options, &mut [&mut observer]))?;
-    if let Some(e) = observer.error {
-        return Err(e.into());
-    }
+    let outcome = observed(py, progress, |observer| {
+        noncirc::repair::repair_scene(&s, &options, &mut [observer])
+    })?;
     let out = summary_dict(py, &outcome.summary())?;
     if let Some(r) = &outcome.repaired {
         out.set_item(
