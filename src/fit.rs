@@ -53,6 +53,15 @@ pub fn parse_target(text: &str, origin: &str, is_toml: bool) -> Result<Target> {
     Ok(target)
 }
 
+/// `target` as a file's `[target]` table (TOML), as [`read_target`] reads it back.
+pub fn target_toml(target: &Target) -> Result<String> {
+    #[derive(Serialize)]
+    struct File<'a> {
+        target: &'a Target,
+    }
+    toml_text(&File { target }, "the target")
+}
+
 /// A `points` target from CSV text of `x_mm,y_mm` rows; `origin` names it in errors.
 pub fn target_from_csv(text: &str, origin: &str) -> Result<Target> {
     let (mut x_mm, mut y_mm) = (Vec::new(), Vec::new());

@@ -169,14 +169,10 @@ pub(crate) fn target(args: TargetArgs) -> Result<(), Box<dyn std::error::Error>>
     };
     let target = noncirc::core::target_of(kin, events, args.points);
     target.prepare()?;
-    #[derive(serde::Serialize)]
-    struct File<'a> {
-        target: &'a noncirc::core::Target,
-    }
     let text = format!(
         "# The tip path and events of scene '{}' as a target (noncirc target).\n{}",
         scene.name,
-        noncirc::files::toml_text(&File { target: &target }, "the target")?
+        noncirc::fit::target_toml(&target)?
     );
     out(&text)?;
     Ok(())

@@ -2,7 +2,7 @@
 //! parameter guide, the live sweep and the exports the studio shows.
 
 use noncirc::core::{scale, Evaluation, Evaluator, ObjectiveValue, Param, Scene, SceneProblem};
-use noncirc::fit::{fit_measure_rows, parse_target};
+use noncirc::fit::{fit_measure_rows, parse_target, target_toml};
 use noncirc::report::{check_finite, EvaluationReport};
 use noncirc::scene_file::{apply_overrides, parse_scene, BUILTIN};
 use noncirc::teeth::TeethRun;
@@ -175,13 +175,9 @@ impl Design {
     /// `setTarget` read it); an error without a target.
     #[wasm_bindgen(js_name = targetToml)]
     pub fn target_toml(&self) -> Result<String, JsError> {
-        #[derive(Serialize)]
-        struct TargetFile<'a> {
-            target: &'a noncirc::core::Target,
-        }
         let target =
             (self.scene.target.as_deref()).ok_or_else(|| js_error("the scene has no target"))?;
-        noncirc::files::toml_text(&TargetFile { target }, "the target").map_err(js_error)
+        target_toml(target).map_err(js_error)
     }
 
     /// The pitch curve's kind (`spline`, `bspline`, `fourier`, …).
