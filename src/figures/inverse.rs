@@ -61,7 +61,11 @@ impl Figure for InverseFigure<'_> {
             .collect();
         let area = root
             .titled(
-                "Where the inversion's conditions fail on the target",
+                if failing.is_empty() {
+                    "The target and the chain's straight positions (no condition fails on it)"
+                } else {
+                    "Where the inversion's conditions fail on the target"
+                },
                 (FONT, 22),
             )
             .map_err(err)?;
