@@ -63,8 +63,10 @@ pub struct InverseSummary<'a> {
     pub planet_radius_mm: f64,
     pub centre_distances_mm: [f64; 2],
     pub split: f64,
-    pub harmonics: usize,
+    pub harmonics: f64,
     pub smoothing_mm: f64,
+    /// The largest move of the tip by the ratio's shaping (mm; 0: not shaped).
+    pub shaping_mm: f64,
     /// The built design's path against the target (mm).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub path_hausdorff_mm: Option<f64>,
@@ -87,6 +89,7 @@ pub fn summary(outcome: &InverseOutcome, split: f64) -> InverseSummary<'_> {
         split,
         harmonics: outcome.harmonics,
         smoothing_mm: outcome.smoothing_mm,
+        shaping_mm: outcome.shaping_mm,
         path_hausdorff_mm: fit.map(|f| f.path_hausdorff_mm),
         path_rms_mm: fit.map(|f| f.path_rms_mm),
         conditions: &outcome.conditions,
@@ -98,8 +101,8 @@ impl InverseSummary<'_> {
     pub fn table(&self) -> String {
         let mut out = format!(
             "The path fixes the arm S = {:.3} mm and the planet circle R = {:.3} mm: centre \
-             distances {:.3} and {:.3} mm; elbow branch {:?}{}; the target read as {} \
-             harmonics, within {:.4} mm of its points.\n",
+             distances {:.3} and {:.3} mm; elbow branch {:?}{}; the target read as a \
+             Fourier series smoothed to half weight at harmonic {:.1}, within {:.4} mm of its points.\n",
             self.arm_length_mm,
             self.planet_radius_mm,
             self.centre_distances_mm[0],
@@ -113,6 +116,13 @@ impl InverseSummary<'_> {
             self.harmonics,
             self.smoothing_mm
         );
+        if self.shaping_mm > 0.0 {
+            out += &format!(
+                "The overall ratio shaped for buildable pitch curves, moving the tip by at \
+                 most {:.4} mm.\n",
+                self.shaping_mm
+            );
+        }
         if let (Some(h), Some(r)) = (self.path_hausdorff_mm, self.path_rms_mm) {
             out += &format!(
                 "The design's path against the target: Hausdorff {h:.4} mm, RMS {r:.4} mm.\n"

@@ -541,9 +541,12 @@ class InverseResult:
     centre_distances_mm: tuple[float, float]
     split: float
     """The first pair's share λ of the overall ratio (0: circular, 1: all of it)."""
-    harmonics: int
+    harmonics: float
+    """The half-weight harmonic of the target's smoothed Fourier series."""
     smoothing_mm: float
     """Largest distance of the target's Fourier series from its points."""
+    shaping_mm: float
+    """Largest move of the tip by the ratio's shaping for buildable curves (0: not shaped)."""
     path_hausdorff_mm: Optional[float]
     """The design's path against the target (None: no design)."""
     path_rms_mm: Optional[float]
@@ -583,6 +586,7 @@ class InverseResult:
             split=raw["split"],
             harmonics=raw["harmonics"],
             smoothing_mm=raw["smoothing_mm"],
+            shaping_mm=raw["shaping_mm"],
             path_hausdorff_mm=raw.get("path_hausdorff_mm"),
             path_rms_mm=raw.get("path_rms_mm"),
             conditions=conditions,

@@ -13,6 +13,8 @@
 //! ratio by `ρ = a·g/(1 + g)`. Both pairs close by construction: `mean g_A = 1`, and
 //! `∮ g_B dΦ_A = ∮ i dθ = 2π` when the arm makes no net turn.
 
+mod shaping;
+
 use crate::angle::unit;
 use crate::curve::CurveSpec;
 use crate::error::{Error, Result};
@@ -24,6 +26,7 @@ use crate::vec2::Vec2;
 use rustfft::num_complex::Complex64;
 use rustfft::FftPlanner;
 use serde::Serialize;
+use shaping::{power_split, RatioShaping};
 use std::f64::consts::{PI, TAU};
 
 /// Samples of the target per turn for its Fourier series (a power of two).
@@ -141,10 +144,12 @@ pub struct InverseOutcome {
     pub centre_distances_mm: [f64; 2],
     /// Whether the target was read backwards, to run in the carrier's sense.
     pub reversed: bool,
-    /// Harmonics of the target's Fourier series, and its largest distance from the
-    /// target's points (mm).
-    pub harmonics: usize,
+    /// The half-weight harmonic of the target's smoothed Fourier series, and its largest
+    /// distance from the target's points (mm).
+    pub harmonics: f64,
     pub smoothing_mm: f64,
+    /// The largest move of the tip (mm) by the ratio's shaping (0: not shaped).
+    pub shaping_mm: f64,
     pub conditions: Vec<Condition>,
     pub scene: Option<Scene>,
     pub evaluation: Option<Evaluation>,
@@ -167,13 +172,19 @@ impl InverseOutcome {
 struct FourierPath {
     /// `(k, c_k)`, `|k| ≤ K`.
     terms: Vec<(f64, Complex64)>,
+    /// The smoothing's half-weight harmonic.
+    half_weight: f64,
     length_mm: f64,
 }
 
 impl FourierPath {
-    /// The fewest harmonics that keep the series within `tolerance_mm` of `points` (a
-    /// closed polyline), sampled at [`PATH_SAMPLES`] points by arc length; also returns
-    /// the largest distance reached.
+    /// The smoothest series within `tolerance_mm` of `points` (a closed polyline, sampled
+    /// at [`PATH_SAMPLES`] points by arc length): each harmonic of the samples' spectrum
+    /// above the first weighted by `1/(1 + (|k|/k½)⁶)`, a periodic smoothing spline penalising the path's
+    /// third derivative (which the pitch curves' curvature follows), with the lowest
+    /// half-weight harmonic `k½` that keeps within the tolerance (bisection). A sharp
+    /// truncation would ripple the third derivative instead. Also returns the largest
+    /// distance reached.
     fn fit(points: &[Vec2], tolerance_mm: f64) -> (Self, f64) {
         let (samples, length_mm) = resample(points, PATH_SAMPLES);
         let m = samples.len();
@@ -185,53 +196,64 @@ impl FourierPath {
             *c /= m as f64;
         }
         let inverse = planner.plan_fft_inverse(m);
-        let deviation = |k_max: usize| {
+        let harmonic = |i: usize| {
+            if i <= m / 2 {
+                i as f64
+            } else {
+                i as f64 - m as f64
+            }
+        };
+        // The centre and the fundamental (an ellipse) are kept whole: the smoothing is
+        // for the detail, and would otherwise shrink a circle.
+        let weight = |k: f64, half: f64| {
+            if k.abs() <= 1.0 {
+                1.0
+            } else {
+                1.0 / (1.0 + (k / half).powi(6))
+            }
+        };
+        let deviation = |half: f64| {
             let mut z: Vec<Complex64> = (spectrum.iter().enumerate())
-                .map(|(i, &c)| {
-                    let k = if i <= m / 2 { i } else { m - i };
-                    if k <= k_max {
-                        c
-                    } else {
-                        Complex64::new(0.0, 0.0)
-                    }
-                })
+                .map(|(i, &c)| c * weight(harmonic(i), half))
                 .collect();
             inverse.process(&mut z);
             (z.iter().zip(&samples))
                 .map(|(z, p)| (Vec2::new(z.re, z.im) - *p).hypot())
                 .fold(0.0, f64::max)
         };
-        // The least K within tolerance, by bisection (the deviation falls as K grows).
-        let (mut lo, mut hi) = (1, m / 2 - 1);
+        // The least k½ within tolerance, by bisection on its logarithm (the deviation
+        // falls as k½ grows); at m/2 the series keeps the samples to within rounding.
+        let (mut lo, mut hi) = (1.0f64, (m / 2) as f64);
         if deviation(hi) > tolerance_mm {
             lo = hi;
         }
-        while lo < hi {
-            let mid = (lo + hi) / 2;
+        for _ in 0..40 {
+            let mid = (lo * hi).sqrt();
             if deviation(mid) <= tolerance_mm {
                 hi = mid;
             } else {
-                lo = mid + 1;
+                lo = mid;
             }
         }
-        let k_max = lo;
+        let half = hi;
+        // Terms below a nanometre change nothing the tolerance can see.
         let terms = (spectrum.iter().enumerate())
-            .filter_map(|(i, &c)| {
-                let k = if i <= m / 2 {
-                    i as f64
-                } else {
-                    i as f64 - m as f64
-                };
-                (k.abs() <= k_max as f64).then_some((k, c))
-            })
+            .map(|(i, &c)| (harmonic(i), c * weight(harmonic(i), half)))
+            .filter(|(_, c)| c.norm() > 1e-9)
             .collect();
-        (Self { terms, length_mm }, deviation(k_max))
+        (
+            Self {
+                terms,
+                half_weight: half,
+                length_mm,
+            },
+            deviation(half),
+        )
     }
 
-    fn harmonics(&self) -> usize {
-        (self.terms.iter().map(|t| t.0.abs() as usize))
-            .max()
-            .unwrap_or(0)
+    /// The half-weight harmonic `k½` of the smoothing.
+    fn harmonics(&self) -> f64 {
+        self.half_weight
     }
 
     /// `z(t)` and `z'(t)` (mm, mm/rad).
@@ -283,6 +305,7 @@ impl FourierPath {
     fn reversed(&self) -> Self {
         Self {
             terms: self.terms.iter().map(|&(k, c)| (-k, c)).collect(),
+            half_weight: self.half_weight,
             length_mm: self.length_mm,
         }
     }
@@ -620,6 +643,7 @@ fn invert_on(
         reversed,
         harmonics: path.harmonics(),
         smoothing_mm,
+        shaping_mm: 0.0,
         conditions,
         scene: None,
         evaluation: None,
@@ -660,11 +684,25 @@ fn invert_on(
     // The arm's direction, continuous from the node at θ = 0.
     let mut arm_nodes: Vec<f64> = nodes.iter().map(|c| c.arm).collect();
     unwrap(&mut arm_nodes);
-    let ratio_nodes: Vec<f64> = nodes.iter().map(|c| 1.0 - c.arm_d1 / c.alpha_d1).collect();
-    let lambda = spec.split;
-    let share: Vec<f64> = ratio_nodes.iter().map(|i| i.powf(lambda)).collect();
-    let mean_share = share.iter().sum::<f64>() / n as f64;
-    let g_a: Vec<f64> = share.iter().map(|s| s / mean_share).collect();
+    let read_ratio: Vec<f64> = nodes.iter().map(|c| 1.0 - c.arm_d1 / c.alpha_d1).collect();
+    // What is left of the tolerance once the series has taken its share, with a tenth
+    // kept for the forward check's own discretisation.
+    let budget_mm = 0.9 * target.tolerance_mm - smoothing_mm;
+    // The curvature the module's bound allows, with a tenth to spare for the rounding to
+    // whole teeth: `2ρ_min/z_min ≥ 1.1·m_min`.
+    let kappa_max = 2.0 / (1.1 * scene.bounds.module_min_mm * scene.gear.module.z_min);
+    let shaped = RatioShaping::within(
+        &read_ratio,
+        spec.split,
+        [a1, a2],
+        kappa_max,
+        arm_length,
+        budget_mm,
+    );
+    let ratio_nodes = shaped.ratio.clone();
+    arm_nodes[0] += sigma * shaped.arm_shift;
+    outcome.shaping_mm = shaped.moved_mm;
+    let g_a = power_split(&ratio_nodes, spec.split);
     let mut phi_a = vec![0.0; n];
     SpectralIntegrator::new(n).cumulative(&g_a, &mut phi_a);
     let psi_start = train.psi_start();
@@ -800,15 +838,16 @@ fn design_conditions(scene: &Scene, evaluation: &Evaluation, node_s: &[f64]) -> 
                     .collect::<Vec<_>>();
                 out.push(Condition {
                     name: format!("{name}_convex"),
-                    holds: least >= 0.0,
+                    holds: least >= 0.0 || shaper,
                     blocks: !shaper,
                     value: least,
                     bound: 0.0,
                     unit: "1/mm",
                     meaning: format!(
-                        "the {} pitch curve is convex (the value is its least curvature; \
-                         negative, concave with radius 1/|κ|, which needs a shaper cutter, \
-                         gear.module.cutter_teeth)",
+                        "the {} pitch curve is convex, or a shaper cutter \
+                         (gear.module.cutter_teeth) cuts it (the value is its least curvature; \
+                         negative, concave with radius 1/|κ|, whose module the module \
+                         objective checks)",
                         name.replace('_', " ")
                     ),
                     places,
