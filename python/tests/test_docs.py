@@ -47,7 +47,7 @@ def test_the_inverse_example_runs_as_written(monkeypatch, capsys):
     monkeypatch.chdir(DOC.parents[1])  # the example names the target from the repository
     exec(compile(block, str(DOC), "exec"), {})
     lines = capsys.readouterr().out.splitlines()
-    assert lines == ["True True 160.9", "0.73 1.62"]
+    assert lines == ["True True 160.9", "0.73 1.41"]
 
 
 def test_the_repair_example_runs_as_written(capsys):

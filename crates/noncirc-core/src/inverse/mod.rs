@@ -236,11 +236,21 @@ impl FourierPath {
             }
         }
         let half = hi;
-        // Terms below a nanometre change nothing the tolerance can see.
-        let terms = (spectrum.iter().enumerate())
+        // The smallest terms dropped while together they reach at most a thousandth of the
+        // tolerance: nothing it can see, and the series stays short to evaluate.
+        let mut terms: Vec<(f64, Complex64)> = (spectrum.iter().enumerate())
             .map(|(i, &c)| (harmonic(i), c * weight(harmonic(i), half)))
-            .filter(|(_, c)| c.norm() > 1e-9)
             .collect();
+        terms.sort_by(|a, b| b.1.norm().total_cmp(&a.1.norm()));
+        let mut dropped = 0.0;
+        while let Some(last) = terms.last() {
+            dropped += last.1.norm();
+            if dropped > 1e-3 * tolerance_mm {
+                break;
+            }
+            terms.pop();
+        }
+        terms.sort_by(|a, b| a.0.total_cmp(&b.0));
         (
             Self {
                 terms,
@@ -494,24 +504,43 @@ pub fn invert(scene: &Scene, target: &Target, spec: &InverseSpec) -> Result<Inve
     let mut best: Option<InverseOutcome> = None;
     for (path, reversed) in [(&path, false), (&backwards, true)] {
         for &branch in &branches {
-            let outcome = invert_on(scene, target, spec, path, reversed, smoothing_mm, branch)?;
+            let read = (path, reversed, smoothing_mm, branch);
+            let outcome = invert_on(scene, target, spec, read, false)?;
             if best.as_ref().is_none_or(|b| score(&outcome) > score(b)) {
                 best = Some(outcome);
             }
         }
     }
-    Ok(best.expect("at least one branch"))
+    let best = best.expect("at least one branch");
+    // The ratio is shaped for the best reading only, when its gears are what it misses:
+    // a curve the cutter cannot cut, or the module.
+    let gears_fail =
+        (best.failures()).any(|c| c.name.ends_with("_convex") || c.name == "objective:module");
+    if best.evaluation.is_none() || !gears_fail {
+        return Ok(best);
+    }
+    let path = if best.reversed { &backwards } else { &path };
+    let read = (path, best.reversed, smoothing_mm, best.branch);
+    let shaped = invert_on(scene, target, spec, read, true)?;
+    Ok(if score(&shaped) >= score(&best) {
+        shaped
+    } else {
+        best
+    })
 }
 
-/// The inversion of `path` (the target, `reversed` or not) on one elbow branch.
+/// One reading of the target: the series (`reversed` or not), its distance from the
+/// target's points (mm) and the elbow branch.
+type Reading<'a> = (&'a FourierPath, bool, f64, Branch);
+
+/// The inversion of one reading of the target, with the ratio shaped for buildable
+/// curves (`shape`) or as read.
 fn invert_on(
     scene: &Scene,
     target: &Target,
     spec: &InverseSpec,
-    path: &FourierPath,
-    reversed: bool,
-    smoothing_mm: f64,
-    branch: Branch,
+    (path, reversed, smoothing_mm, branch): Reading<'_>,
+    shape: bool,
 ) -> Result<InverseOutcome> {
     let train = &scene.train;
     let sigma = train.rotation.sign();
@@ -687,15 +716,16 @@ fn invert_on(
     let read_ratio: Vec<f64> = nodes.iter().map(|c| 1.0 - c.arm_d1 / c.alpha_d1).collect();
     // What is left of the tolerance once the series has taken its share, with a tenth
     // kept for the forward check's own discretisation.
-    let budget_mm = 0.9 * target.tolerance_mm - smoothing_mm;
-    // The curvature the module's bound allows, with a tenth to spare for the rounding to
-    // whole teeth: `2ρ_min/z_min ≥ 1.1·m_min`.
-    let kappa_max = 2.0 / (1.1 * scene.bounds.module_min_mm * scene.gear.module.z_min);
+    let budget_mm = if shape {
+        0.9 * target.tolerance_mm - smoothing_mm
+    } else {
+        0.0
+    };
     let shaped = RatioShaping::within(
         &read_ratio,
         spec.split,
         [a1, a2],
-        kappa_max,
+        (&scene.gear.module, scene.bounds.module_min_mm),
         arm_length,
         budget_mm,
     );

@@ -3,6 +3,7 @@
 //! third derivative, taken out before the curves are built.
 
 use crate::angle::unit;
+use crate::gear::ModuleRule;
 use crate::quadrature::SpectralIntegrator;
 use crate::vec2::Vec2;
 use noncirc_search::{refine, LocalSettings, ResidualBatch};
@@ -134,15 +135,19 @@ impl ResidualBatch for ShapingProblem<'_> {
 
 impl RatioShaping {
     /// Shapes `ratio` (at `n` uniform carrier nodes) for the split λ `split`, the centre
-    /// distances, the curvature bound `kappa_max` (1/mm) and the tip's budget (mm).
+    /// distances, the module's rule and least module (mm), the arm length and the tip's
+    /// budget (mm). A ratio whose curves the rule already cuts at the module is kept; the
+    /// shaping aims at convex curves with a tenth to spare on the convex bound (for the
+    /// rounding to whole teeth: `2ρ_min/z_min ≥ 1.1·m_min`).
     pub(super) fn within(
         ratio: &[f64],
         split: f64,
         centre_distances: [f64; 2],
-        kappa_max: f64,
+        (rule, module_mm): (&ModuleRule, f64),
         arm_length: f64,
         budget_mm: f64,
     ) -> Self {
+        let kappa_max = 2.0 / (1.1 * module_mm * rule.z_min);
         let n = ratio.len();
         let unshaped = Self {
             ratio: ratio.to_vec(),
@@ -161,7 +166,7 @@ impl RatioShaping {
                 most = most.max(k);
             },
         );
-        if budget_mm <= 0.0 || (least > 0.0 && most <= kappa_max) {
+        if budget_mm <= 0.0 || cuts(least, most, rule, module_mm) {
             return unshaped;
         }
         let waves = (0..n)
@@ -206,6 +211,18 @@ impl RatioShaping {
             moved_mm,
         }
     }
+}
+
+/// Whether curves of least and largest curvature `least`, `most` (1/mm) are cut at the
+/// module `module_mm` under `rule`: a convex arc's radius at least `m·z_min/2`, a concave
+/// one's at least `m·z_cutter/2` with a shaper, none without.
+fn cuts(least: f64, most: f64, rule: &ModuleRule, module_mm: f64) -> bool {
+    let convex = most <= 2.0 / (module_mm * rule.z_min);
+    let concave = least >= 0.0
+        || rule
+            .cutter_teeth
+            .is_some_and(|z| -least <= 2.0 / (module_mm * z));
+    convex && concave
 }
 
 /// `g_A = i^λ / mean(i^λ)` at the carrier nodes: the mean of 1 closes the first pair.
@@ -323,7 +340,8 @@ mod tests {
         let ratio: Vec<f64> = (0..n)
             .map(|j| 1.0 + 0.2 * (TAU * j as f64 / n as f64).cos())
             .collect();
-        let shaped = RatioShaping::within(&ratio, 0.5, [120.0, 120.0], 0.05, 150.0, 0.5);
+        let rule = ModuleRule::default();
+        let shaped = RatioShaping::within(&ratio, 0.5, [120.0, 120.0], (&rule, 2.5), 150.0, 0.5);
         assert_eq!(shaped.ratio, ratio);
         assert_eq!((shaped.arm_shift, shaped.moved_mm), (0.0, 0.0));
     }
@@ -346,10 +364,10 @@ mod tests {
                     1.0 + 0.45 * t.cos() + ripple * (wave as f64 * t + phase).sin()
                 })
                 .collect();
-            let (a, kappa_max) = ([125.0, 125.0], 2.0 / (1.1 * 2.5 * 17.0));
+            let (a, rule) = ([125.0, 125.0], ModuleRule { cutter_teeth: None, ..ModuleRule::default() });
             let before = extremes(&ratio, 0.5, a);
             let budget = 0.8;
-            let shaped = RatioShaping::within(&ratio, 0.5, a, kappa_max, 160.0, budget);
+            let shaped = RatioShaping::within(&ratio, 0.5, a, (&rule, 2.5), 160.0, budget);
             let mean = shaped.ratio.iter().sum::<f64>() / n as f64;
             prop_assert!((mean - 1.0).abs() < 1e-12, "mean {}", mean);
             prop_assert!(shaped.ratio.iter().all(|&i| i > 0.0));
