@@ -63,7 +63,7 @@ pub struct InverseSummary<'a> {
     pub planet_radius_mm: f64,
     pub centre_distances_mm: [f64; 2],
     pub split: f64,
-    pub harmonics: f64,
+    pub half_weight_harmonic: f64,
     pub smoothing_mm: f64,
     /// The largest move of the tip by the ratio's shaping (mm; 0: not shaped).
     pub shaping_mm: f64,
@@ -87,7 +87,7 @@ pub fn summary(outcome: &InverseOutcome, split: f64) -> InverseSummary<'_> {
         planet_radius_mm: outcome.planet_radius_mm,
         centre_distances_mm: outcome.centre_distances_mm,
         split,
-        harmonics: outcome.harmonics,
+        half_weight_harmonic: outcome.half_weight_harmonic,
         smoothing_mm: outcome.smoothing_mm,
         shaping_mm: outcome.shaping_mm,
         path_hausdorff_mm: fit.map(|f| f.path_hausdorff_mm),
@@ -113,7 +113,7 @@ impl InverseSummary<'_> {
             } else {
                 ""
             },
-            self.harmonics,
+            self.half_weight_harmonic,
             self.smoothing_mm
         );
         if self.shaping_mm > 0.0 {

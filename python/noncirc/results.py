@@ -541,7 +541,7 @@ class InverseResult:
     centre_distances_mm: tuple[float, float]
     split: float
     """The first pair's share λ of the overall ratio (0: circular, 1: all of it)."""
-    harmonics: float
+    half_weight_harmonic: float
     """The half-weight harmonic of the target's smoothed Fourier series."""
     smoothing_mm: float
     """Largest distance of the target's Fourier series from its points."""
@@ -584,7 +584,7 @@ class InverseResult:
             planet_radius_mm=raw["planet_radius_mm"],
             centre_distances_mm=tuple(raw["centre_distances_mm"]),
             split=raw["split"],
-            harmonics=raw["harmonics"],
+            half_weight_harmonic=raw["half_weight_harmonic"],
             smoothing_mm=raw["smoothing_mm"],
             shaping_mm=raw["shaping_mm"],
             path_hausdorff_mm=raw.get("path_hausdorff_mm"),

@@ -12,6 +12,9 @@
 //! `g_B(Φ_A) = i/g_A` shares it between the pairs, and each pitch curve follows from its
 //! ratio by `ρ = a·g/(1 + g)`. Both pairs close by construction: `mean g_A = 1`, and
 //! `∮ g_B dΦ_A = ∮ i dθ = 2π` when the arm makes no net turn.
+//!
+//! The target is read as a smoothed Fourier series, and when the best reading's gears
+//! miss, its ratio is shaped within the tolerance for buildable curves ([`shaping`]).
 
 mod shaping;
 
@@ -146,7 +149,7 @@ pub struct InverseOutcome {
     pub reversed: bool,
     /// The half-weight harmonic of the target's smoothed Fourier series, and its largest
     /// distance from the target's points (mm).
-    pub harmonics: f64,
+    pub half_weight_harmonic: f64,
     pub smoothing_mm: f64,
     /// The largest move of the tip (mm) by the ratio's shaping (0: not shaped).
     pub shaping_mm: f64,
@@ -167,10 +170,10 @@ impl InverseOutcome {
     }
 }
 
-/// A closed path as a truncated Fourier series in `t ∈ [0, 2π)`, `t` proportional to arc
-/// length: `z(t) = Σ_{|k|≤K} c_k e^{ikt}`.
+/// A closed path as a finite Fourier series in `t ∈ [0, 2π)`, `t` proportional to arc
+/// length: `z(t) = Σ_k c_k e^{ikt}`.
 struct FourierPath {
-    /// `(k, c_k)`, `|k| ≤ K`.
+    /// `(k, c_k)`, by k.
     terms: Vec<(f64, Complex64)>,
     /// The smoothing's half-weight harmonic.
     half_weight: f64,
@@ -180,11 +183,11 @@ struct FourierPath {
 impl FourierPath {
     /// The smoothest series within `tolerance_mm` of `points` (a closed polyline, sampled
     /// at [`PATH_SAMPLES`] points by arc length): each harmonic of the samples' spectrum
-    /// above the first weighted by `1/(1 + (|k|/k½)⁶)`, a periodic smoothing spline penalising the path's
-    /// third derivative (which the pitch curves' curvature follows), with the lowest
-    /// half-weight harmonic `k½` that keeps within the tolerance (bisection). A sharp
-    /// truncation would ripple the third derivative instead. Also returns the largest
-    /// distance reached.
+    /// above the first weighted by `1/(1 + (|k|/k½)⁶)`, a periodic smoothing spline
+    /// penalising the path's third derivative (which the pitch curves' curvature
+    /// follows), with the lowest half-weight harmonic `k½` that keeps within the
+    /// tolerance (bisection). A sharp truncation would ripple the third derivative
+    /// instead. Also returns the largest distance reached.
     fn fit(points: &[Vec2], tolerance_mm: f64) -> (Self, f64) {
         let (samples, length_mm) = resample(points, PATH_SAMPLES);
         let m = samples.len();
@@ -259,11 +262,6 @@ impl FourierPath {
             },
             deviation(half),
         )
-    }
-
-    /// The half-weight harmonic `k½` of the smoothing.
-    fn harmonics(&self) -> f64 {
-        self.half_weight
     }
 
     /// `z(t)` and `z'(t)` (mm, mm/rad).
@@ -670,7 +668,7 @@ fn invert_on(
         planet_radius_mm: radius,
         centre_distances_mm: [a1, a2],
         reversed,
-        harmonics: path.harmonics(),
+        half_weight_harmonic: path.half_weight,
         smoothing_mm,
         shaping_mm: 0.0,
         conditions,

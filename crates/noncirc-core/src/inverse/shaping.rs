@@ -22,14 +22,14 @@ const SHAPING_EVALUATIONS: u64 = 6_000;
 /// a millimetre of a buildable one can invert to concave gears. A correction of the lag,
 /// `δL(θ) = Σ_{k ≤ 32} a_k cos kθ + b_k sin kθ` (so `δi = δL'` keeps the mean ratio 1 and
 /// the arm turning back), turns the arm by `−σ·δL` at each carrier angle and moves the tip
-/// by at most `S·|δL − c|` (the constant `c` taken up by β0). Levenberg–Marquardt finds the
-/// least correction whose curves meet the bounds with the tip within the budget: the
-/// residuals are each node's curvature beyond `(0, κ_max]` on each of the four curves, the
-/// tip's move beyond the budget, and a hundredth of the move itself.
+/// by at most `S·|δL − c|` (the constant `c` taken up by β0). Levenberg–Marquardt, from no
+/// correction, minimises residuals for each node's curvature outside `[0.1 κ_max, κ_max]`
+/// on each of the four curves (ten times over below), for the tip's move beyond 0.9 of the
+/// budget, and 0.003 of the move itself (the least correction).
 pub(super) struct RatioShaping {
     /// The shaped ratio at the nodes.
     pub(super) ratio: Vec<f64>,
-    /// The constant turn added to the arm (rad, in the carrier's sense σ).
+    /// The turn added to the arm at θ = 0 (rad, times the carrier's sense σ).
     pub(super) arm_shift: f64,
     /// The largest move of the tip (mm).
     pub(super) moved_mm: f64,
@@ -77,7 +77,7 @@ impl ShapingProblem<'_> {
         (lag, ratio)
     }
 
-    /// The tip's move at each node (mm) after the best constant turn, and that turn.
+    /// The tip's move at each node (mm) about the lag's midrange `c`, and `c` (rad).
     fn moves(&self, lag: &[f64]) -> (Vec<f64>, f64) {
         let (lo, hi) = lag
             .iter()
@@ -87,7 +87,7 @@ impl ShapingProblem<'_> {
         let centre = 0.5 * (lo + hi);
         (
             lag.iter().map(|v| self.arm_length * (v - centre)).collect(),
-            -centre,
+            centre,
         )
     }
 }
@@ -195,12 +195,11 @@ impl RatioShaping {
         };
         let report = refine(&mut problem, &start, &settings);
         let (lag, shaped) = problem.correction(&report.u);
-        let (moves, turn) = problem.moves(&lag);
-        // The arm at θ = 0 turns by δL(0) less the constant (the lag's correction is
-        // integrated again from 0).
-        // β0 takes up the constant: the arm at θ = 0 turned by σ(c − δL(0)) centres the
-        // moves (the correction is integrated again from 0 into the lag).
-        let turn = -lag[0] - turn;
+        let (moves, centre) = problem.moves(&lag);
+        // β0 takes up the constant: the lag's correction is integrated again from 0, so the
+        // arm turns by −σ(δL(θ) − δL(0)), and turning it at θ = 0 by σ(c − δL(0)) makes
+        // that −σ(δL(θ) − c).
+        let turn = centre - lag[0];
         let moved_mm = moves.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         if moved_mm > budget_mm || shaped.iter().any(|&i| i <= 0.0) {
             return unshaped;
@@ -298,11 +297,7 @@ mod tests {
         // difference's rounding).
         let h = TAU / 360.0;
         let read = 2.0 * (1.0 - h.cos()) / h.sin().powi(2);
-        assert!(
-            (least / (read * 2.0 / a[0]) - 1.0).abs() < 1e-9,
-            "{least} {}",
-            least / (read * 2.0 / a[0]) - 1.0
-        );
+        assert!((least / (read * 2.0 / a[0]) - 1.0).abs() < 1e-9, "{least}");
         assert!((most / (read * 2.0 / a[1]) - 1.0).abs() < 1e-9, "{most}");
     }
 
@@ -368,6 +363,8 @@ mod tests {
             let before = extremes(&ratio, 0.5, a);
             let budget = 0.8;
             let shaped = RatioShaping::within(&ratio, 0.5, a, (&rule, 2.5), 160.0, budget);
+            // The ripple is what the shaping is for: it is not left as it was.
+            prop_assert!(shaped.moved_mm > 0.0 && shaped.ratio != ratio);
             let mean = shaped.ratio.iter().sum::<f64>() / n as f64;
             prop_assert!((mean - 1.0).abs() < 1e-12, "mean {}", mean);
             prop_assert!(shaped.ratio.iter().all(|&i| i > 0.0));
