@@ -67,6 +67,9 @@ pub struct InverseSummary<'a> {
     pub smoothing_mm: f64,
     /// The largest move of the tip by the ratio's shaping (mm; 0: not shaped).
     pub shaping_mm: f64,
+    /// The pusher offset H1 chosen for the poses' attitudes (mm; absent: the scene's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pusher_offset_mm: Option<f64>,
     /// The built design's path against the target (mm).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub path_hausdorff_mm: Option<f64>,
@@ -90,6 +93,7 @@ pub fn summary(outcome: &InverseOutcome, split: f64) -> InverseSummary<'_> {
         half_weight_harmonic: outcome.half_weight_harmonic,
         smoothing_mm: outcome.smoothing_mm,
         shaping_mm: outcome.shaping_mm,
+        pusher_offset_mm: outcome.pusher_offset_mm,
         path_hausdorff_mm: fit.map(|f| f.path_hausdorff_mm),
         path_rms_mm: fit.map(|f| f.path_rms_mm),
         conditions: &outcome.conditions,
@@ -116,6 +120,12 @@ impl InverseSummary<'_> {
             self.half_weight_harmonic,
             self.smoothing_mm
         );
+        if let Some(h1) = self.pusher_offset_mm {
+            out += &format!(
+                "The pusher offset H1 = {h1:.4} mm meets the poses' attitudes (the path fixes \
+                 the arm's direction, H1 the pusher's).\n"
+            );
+        }
         if self.shaping_mm > 0.0 {
             out += &format!(
                 "The overall ratio shaped for buildable pitch curves, moving the tip by at \

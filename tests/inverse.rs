@@ -181,3 +181,30 @@ fn an_arm_shorter_than_the_pusher_offset_is_named() {
     assert!(!pusher.holds && pusher.blocks);
     assert_eq!(pusher.bound, scene.train.pusher_offset_mm);
 }
+
+/// The path fixes the arm's direction but not the pusher's: a design with H1 = 52 mm,
+/// inverted for the paper's scene (H1 = 65 mm), comes back with the H1 its poses' attitudes
+/// ask for, and with it both poses and the same path.
+#[test]
+fn the_poses_attitudes_give_back_the_pusher_offset() {
+    let mut design = two_pair_design();
+    design.train.pusher_offset_mm = 52.0;
+    let target = target_of_design(&design, 4096, 0.01);
+    assert!(target.poses.iter().all(|p| p.attitude_deg.is_some()));
+    let outcome = invert(&paper(), &target, &spec_for(&design, 0.5)).unwrap();
+    let h1 = outcome.pusher_offset_mm.expect("the poses name attitudes");
+    // The attitudes are rounded to 1e-4° in the target: H1 to about S·1e-6.
+    assert!((h1 - 52.0).abs() < 1e-3, "H1 {h1} mm");
+    let scene = outcome.scene.as_ref().unwrap();
+    assert_eq!(scene.train.pusher_offset_mm, h1);
+    for name in ["pose:picking", "pose:planting", "path_within_tolerance"] {
+        let c = outcome.conditions.iter().find(|c| c.name == name);
+        assert!(c.is_some_and(|c| c.holds), "{name}: {c:?}");
+    }
+    // A target without poses keeps the scene's H1.
+    let mut bare = target.clone();
+    bare.poses.clear();
+    let outcome = invert(&paper(), &bare, &spec_for(&design, 0.5)).unwrap();
+    assert_eq!(outcome.pusher_offset_mm, None);
+    assert_eq!(outcome.scene.unwrap().train.pusher_offset_mm, 65.0);
+}

@@ -547,6 +547,8 @@ class InverseResult:
     """Largest distance of the target's Fourier series from its points."""
     shaping_mm: float
     """Largest move of the tip by the ratio's shaping for buildable curves (0: not shaped)."""
+    pusher_offset_mm: Optional[float]
+    """The pusher offset H1 (mm) chosen for the poses' attitudes (None: the scene's kept)."""
     path_hausdorff_mm: Optional[float]
     """The design's path against the target (None: no design)."""
     path_rms_mm: Optional[float]
@@ -587,6 +589,7 @@ class InverseResult:
             half_weight_harmonic=raw["half_weight_harmonic"],
             smoothing_mm=raw["smoothing_mm"],
             shaping_mm=raw["shaping_mm"],
+            pusher_offset_mm=raw.get("pusher_offset_mm"),
             path_hausdorff_mm=raw.get("path_hausdorff_mm"),
             path_rms_mm=raw.get("path_rms_mm"),
             conditions=conditions,

@@ -153,6 +153,9 @@ pub struct InverseOutcome {
     pub smoothing_mm: f64,
     /// The largest move of the tip (mm) by the ratio's shaping (0: not shaped).
     pub shaping_mm: f64,
+    /// The pusher offset H1 (mm) chosen for the poses' attitudes (`None`: the scene's
+    /// kept, as no counting pose names an attitude, or none met it).
+    pub pusher_offset_mm: Option<f64>,
     pub conditions: Vec<Condition>,
     pub scene: Option<Scene>,
     pub evaluation: Option<Evaluation>,
@@ -671,6 +674,7 @@ fn invert_on(
         half_weight_harmonic: path.half_weight,
         smoothing_mm,
         shaping_mm: 0.0,
+        pusher_offset_mm: None,
         conditions,
         scene: None,
         evaluation: None,
@@ -754,8 +758,17 @@ fn invert_on(
     designed.train.arm_length_mm = arm_length;
     designed.resolution = designed.resolution.with_samples(n);
     designed.target = Some(std::sync::Arc::new(target.clone()));
-    match Evaluator::new().evaluate(&designed) {
-        Ok(evaluation) => {
+    let evaluated = Evaluator::new()
+        .evaluate(&designed)
+        .and_then(|e| aim_poses(&mut designed, e));
+    match evaluated {
+        Ok((evaluation, aimed)) => {
+            outcome.pusher_offset_mm = aimed;
+            if let Some(h1) = aimed {
+                for c in (outcome.conditions.iter_mut()).filter(|c| c.name == "pusher_within_arm") {
+                    (c.bound, c.holds) = (h1, h1 < arm_length);
+                }
+            }
             let node_s: Vec<f64> = node_t.iter().map(|t| path.length_mm * t / TAU).collect();
             (outcome.conditions).extend(design_conditions(&designed, &evaluation, &node_s));
             outcome.evaluation = Some(evaluation);
@@ -774,6 +787,53 @@ fn invert_on(
     }
     outcome.scene = Some(designed);
     Ok(outcome)
+}
+
+/// The pusher offset H1 (mm) that meets the counting poses' attitudes, when the target
+/// names any: the path fixes the arm's direction, not the pusher's, which H1 turns by
+/// `asin(H1/S)` the same at every carrier angle (the tip does not move). A secant on the
+/// poses' mean attitude error, kept in `[0, 0.99 S]`; `None` (and the design as it was)
+/// when no pose names an attitude or the error cannot be brought under 1e-6°.
+fn aim_poses(designed: &mut Scene, evaluation: Evaluation) -> Result<(Evaluation, Option<f64>)> {
+    let error = |e: &Evaluation| -> Option<f64> {
+        let fit = e.fit.as_ref()?;
+        let errors: Vec<f64> = (fit.poses.iter())
+            .filter(|p| p.counts)
+            .filter_map(|p| p.attitude_error_deg)
+            .collect();
+        (!errors.is_empty()).then(|| errors.iter().sum::<f64>() / errors.len() as f64)
+    };
+    let Some(first) = error(&evaluation) else {
+        return Ok((evaluation, None));
+    };
+    let arm = designed.train.arm_length_mm;
+    let at = |h1: f64| -> Result<(Evaluation, f64)> {
+        let mut trial = designed.clone();
+        trial.train.pusher_offset_mm = h1;
+        let e = Evaluator::new().evaluate(&trial)?;
+        let err = error(&e).unwrap_or(f64::NAN);
+        Ok((e, err))
+    };
+    let (mut h0, mut f0) = (designed.train.pusher_offset_mm, first);
+    let mut h1 = (h0 + 1.0).min(0.99 * arm);
+    if h1 == h0 {
+        h1 = h0 - 1.0;
+    }
+    let (mut e1, mut f1) = at(h1)?;
+    for _ in 0..30 {
+        if f1.abs() < 1e-6 {
+            designed.train.pusher_offset_mm = h1;
+            return Ok((e1, Some(h1)));
+        }
+        if !(f1.is_finite() && f1 != f0) {
+            break;
+        }
+        let next = (h1 - f1 * (h1 - h0) / (f1 - f0)).clamp(0.0, 0.99 * arm);
+        (h0, f0) = (h1, f1);
+        h1 = next;
+        (e1, f1) = at(h1)?;
+    }
+    Ok((evaluation, None))
 }
 
 /// The `t` at which the carrier angle reaches `goal`, bracketed by `t` (angles `theta` at
