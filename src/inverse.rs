@@ -122,8 +122,8 @@ impl InverseSummary<'_> {
         );
         if let Some(h1) = self.pusher_offset_mm {
             out += &format!(
-                "The pusher offset H1 = {h1:.4} mm meets the poses' attitudes (the path fixes \
-                 the arm's direction, H1 the pusher's).\n"
+                "The pusher offset H1 = {h1:.4} mm is set for the poses' attitudes, their \
+                 mean error zero (the path fixes the arm's direction, H1 the pusher's).\n"
             );
         }
         if self.shaping_mm > 0.0 {
