@@ -180,7 +180,7 @@ pub(crate) fn target(args: TargetArgs) -> Result<(), Box<dyn std::error::Error>>
 
 /// Invert a target for the train with two pairs; exit 3 when a condition fails or an
 /// objective is missed (the outputs written first), 2 on bad input (nothing written).
-pub(crate) fn inverse(args: InverseArgs) -> Result<(), Box<dyn std::error::Error>> {
+pub(crate) fn inverse(args: InverseArgs) -> Result<Finished, Box<dyn std::error::Error>> {
     let input = &args.scene.input;
     let scene = noncirc::scene_file::load_scene_with(
         Some(input.scene.as_deref().unwrap_or("paper")),
@@ -220,13 +220,11 @@ pub(crate) fn inverse(args: InverseArgs) -> Result<(), Box<dyn std::error::Error
         }
     }
     let summary = noncirc::inverse::summary(&outcome, split);
-    noncirc::report::check_finite(&summary)?;
-    match args.scene.format {
-        Format::Json => out(&json(&summary)?)?,
-        Format::Table => out(&summary.table())?,
-    }
-    if !summary.met {
-        return Err(VerdictFailed(summary.failures()).into());
-    }
-    Ok(())
+    conclude(
+        &summary,
+        summary.table(),
+        args.scene.format,
+        None,
+        (!summary.met).then(|| summary.failures()),
+    )
 }

@@ -54,7 +54,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
         Command::Optimise(args) => return optimise::optimise(args),
         Command::Fit(args) => return fit::fit(args),
         Command::Target(args) => fit::target(args)?,
-        Command::Inverse(args) => fit::inverse(args)?,
+        Command::Inverse(args) => return fit::inverse(args),
         Command::Repair(args) => return fit::repair(args),
         Command::Gear(args) => commands::gear(args)?,
         Command::Teeth(args) => commands::teeth(args)?,
