@@ -240,6 +240,19 @@ pub struct ModuleReport {
     pub min_concave_radius_mm: Option<f64>,
 }
 
+/// The module bound from curvature (mm): a convex arc of least radius `min_convex` needs
+/// `2ρ/z_min`, a concave one of least |radius| `min_concave` (infinite: none) `2ρ/z_cutter`
+/// with a shaper and cannot be cut without one (0).
+pub(crate) fn curvature_limit(min_convex: f64, min_concave: f64, rule: &ModuleRule) -> f64 {
+    let convex_limit = 2.0 * min_convex / rule.z_min;
+    let concave_limit = match rule.cutter_teeth {
+        _ if min_concave.is_infinite() => f64::INFINITY,
+        Some(z) => 2.0 * min_concave / z,
+        None => 0.0,
+    };
+    convex_limit.min(concave_limit)
+}
+
 /// Largest module for a ratio-1 train whose gears show the given curvature radii and share
 /// the pitch perimeter `perimeter` (mm).
 pub(crate) fn module_max(
@@ -248,13 +261,7 @@ pub(crate) fn module_max(
     min_concave: f64,
     rule: &ModuleRule,
 ) -> ModuleReport {
-    let convex_limit = 2.0 * min_convex / rule.z_min;
-    let concave_limit = match rule.cutter_teeth {
-        _ if min_concave.is_infinite() => f64::INFINITY,
-        Some(z) => 2.0 * min_concave / z,
-        None => 0.0,
-    };
-    let limit = convex_limit.min(concave_limit);
+    let limit = curvature_limit(min_convex, min_concave, rule);
     let by_count = matches!(rule.rule, ModuleReading::Perimeter | ModuleReading::Teeth);
     let (teeth, module) = if let (true, Some(z)) = (by_count, rule.teeth) {
         (z, perimeter / (std::f64::consts::PI * f64::from(z)))

@@ -3,7 +3,7 @@
 //! third derivative, taken out before the curves are built.
 
 use crate::angle::unit;
-use crate::gear::ModuleRule;
+use crate::gear::{curvature_limit, ModuleRule};
 use crate::quadrature::SpectralIntegrator;
 use crate::vec2::Vec2;
 use noncirc_search::{refine, LocalSettings, ResidualBatch};
@@ -213,15 +213,15 @@ impl RatioShaping {
 }
 
 /// Whether curves of least and largest curvature `least`, `most` (1/mm) are cut at the
-/// module `module_mm` under `rule`: a convex arc's radius at least `m·z_min/2`, a concave
-/// one's at least `m·z_cutter/2` with a shaper, none without.
+/// module `module_mm` under `rule` (the module's curvature limit, as the module objective
+/// reads it).
 fn cuts(least: f64, most: f64, rule: &ModuleRule, module_mm: f64) -> bool {
-    let convex = most <= 2.0 / (module_mm * rule.z_min);
-    let concave = least >= 0.0
-        || rule
-            .cutter_teeth
-            .is_some_and(|z| -least <= 2.0 / (module_mm * z));
-    convex && concave
+    let concave = if least < 0.0 {
+        -1.0 / least
+    } else {
+        f64::INFINITY
+    };
+    curvature_limit(1.0 / most, concave, rule) >= module_mm
 }
 
 /// `g_A = i^λ / mean(i^λ)` at the carrier nodes: the mean of 1 closes the first pair.
