@@ -230,13 +230,15 @@ impl FourierPath {
         // The least k½ within tolerance, by bisection on its logarithm (the deviation
         // falls as k½ grows); at m/2 the series keeps the samples to within rounding.
         let (mut lo, mut hi) = (1.0f64, (m / 2) as f64);
-        if deviation(hi) > tolerance_mm {
+        let mut reached = deviation(hi);
+        if reached > tolerance_mm {
             lo = hi;
         }
         for _ in 0..40 {
             let mid = (lo * hi).sqrt();
-            if deviation(mid) <= tolerance_mm {
-                hi = mid;
+            let at_mid = deviation(mid);
+            if at_mid <= tolerance_mm {
+                (hi, reached) = (mid, at_mid);
             } else {
                 lo = mid;
             }
@@ -263,7 +265,7 @@ impl FourierPath {
                 half_weight: half,
                 length_mm,
             },
-            deviation(half),
+            reached,
         )
     }
 
@@ -758,9 +760,10 @@ fn invert_on(
     designed.train.arm_length_mm = arm_length;
     designed.resolution = designed.resolution.with_samples(n);
     designed.target = Some(std::sync::Arc::new(target.clone()));
-    let evaluated = Evaluator::new()
+    let mut evaluator = Evaluator::new();
+    let evaluated = evaluator
         .evaluate(&designed)
-        .and_then(|e| aim_poses(&mut designed, e));
+        .and_then(|e| aim_poses(&mut evaluator, &mut designed, e));
     match evaluated {
         Ok((evaluation, aimed)) => {
             outcome.pusher_offset_mm = aimed;
@@ -794,7 +797,11 @@ fn invert_on(
 /// `asin(H1/S)` the same at every carrier angle (the tip does not move). A secant on the
 /// poses' mean attitude error, kept in `[0, 0.99 S]`; `None` (and the design as it was)
 /// when no pose names an attitude or the error cannot be brought under 1e-6°.
-fn aim_poses(designed: &mut Scene, evaluation: Evaluation) -> Result<(Evaluation, Option<f64>)> {
+fn aim_poses(
+    evaluator: &mut Evaluator,
+    designed: &mut Scene,
+    evaluation: Evaluation,
+) -> Result<(Evaluation, Option<f64>)> {
     let error = |e: &Evaluation| -> Option<f64> {
         let fit = e.fit.as_ref()?;
         let errors: Vec<f64> = (fit.poses.iter())
@@ -807,10 +814,10 @@ fn aim_poses(designed: &mut Scene, evaluation: Evaluation) -> Result<(Evaluation
         return Ok((evaluation, None));
     };
     let arm = designed.train.arm_length_mm;
-    let at = |h1: f64| -> Result<(Evaluation, f64)> {
+    let mut at = |h1: f64| -> Result<(Evaluation, f64)> {
         let mut trial = designed.clone();
         trial.train.pusher_offset_mm = h1;
-        let e = Evaluator::new().evaluate(&trial)?;
+        let e = evaluator.evaluate(&trial)?;
         let err = error(&e).unwrap_or(f64::NAN);
         Ok((e, err))
     };
