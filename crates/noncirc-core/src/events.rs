@@ -180,22 +180,24 @@ fn refine_extreme(kin: &Kinematics, dir: Vec2, j: usize, max: bool) -> (ArmState
 /// maximum (another branch), if the trajectory has one.
 fn extreme_and_runner_up(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
     let n = tips.len();
+    if n == 0 {
+        return (0, None);
+    }
     let v = |j: usize| tips[j].dot(dir);
-    let mut best = 0;
+    let (mut best, mut best_value) = (0, v(0));
     for j in 1..n {
-        if v(j) > v(best) {
-            best = j;
+        let value = v(j);
+        if value > best_value {
+            (best, best_value) = (j, value);
         }
     }
-    // Neighbours by comparison, not `%`: an integer division per node cost more than the
-    // rest of the walk (this runs three times per evaluation).
+    // One value per node, rolled through (previous, this, next); neighbours by comparison,
+    // not `%`: an integer division per node cost more than the rest of the walk (this runs
+    // three times per evaluation).
     let mut runner_up: Option<f64> = None;
+    let (mut m, mut c) = (v(n - 1), v(0));
     for j in 0..n {
-        let (m, c, p) = (
-            v(if j == 0 { n - 1 } else { j - 1 }),
-            v(j),
-            v(if j + 1 == n { 0 } else { j + 1 }),
-        );
+        let p = v(if j + 1 == n { 0 } else { j + 1 });
         // A local maximum (strict on the left, so a flat top counts once) that is not the
         // best node's own peak (within one node of it, around the turn).
         let d = j.abs_diff(best);
@@ -204,6 +206,7 @@ fn extreme_and_runner_up(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
             let value = -parabola_vertex(-m, -c, -p);
             runner_up = Some(runner_up.map_or(value, |r: f64| r.max(value)));
         }
+        (m, c) = (c, p);
     }
     (best, runner_up)
 }
