@@ -398,3 +398,50 @@ fn the_train_pair_has_the_conjugate_on_every_grid() {
         }
     }
 }
+
+/// The tip speeds at the nodes (what the trajectory's sections integrate) are the full
+/// state's `|dD/dθ|` there, to rounding: for both trains, both senses, and a reassembled
+/// train (another β0, Φ0 and a bore error).
+#[test]
+fn node_tip_speeds_are_the_states_tip_speeds_at_the_nodes() {
+    let sun = CurveSpec::paper().build().unwrap();
+    let seconds: Vec<Option<PitchCurve>> = std::iter::once(None)
+        .chain(
+            second_curves()
+                .into_iter()
+                .map(|(_, s)| Some(s.build().unwrap())),
+        )
+        .collect();
+    for second in &seconds {
+        for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
+            let train = TrainSpec {
+                rotation,
+                ..TrainSpec::default()
+            };
+            let kin =
+                Kinematics::solve(&sun, second.as_ref(), &train, &Resolution::DEFAULT).unwrap();
+            let moved = TrainSpec {
+                beta0_deg: train.beta0_deg + 7.0,
+                phi0_deg: train.phi0_deg - 4.0,
+                ..train
+            };
+            let sun_turns_grid = train.sun_frame == SunFrame::Ground;
+            let variants = [
+                Some(kin.clone()),
+                (!sun_turns_grid).then(|| kin.reassembled(&moved, 0.05).unwrap()),
+            ];
+            for kin in variants.into_iter().flatten() {
+                let speeds = kin.node_tip_speeds();
+                assert_eq!(speeds.len(), kin.len());
+                for (j, &v) in speeds.iter().enumerate() {
+                    let state = kin.state_at(kin.theta(j)).tip_d1.hypot();
+                    let label = format!("two pairs {} {rotation:?} node {j}", second.is_some());
+                    assert!(
+                        (v - state).abs() <= 1e-12 * state,
+                        "{label}: {v} vs {state}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -104,9 +104,7 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
     let end = r0 + TAU;
     let plant = [p0.max(r1).min(end), p1.max(r1).min(end)];
     let spans = [[r0, r1], [r1, plant[0]], plant, [plant[1], end]];
-    let speeds: Vec<f64> = (0..n)
-        .map(|j| kin.state_at(kin.theta(j)).tip_d1.hypot())
-        .collect();
+    let speeds = kin.node_tip_speeds();
     let sections = std::array::from_fn(|i| {
         let [t0, t1] = spans[i];
         measure_section(kin, &speeds, Section::ALL[i], t0, t1)

@@ -790,6 +790,30 @@ impl Kinematics {
         }
     }
 
+    /// Arm I's tip speed `|dD/dθ|` (mm/rad) at every node: [`Kinematics::state_at`]'s
+    /// `tip_d1` at the nodes (to rounding), from the node's lag, arm direction and planet
+    /// centre and the pair's ratio at the lag: one curve evaluation per node instead of a
+    /// whole state.
+    pub fn node_tip_speeds(&self) -> Vec<f64> {
+        let (sigma, s) = (self.sigma, self.spec.arm_length_mm);
+        let first = &self.gears.first;
+        let ratio = first.pair.ratio_nodes();
+        (0..self.len())
+            .map(|j| {
+                let g_t = ratio[j];
+                let lag1 = match &self.gears.second {
+                    None => g_t / first.ratio_at(self.planet_lag[j]).0,
+                    Some(second) => second.ratio_at(first.pair.phi2_nodes()[j]).0 * g_t,
+                };
+                let th1 = sigma * (1.0 - lag1);
+                let tip_d1 = self.o3[j].turn_90() * sigma + self.arm_dir[j].turn_90() * (s * th1);
+                // The root of the squares, not libm's `hypot` (its care against overflow costs
+                // a sixth of a sensitivity run; a tip speed is far from overflow).
+                tip_d1.hypot2().sqrt()
+            })
+            .collect()
+    }
+
     /// Arm I's intermediate at node `j`: its centre `O2` (mm) and orientation `theta2`
     /// (rad), as [`Kinematics::state_at`] gives them at the node, from the node's values.
     pub fn intermediate_at(&self, j: usize) -> (Vec2, f64) {
