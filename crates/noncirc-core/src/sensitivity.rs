@@ -68,7 +68,6 @@ fn indices_on(y: &[f64], k: usize, rows: &[usize]) -> (Vec<f64>, Vec<f64>, f64) 
     let m = rows.len() as f64;
     let a = |j: usize| y[j * step];
     let b = |j: usize| y[j * step + k + 1];
-    let ab = |j: usize, i: usize| y[j * step + 1 + i];
     // The variance of A and B together, as SALib takes it (population variance).
     let mean = rows.iter().map(|&j| a(j) + b(j)).sum::<f64>() / (2.0 * m);
     let var = rows
@@ -79,12 +78,22 @@ fn indices_on(y: &[f64], k: usize, rows: &[usize]) -> (Vec<f64>, Vec<f64>, f64) 
     let mut first = vec![0.0; k];
     let mut total = vec![0.0; k];
     if var > 0.0 {
+        // Jansen: V_i = V − ½E[(f(B) − f(A_B^i))²], V_Ti = ½E[(f(A) − f(A_B^i))²]. One pass
+        // over the rows, each row's block read whole (its k + 2 outputs lie together); every
+        // parameter's sums still add the rows in their order.
+        let (mut d_first, mut d_total) = (vec![0.0; k], vec![0.0; k]);
+        for &j in rows {
+            let block = &y[j * step..(j + 1) * step];
+            let (a, b) = (block[0], block[k + 1]);
+            let abs = &block[1..=k];
+            for ((df, dt), &ab) in d_first.iter_mut().zip(&mut d_total).zip(abs) {
+                *df += (b - ab).powi(2);
+                *dt += (a - ab).powi(2);
+            }
+        }
         for i in 0..k {
-            // Jansen: V_i = V − ½E[(f(B) − f(A_B^i))²], V_Ti = ½E[(f(A) − f(A_B^i))²].
-            let d_first = rows.iter().map(|&j| (b(j) - ab(j, i)).powi(2)).sum::<f64>();
-            let d_total = rows.iter().map(|&j| (a(j) - ab(j, i)).powi(2)).sum::<f64>();
-            first[i] = 1.0 - d_first / (2.0 * m * var);
-            total[i] = d_total / (2.0 * m * var);
+            first[i] = 1.0 - d_first[i] / (2.0 * m * var);
+            total[i] = d_total[i] / (2.0 * m * var);
         }
     }
     (first, total, var)
