@@ -1,5 +1,9 @@
 //! Closure solve across resolutions: from samples alone, and the whole gear pair.
 
+/// The binaries' allocator (the CLI and the Python extension set it too).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use noncirc::core::solve_closure;
 use noncirc::core::Rng;

@@ -3,6 +3,10 @@
 //! the cost curve over samples per turn, and Python's default `evaluate_batch` call
 //! against the same batch with no measures and with the gearbox's overlap.
 
+/// The binaries' allocator (the CLI and the Python extension set it too).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use noncirc::batch::BatchRows;
 use noncirc::core::Measure;

@@ -5,6 +5,10 @@
 //! target) of a two-pair design's path (4096 points) and of the drawn loop
 //! (docs/inverse.md).
 
+/// The binaries' allocator (the CLI and the Python extension set it too).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use noncirc::core::{invert, target_of, CurveSpec, Evaluator, InverseSpec, Resolution};
 use noncirc::fit::{read_target, with_target};

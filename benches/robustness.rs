@@ -2,6 +2,10 @@
 //! resolution, 8 sets of machined parts solved and 64 assemblies), against 64 full
 //! evaluations, the parts of a sample, and a robust DE search.
 
+/// The binaries' allocator (the CLI and the Python extension set it too).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use noncirc::core::{
     radius_count, robust_score, Deviated, Evaluator, Resolution, ToleranceSamples,

@@ -7,6 +7,10 @@
 //! `cargo test --benches`) it runs 3, to show it works. `SCALING_DUMP=FILE` also writes
 //! each round's two times (s), one round per line.
 
+/// The binaries' allocator (the CLI and the Python extension set it too).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use noncirc::core::SceneProblem;
 use noncirc::core::{BatchEvaluator, Rng};
 use noncirc::scene_file::load_scene;

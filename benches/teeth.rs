@@ -2,6 +2,10 @@
 //! at the default settings, and its cost against the number of flank samples and mesh
 //! steps; the arc tables apart; pairs cut on one thread and on two (throughput).
 
+/// The binaries' allocator (the CLI and the Python extension set it too).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use noncirc::core::{CurveSpec, PitchCurve, ToothSpec, ToothedPair};
 use rayon::prelude::*;

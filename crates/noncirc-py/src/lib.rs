@@ -19,6 +19,10 @@ mod studies;
 
 use pyo3::prelude::*;
 
+/// mimalloc serves an evaluation's short-lived vectors faster than glibc (docs/performance.md).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 #[pymodule]
 fn _noncirc(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::Scene>()?;
