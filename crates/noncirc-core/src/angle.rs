@@ -44,6 +44,20 @@ pub(crate) fn degrees_in_turn(x: f64) -> f64 {
     }
 }
 
+/// `x.rem_euclid(2π)` (rad), bit for bit, without the library call (`fmod`) when `x` lies
+/// in `(−2π, 0)`: there the remainder is `x` itself and one addition of 2π finishes it, as
+/// `rem_euclid` does (at −2π it gives −0).
+#[inline]
+pub(crate) fn wrap_turn(x: f64) -> f64 {
+    if (0.0..TAU).contains(&x) {
+        x
+    } else if x > -TAU && x < 0.0 {
+        x + TAU
+    } else {
+        x.rem_euclid(TAU)
+    }
+}
+
 /// Beyond this |x| (rad) the table's reduction would lose digits: libm takes over.
 const REDUCTION_LIMIT: f64 = 1e9;
 
@@ -55,12 +69,14 @@ pub fn unit(x: f64) -> Vec2 {
         let (s, c) = x.sin_cos();
         return Vec2::new(c, s);
     }
-    // Nearest table step, rounded half away from zero by a truncating cast: `f64::round`
-    // is a library call on baseline x86-64.
-    let q = x * (1.0 / STEP_HI);
-    let k = (q + 0.5f64.copysign(q)) as i64;
+    // Nearest table step: adding and taking away 1.5·2⁵² rounds to an integer (half to
+    // even) in floating point, whose low bits are then the step modulo 2⁵¹ in two's
+    // complement. No conversion to an integer and back (a long latency) and no
+    // `f64::round` (a library call on baseline x86-64).
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let shifted = x * (1.0 / STEP_HI) + ROUND;
+    let (k, index) = (shifted - ROUND, shifted.to_bits() as usize & (STEPS - 1));
     // |r| <= π/256 (0.0123): cos to r⁶ and sin to r⁷ leave less than 1e-19.
-    let (k, index) = (k as f64, (k & (STEPS as i64 - 1)) as usize);
     let r = (x - k * STEP_HI) - k * STEP_LO;
     let z = r * r;
     let cos_r = 1.0 - z * (0.5 - z * (1.0 / 24.0 - z * (1.0 / 720.0)));
@@ -74,6 +90,31 @@ pub fn unit(x: f64) -> Vec2 {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn wrap_turn_is_rem_euclid_bit_for_bit() {
+        let edges = [
+            -TAU,
+            -TAU + 1e-15,
+            -1e-300,
+            -0.0,
+            0.0,
+            TAU - 4e-16,
+            TAU,
+            -2.0 * TAU,
+            7.5 * TAU,
+            -1e12,
+            f64::NAN,
+        ];
+        let sweep = (-40_000..40_000).map(|k| k as f64 * 3.3e-4 + 1e-7);
+        for x in edges.into_iter().chain(sweep) {
+            let (got, want) = (wrap_turn(x), x.rem_euclid(TAU));
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "{x}: {got} vs {want}"
+            );
+        }
+    }
 
     fn error(x: f64) -> f64 {
         let Vec2 { x: c, y: s } = unit(x);

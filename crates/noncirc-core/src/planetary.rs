@@ -724,12 +724,7 @@ impl Kinematics {
     /// The node at or below carrier angle `u` (rad, any real), wrapped into one turn.
     fn node_below(&self, u: f64) -> usize {
         let n = self.len();
-        // `rem_euclid` is a library call (fmod): only off the usual range.
-        let u = if (0.0..TAU).contains(&u) {
-            u
-        } else {
-            u.rem_euclid(TAU)
-        };
+        let u = crate::angle::wrap_turn(u);
         ((u * (n as f64 / TAU)) as usize).min(n - 1)
     }
 

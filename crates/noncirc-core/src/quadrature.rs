@@ -190,9 +190,12 @@ impl MonotoneDrift<'_> {
     pub(crate) fn eval(&self, u: f64) -> (f64, f64) {
         let n = self.value.len();
         let h = self.h();
-        // `floor` is a library call on baseline x86-64: only off the first period.
+        // `floor` is a library call on baseline x86-64: only beyond one period either way
+        // (within one below, `floor` gives −1 exactly).
         let turns = if (0.0..std::f64::consts::TAU).contains(&u) {
             0.0
+        } else if (-std::f64::consts::TAU..0.0).contains(&u) {
+            -1.0
         } else {
             (u / std::f64::consts::TAU).floor()
         };

@@ -73,14 +73,7 @@ impl PeriodicSpline {
     /// Segment index and local offset for `psi` (any real angle).
     #[inline]
     fn locate(&self, psi: f64) -> (usize, f64) {
-        let offset = psi - self.knots[0];
-        // `rem_euclid` is a library call (fmod): only off the first turn.
-        let x = self.knots[0]
-            + if (0.0..TAU).contains(&offset) {
-                offset
-            } else {
-                offset.rem_euclid(TAU)
-            };
+        let x = self.knots[0] + crate::angle::wrap_turn(psi - self.knots[0]);
         let i = self.knots.partition_point(|&k| k <= x).saturating_sub(1);
         (i, x - self.knots[i])
     }
