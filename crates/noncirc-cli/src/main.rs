@@ -8,13 +8,13 @@ mod output;
 mod studio;
 
 use args::{Cli, Command};
+use clap::Parser;
+use output::is_broken_pipe;
+use std::process::ExitCode;
 
 /// mimalloc serves an evaluation's short-lived vectors faster than glibc (docs/performance.md).
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-use clap::Parser;
-use output::is_broken_pipe;
-use std::process::ExitCode;
 
 /// How a command ended, beyond success and error.
 pub(crate) enum Finished {

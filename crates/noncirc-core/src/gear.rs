@@ -296,22 +296,13 @@ pub(crate) fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     let mut concave = f64::INFINITY;
     for driven in [false, true] {
         let (mut jmax, mut kmax, mut jmin, mut kmin) = (0, f64::NEG_INFINITY, 0, f64::INFINITY);
-        // In blocks: a block's curvatures (a root and a division each) have no branch
-        // between them, so they overlap; the scan for the extremes follows.
-        const BLOCK: usize = 8;
-        for start in (0..n).step_by(BLOCK) {
-            let len = BLOCK.min(n - start);
-            let mut block = [0.0; BLOCK];
-            for (i, k) in block[..len].iter_mut().enumerate() {
-                *k = kappa(driven, start + i);
+        for j in 0..n {
+            let k = kappa(driven, j);
+            if k > kmax {
+                (jmax, kmax) = (j, k);
             }
-            for (i, &k) in block[..len].iter().enumerate() {
-                if k > kmax {
-                    (jmax, kmax) = (start + i, k);
-                }
-                if k < kmin {
-                    (jmin, kmin) = (start + i, k);
-                }
+            if k < kmin {
+                (jmin, kmin) = (j, k);
             }
         }
         let refine = |j: usize, sign: f64| {
