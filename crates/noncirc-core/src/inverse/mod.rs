@@ -593,21 +593,7 @@ fn invert_on(
             .map(|(run, worst)| place(run, worst))
             .collect()
     };
-    let mut conditions = Vec::new();
-    let pusher = train.pusher_offset_mm;
-    conditions.push(Condition {
-        name: "pusher_within_arm".into(),
-        holds: pusher < arm_length,
-        blocks: true,
-        value: arm_length,
-        bound: pusher,
-        unit: "mm",
-        meaning: format!(
-            "the arm length the path fixes, (farthest ± nearest radius)/2 = {arm_length:.3} \
-             mm, exceeds the pusher offset H1 = {pusher:.3} mm"
-        ),
-        places: vec![],
-    });
+    let mut conditions = vec![pusher_within_arm(train.pusher_offset_mm, arm_length)];
     // 2. The carrier advances along the whole path, 3. once a loop.
     let rate: Vec<f64> = chains.iter().map(|c| sigma * c.alpha_d1).collect();
     let fails: Vec<bool> = rate.iter().map(|&r| r <= 0.0).collect();
@@ -763,13 +749,13 @@ fn invert_on(
     let mut evaluator = Evaluator::new();
     let evaluated = evaluator
         .evaluate(&designed)
-        .and_then(|e| aim_poses(&mut evaluator, &mut designed, e));
+        .map(|e| aim_poses(&mut evaluator, &mut designed, e));
     match evaluated {
         Ok((evaluation, aimed)) => {
             outcome.pusher_offset_mm = aimed;
             if let Some(h1) = aimed {
                 for c in (outcome.conditions.iter_mut()).filter(|c| c.name == "pusher_within_arm") {
-                    (c.bound, c.holds) = (h1, h1 < arm_length);
+                    *c = pusher_within_arm(h1, arm_length);
                 }
             }
             let node_s: Vec<f64> = node_t.iter().map(|t| path.length_mm * t / TAU).collect();
@@ -795,13 +781,14 @@ fn invert_on(
 /// The pusher offset H1 (mm) that meets the counting poses' attitudes, when the target
 /// names any: the path fixes the arm's direction, not the pusher's, which H1 turns by
 /// `asin(H1/S)` the same at every carrier angle (the tip does not move). A secant on the
-/// poses' mean attitude error, kept in `[0, 0.99 S]`; `None` (and the design as it was)
-/// when no pose names an attitude or the error cannot be brought under 1e-6°.
+/// poses' mean attitude error, kept in `[0, 0.99 S]`; `None` (and the design and its
+/// evaluation as they were) when no pose names an attitude, a trial is refused, or the
+/// error cannot be brought under 1e-6°.
 fn aim_poses(
     evaluator: &mut Evaluator,
     designed: &mut Scene,
     evaluation: Evaluation,
-) -> Result<(Evaluation, Option<f64>)> {
+) -> (Evaluation, Option<f64>) {
     let error = |e: &Evaluation| -> Option<f64> {
         let fit = e.fit.as_ref()?;
         let errors: Vec<f64> = (fit.poses.iter())
@@ -811,26 +798,30 @@ fn aim_poses(
         (!errors.is_empty()).then(|| errors.iter().sum::<f64>() / errors.len() as f64)
     };
     let Some(first) = error(&evaluation) else {
-        return Ok((evaluation, None));
+        return (evaluation, None);
     };
     let arm = designed.train.arm_length_mm;
-    let mut at = |h1: f64| -> Result<(Evaluation, f64)> {
+    // A trial the model refuses reads as NaN: the secant stops there.
+    let mut at = |h1: f64| -> (Option<Evaluation>, f64) {
         let mut trial = designed.clone();
         trial.train.pusher_offset_mm = h1;
-        let e = evaluator.evaluate(&trial)?;
-        let err = error(&e).unwrap_or(f64::NAN);
-        Ok((e, err))
+        let e = evaluator.evaluate(&trial).ok();
+        let err = e.as_ref().and_then(error).unwrap_or(f64::NAN);
+        (e, err)
     };
     let (mut h0, mut f0) = (designed.train.pusher_offset_mm, first);
     let mut h1 = (h0 + 1.0).min(0.99 * arm);
     if h1 == h0 {
         h1 = h0 - 1.0;
     }
-    let (mut e1, mut f1) = at(h1)?;
+    let (mut e1, mut f1) = at(h1);
     for _ in 0..30 {
+        // A finite error comes with its evaluation.
         if f1.abs() < 1e-6 {
-            designed.train.pusher_offset_mm = h1;
-            return Ok((e1, Some(h1)));
+            if let Some(e) = e1 {
+                designed.train.pusher_offset_mm = h1;
+                return (e, Some(h1));
+            }
         }
         if !(f1.is_finite() && f1 != f0) {
             break;
@@ -838,9 +829,26 @@ fn aim_poses(
         let next = (h1 - f1 * (h1 - h0) / (f1 - f0)).clamp(0.0, 0.99 * arm);
         (h0, f0) = (h1, f1);
         h1 = next;
-        (e1, f1) = at(h1)?;
+        (e1, f1) = at(h1);
     }
-    Ok((evaluation, None))
+    (evaluation, None)
+}
+
+/// Condition 1: the pusher offset H1 (mm) lies within the arm length the path fixes (mm).
+fn pusher_within_arm(pusher: f64, arm_length: f64) -> Condition {
+    Condition {
+        name: "pusher_within_arm".into(),
+        holds: pusher < arm_length,
+        blocks: true,
+        value: arm_length,
+        bound: pusher,
+        unit: "mm",
+        meaning: format!(
+            "the arm length the path fixes, (farthest ± nearest radius)/2 = {arm_length:.3} \
+             mm, exceeds the pusher offset H1 = {pusher:.3} mm"
+        ),
+        places: vec![],
+    }
 }
 
 /// The `t` at which the carrier angle reaches `goal`, bracketed by `t` (angles `theta` at
