@@ -764,11 +764,9 @@ impl Kinematics {
         let o3 = o2 + e2 * a2;
         let u = unit(theta3 + beta0);
         let tip = o3 + u * s;
-        // O3' = σ O3⊥, O3'' = −O3; u' = θ3' u⊥.
-        let o3_d1 = o3.turn_90() * sigma;
-        let o3_d2 = -o3;
-        let tip_d1 = o3_d1 + u.turn_90() * (s * th1);
-        let tip_d2 = o3_d2 + u.turn_90() * (s * th2) - u * (s * th1 * th1);
+        // O3'' = −O3; u' = θ3' u⊥.
+        let tip_d1 = self.tip_velocity(o3, u, th1);
+        let tip_d2 = -o3 + u.turn_90() * (s * th2) - u * (s * th1 * th1);
         // Intermediate: the material point of sun parameter ψ sits at its own angle
         // χ(ψ) = −∫_{ψ_start}^{ψ} g = −σΦ(θ) and meets the sun at the absolute direction φH + π.
         let theta2 = phi_h + std::f64::consts::PI + sigma * big_phi;
@@ -785,12 +783,19 @@ impl Kinematics {
         }
     }
 
+    /// `dD/dθ` (mm/rad) of a tip on the arm of direction `u` from the planet centre `o3`,
+    /// the arm turning at `th1 = dθ3/dθ`: `O3' = σ O3⊥` (the carrier turns `O3` about the
+    /// axis) plus the arm's turn `θ3'·S·u⊥`.
+    fn tip_velocity(&self, o3: Vec2, u: Vec2, th1: f64) -> Vec2 {
+        o3.turn_90() * self.sigma + u.turn_90() * (self.spec.arm_length_mm * th1)
+    }
+
     /// Arm I's tip speed `|dD/dθ|` (mm/rad) at every node: [`Kinematics::state_at`]'s
     /// `tip_d1` at the nodes (to rounding), from the node's lag, arm direction and planet
     /// centre and the pair's ratio at the lag: one curve evaluation per node instead of a
     /// whole state.
     pub fn node_tip_speeds(&self) -> Vec<f64> {
-        let (sigma, s) = (self.sigma, self.spec.arm_length_mm);
+        let sigma = self.sigma;
         let first = &self.gears.first;
         let ratio = first.pair.ratio_nodes();
         (0..self.len())
@@ -800,8 +805,7 @@ impl Kinematics {
                     None => g_t / first.ratio_at(self.planet_lag[j]).0,
                     Some(second) => second.ratio_at(first.pair.phi2_nodes()[j]).0 * g_t,
                 };
-                let th1 = sigma * (1.0 - lag1);
-                let tip_d1 = self.o3[j].turn_90() * sigma + self.arm_dir[j].turn_90() * (s * th1);
+                let tip_d1 = self.tip_velocity(self.o3[j], self.arm_dir[j], sigma * (1.0 - lag1));
                 // The root of the squares, not libm's `hypot` (its care against overflow costs
                 // a sixth of a sensitivity run; a tip speed is far from overflow).
                 tip_d1.hypot2().sqrt()
