@@ -405,6 +405,9 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
         });
         // No target: `--set target={…}` gives one.
         top.entry("target").or_insert(serde_json::Value::Null);
+        top.entry("dynamics").or_insert_with(|| {
+            serde_json::to_value(noncirc_core::DynamicsSpec::default()).expect("serialises")
+        });
     }
     tree
 }

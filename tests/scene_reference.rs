@@ -54,6 +54,7 @@ fn scenes() -> Vec<noncirc_core::Scene> {
             "search.confirm_with_teeth=true",
             "agronomy.tray_distance_mm=120",
             "moving_box.speed_ratio=3",
+            "dynamics.planting_force_n=8",
         ],
         &[
             "tolerances.radius_mm={sigma=0.01}",
@@ -202,7 +203,7 @@ fn every_interval_is_exactly_what_the_checks_admit() {
             let mechanism = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
             let moving = matches!(scene.kind, SceneKind::MovingBox | SceneKind::Transplanter);
             let reads = match field.key.split('.').next() {
-                Some("train" | "agronomy") => mechanism,
+                Some("train" | "agronomy" | "dynamics") => mechanism,
                 Some("moving_box") => moving,
                 _ => true,
             };

@@ -23,7 +23,7 @@ impl Scene {
     /// it moves.
     fn reads(&self, table: &str) -> bool {
         match table {
-            "train" | "agronomy" => {
+            "train" | "agronomy" | "dynamics" => {
                 matches!(self.kind, SceneKind::Mechanism | SceneKind::Transplanter)
             }
             "moving_box" => {

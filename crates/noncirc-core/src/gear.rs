@@ -567,6 +567,27 @@ impl GearPair {
             .collect()
     }
 
+    /// The driver's pitch curve as `(r, own angle, dχ)` at the nodes: radius (mm), own
+    /// angle and quadrature weight (rad) of a trapezoid rule over one turn
+    /// ([`Blank::from_polar`](crate::blank::Blank::from_polar)).
+    pub fn driver_polar(&self) -> impl Iterator<Item = (f64, f64, f64)> + '_ {
+        let h = TAU / self.samples.len() as f64;
+        (self.samples.iter().enumerate()).map(move |(j, p)| (p.rho, self.psi(j), h))
+    }
+
+    /// The driven pitch curve likewise: radius `a − ρ` at own angle `∓φ2` (as
+    /// [`GearPair::driven_points`]), weight `dφ2 = g·dψ`.
+    pub fn driven_polar(&self) -> impl Iterator<Item = (f64, f64, f64)> + '_ {
+        let (a, sense) = (self.centre_distance(), self.grid.sense.sign());
+        let h = TAU / self.samples.len() as f64;
+        (self
+            .samples
+            .iter()
+            .zip(&self.phi2_nodes)
+            .zip(&self.ratio_nodes))
+        .map(move |((p, phi2), g)| (a - p.rho, -sense * phi2, g * h))
+    }
+
     /// Computes the spectrum [`GearPair::phi2`] interpolates with the caller's planned
     /// transforms (of the pair's sample count), so that a caller evaluating many pairs does
     /// not plan one per pair.

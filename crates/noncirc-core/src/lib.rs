@@ -23,6 +23,7 @@ mod segment_tree;
 mod vec2;
 
 // Model: pitch curves, gear pairs, the train's motion, teeth, the moving box, the gearbox.
+mod blank;
 mod curve;
 mod gear;
 mod gearbox;
@@ -34,6 +35,7 @@ mod teeth;
 // (which name fields by the table's symbols).
 mod agronomy;
 mod check;
+mod dynamics_spec;
 mod goal;
 mod measure;
 mod messages;
@@ -47,6 +49,7 @@ mod tolerance;
 // Evaluate: a scene's evaluation, its events, objectives, sections and measures.
 mod accuracy;
 mod anatomy;
+mod dynamics;
 mod evaluation;
 mod events;
 mod fit;
@@ -63,10 +66,12 @@ mod serial;
 
 // The scene: what is designed and asked, and at which resolution.
 pub use agronomy::{Agronomy, Travel};
+pub use blank::Blank;
 pub use curve::{
     paper_control_points, CartesianCurve, CartesianKind, CurveSpec, Ellipse, Fourier,
     PeriodicSpline, PitchCurve, Polar,
 };
+pub use dynamics_spec::DynamicsSpec;
 pub use goal::{Goal, GoalQuantity, INVALID_CV};
 pub use measure::{
     FitMeasure, Measure, MeasureCost, PoseQuantity, Scalar, Section, SectionQuantity,
@@ -83,13 +88,14 @@ pub use target::{DesignPull, Pose, PoseAt, PreparedTarget, Target, TargetKind};
 // The model: gear pairs, the train's motion, events, sections, measures.
 pub use anatomy::{anatomy, Anatomy, SectionMeasures};
 pub use angle::unit;
+pub use dynamics::{dynamics, Dynamics, DynamicsSummary};
 pub use events::{attitude_deg, events, Event, Events, PickingCheck};
 pub use gear::{
     solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, Rotation, SampleGrid,
 };
 pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
 pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue};
-pub use planetary::{ArmState, Kinematics};
+pub use planetary::{ArmState, Kinematics, PitchContact};
 pub use teeth::{
     segment_distance, Cutter, Frame, GearTeethReport, MateRoots, Member, MeshReport, PairTrack,
     Side, TeethAccuracy, TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut,

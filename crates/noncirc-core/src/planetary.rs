@@ -6,7 +6,8 @@
 //! which drives a planet that is that curve's conjugate.
 
 use crate::angle::unit;
-use crate::curve::{PitchCurve, TAU};
+use crate::blank::Blank;
+use crate::curve::{PitchCurve, Polar, TAU};
 use crate::error::{finite, length, positive, Error, Result};
 use crate::gear::{GearPair, ModuleReport, ModuleRule, Rotation, SampleGrid};
 use crate::quadrature::{DriftInverse, MonotoneDrift, SpectralIntegrator};
@@ -209,6 +210,35 @@ pub struct ArmState {
     pub tip_d2: Vec2,
     /// Pusher-axis direction angle (rad), pointing from the arm towards the tip.
     pub pusher_angle: f64,
+    /// `dθ2/dθ` and `d²θ2/dθ²`: the intermediate's absolute turn per carrier turn.
+    pub theta2_d: [f64; 2],
+    /// `dθ3/dθ` and `d²θ3/dθ²`: the planet's (and its arm's) absolute turn.
+    pub theta3_d: [f64; 2],
+}
+
+/// Where a pitch curve touches its mate: the centre of the gear whose curve is read, the
+/// unit vector from that centre towards the mate's centre, and the curve's radius (mm) and
+/// its derivative in the gear's own angle (mm/rad) at the contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PitchContact {
+    pub centre: Vec2,
+    pub towards: Vec2,
+    pub rho: f64,
+    pub rho_d1: f64,
+}
+
+/// The planet's lag `lag(θ)` with its first two derivatives, and what they come from:
+/// the pair's driven angle `Φ_A(θ)` and its ratio `g(θ)`, `g'(θ)`; and the driving curves
+/// at the two meshes (the sun's at the intermediate; at the planet, the sun's twin's or
+/// layer B's).
+struct Lag {
+    big_phi: f64,
+    g: f64,
+    dg: f64,
+    value: f64,
+    d1: f64,
+    d2: f64,
+    curves: [Polar; 2],
 }
 
 /// One closed pair on its grid, with what interpolating its driven angle needs: `Φ` with
@@ -269,11 +299,17 @@ impl SolvedPair {
 
     /// `g̃(u) = g(start + sense·u)` and `g̃'(u)` at any turn `u`, from the curve itself.
     fn ratio_at(&self, u: f64) -> (f64, f64) {
+        let (g, dg, _) = self.ratio_and_curve_at(u);
+        (g, dg)
+    }
+
+    /// As [`SolvedPair::ratio_at`], with the driver curve's value there.
+    fn ratio_and_curve_at(&self, u: f64) -> (f64, f64, Polar) {
         let (a, grid) = (self.pair.centre_distance(), self.pair.grid());
         let sense = grid.sense.sign();
         let p = self.pair.curve().eval(grid.start + sense * u);
         let gap = a - p.rho;
-        (p.rho / gap, sense * a * p.d1 / (gap * gap))
+        (p.rho / gap, sense * a * p.d1 / (gap * gap), p)
     }
 }
 
@@ -639,6 +675,24 @@ impl Kinematics {
         }
     }
 
+    /// The intermediate's blank (layer A, and layer B with two pairs, on one shaft) and the
+    /// planet's, in their own frames (as [`Kinematics::planet_points`] and the gearbox place
+    /// them), each `face_width_mm` thick of `density_kg_m3`.
+    pub fn blanks(&self, face_width_mm: f64, density_kg_m3: f64) -> [Blank; 2] {
+        let blank = |s: &mut dyn Iterator<Item = (f64, f64, f64)>| {
+            Blank::from_polar(s, face_width_mm, density_kg_m3)
+        };
+        let first = self.pair();
+        let layer_a = blank(&mut first.driven_polar());
+        match self.second_pair() {
+            None => [layer_a, blank(&mut first.driver_polar())],
+            Some(second) => [
+                layer_a.with(blank(&mut second.driver_polar())),
+                blank(&mut second.driven_polar()),
+            ],
+        }
+    }
+
     /// Distance at which the carrier holds the intermediate from the sun (mm): the
     /// centre distance, plus the bore error of a [`Kinematics::reassembled`] train.
     pub fn carrier_distance(&self) -> f64 {
@@ -731,27 +785,49 @@ impl Kinematics {
     /// The full state of arm I at any carrier angle `theta` (rad): positions, the tip's
     /// first two derivatives, orientations and the pusher-axis angle.
     pub fn state_at(&self, theta: f64) -> ArmState {
-        let sigma = self.sigma;
-        let first = &self.gears.first;
-        let (big_phi, _) = first.phi().eval(theta);
-        let (g_t, dg_t) = first.ratio_at(theta);
-        // The planet's lag and its first two derivatives in θ.
-        let (lag, lag1, lag2) = match &self.gears.second {
-            None => {
-                // Start the cell search where node ⌊θ/h⌋'s own θ_s lies: O(1), not O(N).
-                let hint = self.node_below(self.planet_lag[self.node_below(theta)]);
-                let (ts, _) = first.phi_inverse().eval(big_phi - self.delay, hint);
-                let (g_s, dg_s) = first.ratio_at(ts);
-                let ts1 = g_t / g_s;
-                (ts, ts1, (dg_t * g_s - g_t * dg_s * ts1) / (g_s * g_s))
-            }
-            Some(second) => {
-                // lag = Φ_B(Φ_A(θ)): lag' = g_B·g_A, lag'' = g_B'·g_A² + g_B·g_A'.
-                let (lag, _) = second.phi().eval(big_phi);
-                let (g_b, dg_b) = second.ratio_at(big_phi);
-                (lag, g_b * g_t, dg_b * g_t * g_t + g_b * dg_t)
-            }
+        self.state_from(theta, &self.lag_at(theta))
+    }
+
+    /// The state of arm I at carrier angle `theta` (rad) with the two meshes' pitch-curve
+    /// contacts, read on the driving curves: the sun's against the intermediate, then the
+    /// planet's against the intermediate (the paper's train: the planet is the sun's
+    /// twin) or the intermediate's layer B against the planet (two pairs).
+    pub fn state_and_contacts(&self, theta: f64) -> (ArmState, [PitchContact; 2]) {
+        let lag = self.lag_at(theta);
+        let state = self.state_from(theta, &lag);
+        let towards = |from: Vec2, to: Vec2| (to - from) * (1.0 / (to - from).hypot2().sqrt());
+        let [sun, mate] = lag.curves;
+        let mesh_a = PitchContact {
+            centre: Vec2::ZERO,
+            towards: towards(Vec2::ZERO, state.o2),
+            rho: sun.rho,
+            rho_d1: sun.d1,
         };
+        let (centre, other) = match self.gears.second {
+            None => (state.o3, state.o2),
+            Some(_) => (state.o2, state.o3),
+        };
+        let mesh_b = PitchContact {
+            centre,
+            towards: towards(centre, other),
+            rho: mate.rho,
+            rho_d1: mate.d1,
+        };
+        (state, [mesh_a, mesh_b])
+    }
+
+    /// [`Kinematics::state_at`] from the lag at `theta`.
+    fn state_from(&self, theta: f64, lag: &Lag) -> ArmState {
+        let sigma = self.sigma;
+        let Lag {
+            big_phi,
+            g: g_t,
+            dg: dg_t,
+            value: lag,
+            d1: lag1,
+            d2: lag2,
+            ..
+        } = *lag;
         let (gamma0, beta0) = (self.gamma0, self.beta0);
         let s = self.spec.arm_length_mm;
         let [a1, a2] = self.carrier_a;
@@ -780,6 +856,40 @@ impl Kinematics {
             tip_d1,
             tip_d2,
             pusher_angle: self.pusher_angle(theta3),
+            theta2_d: [sigma * (1.0 + g_t), sigma * dg_t],
+            theta3_d: [th1, th2],
+        }
+    }
+
+    /// The planet's lag at carrier angle `theta` (rad) with its first two derivatives.
+    fn lag_at(&self, theta: f64) -> Lag {
+        let first = &self.gears.first;
+        let (big_phi, _) = first.phi().eval(theta);
+        let (g, dg, sun) = first.ratio_and_curve_at(theta);
+        let (value, d1, d2, mate) = match &self.gears.second {
+            None => {
+                // Start the cell search where node ⌊θ/h⌋'s own θ_s lies: O(1), not O(N).
+                let hint = self.node_below(self.planet_lag[self.node_below(theta)]);
+                let (ts, _) = first.phi_inverse().eval(big_phi - self.delay, hint);
+                let (g_s, dg_s, twin) = first.ratio_and_curve_at(ts);
+                let ts1 = g / g_s;
+                (ts, ts1, (dg * g_s - g * dg_s * ts1) / (g_s * g_s), twin)
+            }
+            Some(second) => {
+                // lag = Φ_B(Φ_A(θ)): lag' = g_B·g_A, lag'' = g_B'·g_A² + g_B·g_A'.
+                let (lag, _) = second.phi().eval(big_phi);
+                let (g_b, dg_b, layer_b) = second.ratio_and_curve_at(big_phi);
+                (lag, g_b * g, dg_b * g * g + g_b * dg, layer_b)
+            }
+        };
+        Lag {
+            big_phi,
+            g,
+            dg,
+            value,
+            d1,
+            d2,
+            curves: [sun, mate],
         }
     }
 

@@ -2,6 +2,7 @@
 
 use crate::agronomy::Agronomy;
 use crate::curve::{CurveSpec, PitchCurve};
+use crate::dynamics_spec::DynamicsSpec;
 use crate::error::{Error, Result};
 use crate::gear::ModuleRule;
 use crate::goal::Goal;
@@ -214,6 +215,10 @@ pub struct Scene {
     /// between a scene's copies.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub target: Option<Arc<Target>>,
+    /// The bodies and loads of the dynamics at working speed (`noncirc dynamics`). Left
+    /// out of a written scene while it is the default.
+    #[serde(default, skip_serializing_if = "DynamicsSpec::is_default")]
+    pub dynamics: DynamicsSpec,
 }
 
 impl Default for Scene {
@@ -232,6 +237,7 @@ impl Default for Scene {
             search: SearchSpec::default(),
             tolerances: Tolerances::default(),
             target: None,
+            dynamics: DynamicsSpec::default(),
         }
     }
 }

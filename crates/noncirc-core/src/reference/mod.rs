@@ -110,6 +110,7 @@ macro_rules! curve_list {
 
 mod agronomy;
 mod bounds;
+mod dynamics;
 mod gear;
 mod moving_box;
 mod range;
@@ -185,7 +186,7 @@ pub(crate) enum Checker {
 /// The field tables, in the order of a scene file, each with the scene table it
 /// describes (its first key's part: "" for the top level and `[resolution]`) and what
 /// checks its numbers.
-pub(crate) const TABLES: [(&str, Checker, &[Field]); 9] = [
+pub(crate) const TABLES: [(&str, Checker, &[Field]); 10] = [
     ("", Checker::Code, top::FIELDS),
     ("gear", Checker::Code, gear::FIELDS),
     ("train", Checker::Code, train::FIELDS),
@@ -195,6 +196,7 @@ pub(crate) const TABLES: [(&str, Checker, &[Field]); 9] = [
     ("search", Checker::Code, search::FIELDS),
     ("tolerances", Checker::Code, tolerances::FIELDS),
     ("target", Checker::Code, target::FIELDS),
+    ("dynamics", Checker::Table, dynamics::FIELDS),
 ];
 
 /// Every field of a scene, in the order of a scene file: one table per scene table.

@@ -1,0 +1,63 @@
+//! What the dynamics at working speed needs beyond the geometry: the gears' face width and
+//! material, the arm as a rigid body, the carrier, gravity and the loads at the tip
+//! (`[dynamics]` in a scene; docs/dynamics.md gives the sources of the defaults). The
+//! working speed is the train's (`train.carrier_speed_rpm` or `train.picks_per_minute`).
+
+use serde::{Deserialize, Serialize};
+
+/// The bodies' and loads' values (SI units except lengths in mm and angles in degrees).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DynamicsSpec {
+    /// Face width `b` of every gear (mm).
+    pub face_width_mm: f64,
+    /// Density `ρg` of the gear blanks (kg/m³): steel.
+    pub gear_density_kg_m3: f64,
+    /// Mass `ma` of one arm with its claw and pusher (kg).
+    pub arm_mass_kg: f64,
+    /// Distance `sa` from the planet centre to the arm's centre of mass, along `O3 → D` (mm).
+    pub arm_com_mm: f64,
+    /// Moment of inertia `Ja` of the arm about its centre of mass (kg·m²).
+    pub arm_inertia_kg_m2: f64,
+    /// Mass `mc` of the carrier (kg), its centre of mass on its axis.
+    pub carrier_mass_kg: f64,
+    /// Gravity `g` (m/s²), along −y.
+    pub gravity_m_s2: f64,
+    /// Seedling separation force `Fp` at the tip while it is in the tray (N), against the
+    /// tip's motion.
+    pub picking_force_n: f64,
+    /// Planting resistance `Fs` at the tip (N), against the tip's motion over
+    /// `planting_span_deg` of carrier angle centred on the planting instant.
+    pub planting_force_n: f64,
+    /// Carrier angle over which the planting resistance acts (°).
+    pub planting_span_deg: f64,
+    /// Carrier angles per turn at which the dynamics is computed (a multiple of the arm
+    /// count): the peaks of a sharp design need more than the kinematics' nodes
+    /// (docs/dynamics.md: the paper's peak torque is 20 % low at 120, within 0.1 % at 360).
+    pub samples_per_turn: usize,
+}
+
+impl Default for DynamicsSpec {
+    fn default() -> Self {
+        Self {
+            face_width_mm: 12.0,
+            gear_density_kg_m3: 7850.0,
+            arm_mass_kg: 0.45,
+            arm_com_mm: 60.0,
+            arm_inertia_kg_m2: 1.2e-3,
+            carrier_mass_kg: 2.5,
+            gravity_m_s2: 9.81,
+            picking_force_n: 5.0,
+            planting_force_n: 0.0,
+            planting_span_deg: 20.0,
+            samples_per_turn: 720,
+        }
+    }
+}
+
+impl DynamicsSpec {
+    /// Whether every value is the default (a written scene then leaves the table out).
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+}

@@ -1,0 +1,108 @@
+//! The reference of `[dynamics]`: bodies, gravity and loads at working speed.
+
+use super::{Field, Range};
+
+pub(super) const FIELDS: &[Field] = &[
+    Field {
+        key: "dynamics.face_width_mm",
+        symbol: "b",
+        unit: "mm",
+        range: Range::above_at_most(0.0, 1e4),
+        meaning: "Face width of every gear: its blank's thickness.",
+        refused: &["dynamics.face_width_mm=0", "dynamics.face_width_mm=-3"],
+        number: Some(real!(dynamics.face_width_mm)),
+    },
+    Field {
+        key: "dynamics.gear_density_kg_m3",
+        symbol: "ρg",
+        unit: "kg/m³",
+        range: Range::from_to(0.0, 1e5),
+        meaning: "Density of the gear blanks (steel: 7850).",
+        refused: &["dynamics.gear_density_kg_m3=-1"],
+        number: Some(real!(dynamics.gear_density_kg_m3)),
+    },
+    Field {
+        key: "dynamics.arm_mass_kg",
+        symbol: "ma",
+        unit: "kg",
+        range: Range::from_to(0.0, 1e4),
+        meaning: "Mass of one arm with its claw and pusher.",
+        refused: &["dynamics.arm_mass_kg=-0.1"],
+        number: Some(real!(dynamics.arm_mass_kg)),
+    },
+    Field {
+        key: "dynamics.arm_com_mm",
+        symbol: "sa",
+        unit: "mm",
+        range: Range::from_to(-1e6, 1e6),
+        meaning: "Distance from the planet centre to the arm's centre of mass along O3 → D.",
+        refused: &["dynamics.arm_com_mm=nan"],
+        number: Some(real!(dynamics.arm_com_mm)),
+    },
+    Field {
+        key: "dynamics.arm_inertia_kg_m2",
+        symbol: "Ja",
+        unit: "kg·m²",
+        range: Range::from_to(0.0, 1e4),
+        meaning: "Moment of inertia of the arm about its centre of mass.",
+        refused: &["dynamics.arm_inertia_kg_m2=-1e-3"],
+        number: Some(real!(dynamics.arm_inertia_kg_m2)),
+    },
+    Field {
+        key: "dynamics.carrier_mass_kg",
+        symbol: "mc",
+        unit: "kg",
+        range: Range::from_to(0.0, 1e5),
+        meaning: "Mass of the carrier, its centre of mass on its axis (the main bearing carries its weight).",
+        refused: &["dynamics.carrier_mass_kg=-2"],
+        number: Some(real!(dynamics.carrier_mass_kg)),
+    },
+    Field {
+        key: "dynamics.gravity_m_s2",
+        symbol: "g",
+        unit: "m/s²",
+        range: Range::from_to(0.0, 1e3),
+        meaning: "Gravity along −y (0 leaves it out).",
+        refused: &["dynamics.gravity_m_s2=-9.81"],
+        number: Some(real!(dynamics.gravity_m_s2)),
+    },
+    Field {
+        key: "dynamics.picking_force_n",
+        symbol: "Fp",
+        unit: "N",
+        range: Range::from_to(0.0, 1e6),
+        meaning: "Seedling separation force at the tip while it is in the tray, against the tip's motion \
+                  (Kumar and Thomas 2015: 3.1–5.3 N on a transplanter's finger).",
+        refused: &["dynamics.picking_force_n=-5"],
+        number: Some(real!(dynamics.picking_force_n)),
+    },
+    Field {
+        key: "dynamics.planting_force_n",
+        symbol: "Fs",
+        unit: "N",
+        range: Range::from_to(0.0, 1e6),
+        meaning: "Planting resistance at the tip, against its motion, around the planting instant \
+                  (no published value: 0 until measured).",
+        refused: &["dynamics.planting_force_n=-1"],
+        number: Some(real!(dynamics.planting_force_n)),
+    },
+    Field {
+        key: "dynamics.planting_span_deg",
+        symbol: "",
+        unit: "°",
+        range: Range::from_to(0.0, 360.0),
+        meaning: "Carrier angle over which the planting resistance acts, centred on planting.",
+        refused: &["dynamics.planting_span_deg=400"],
+        number: Some(real!(dynamics.planting_span_deg)),
+    },
+    Field {
+        key: "dynamics.samples_per_turn",
+        symbol: "",
+        unit: "",
+        range: Range::from_to(4.0, 1e6).and(", a multiple of train.arms"),
+        meaning: "Carrier angles per turn at which the dynamics is computed (its peaks need \
+                  more than the kinematics' nodes on a sharp design).",
+        refused: &["dynamics.samples_per_turn=3"],
+        number: Some(integer!(usize, dynamics.samples_per_turn)),
+    },
+];
