@@ -8,6 +8,7 @@ pub mod accuracy;
 pub mod batch;
 pub mod cad;
 pub mod compare;
+pub mod dynamics;
 pub mod export;
 #[cfg(feature = "figures")]
 pub mod figures;

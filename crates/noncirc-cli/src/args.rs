@@ -277,6 +277,10 @@ pub(crate) enum Command {
     Animate(AnimateArgs),
     /// Evaluate a three-arm design: trajectory, events and the eight agronomic objectives.
     Evaluate(SceneArgs),
+    /// The train at its working speed: the input torque, the mesh forces, the axle loads
+    /// and the shaking force over a carrier turn, from the scene's `[dynamics]` bodies and
+    /// loads (Newton–Euler, checked against the energy balance). docs/dynamics.md
+    Dynamics(SceneArgs),
     /// The variable-speed moving box: box travel while picking, speeds, forces.
     /// With no scene: the moving-box paper's setting.
     Box(SceneArgs),

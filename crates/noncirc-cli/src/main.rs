@@ -65,6 +65,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
         Command::Animate(args) => commands::animate(args)?,
         Command::Evaluate(args) => commands::evaluate(args)?,
         Command::Box(args) => commands::moving_box(args)?,
+        Command::Dynamics(args) => commands::dynamics(args)?,
         Command::Accuracy(args) => commands::accuracy(args)?,
         Command::Sweep(args) => commands::sweep(args)?,
         Command::Compare(args) => commands::compare(args)?,

@@ -1,0 +1,30 @@
+//! The dynamics at working speed beyond the kinematics: the paper's design, all three arm
+//! sets, at 120 carrier angles (the default resolution's nodes) and at the default 720.
+
+/// The binaries' allocator (the CLI and the Python extension set it too).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use noncirc::core::{dynamics, events, Scene};
+use noncirc::scene_file::load_scene;
+use std::hint::black_box;
+
+fn bench(c: &mut Criterion) {
+    let scene: Scene = load_scene(None).unwrap();
+    let kin = scene.kinematics(&scene.resolution).unwrap();
+    let ev = events(&kin, &scene.agronomy);
+    let mut group = c.benchmark_group("dynamics_beyond_kinematics");
+    group.throughput(Throughput::Elements(1));
+    for samples in [120, 720] {
+        let mut spec = scene.dynamics;
+        spec.samples_per_turn = samples;
+        group.bench_with_input(BenchmarkId::new("samples", samples), &spec, |b, spec| {
+            b.iter(|| dynamics(black_box(&kin), &ev, spec, 20.0).unwrap())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

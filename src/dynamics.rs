@@ -1,0 +1,270 @@
+//! `noncirc dynamics`: a scene's train at its working speed (the core's
+//! [`noncirc_core::dynamics`]), as a table, JSON and figures (docs/dynamics.md).
+
+use crate::{Error, Result};
+use noncirc_core::{dynamics, Dynamics, Evaluator, Scene, SceneKind};
+use std::fmt::Write;
+
+/// The dynamics of `scene`'s design at its resolution and working speed.
+pub fn dynamics_of(scene: &Scene) -> Result<Dynamics> {
+    if !matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
+        return Err(Error::Input(format!(
+            "dynamics needs a three_arm or transplanter scene, not {}",
+            scene.kind.name()
+        )));
+    }
+    let eval = Evaluator::planned(&scene.resolution).evaluate(scene)?;
+    let (Some(kin), Some(events)) = (&eval.kinematics, &eval.events) else {
+        return Err(Error::Input(
+            "the design has no motion to move the bodies".into(),
+        ));
+    };
+    Ok(dynamics(
+        kin,
+        events,
+        &scene.dynamics,
+        scene.gear.teeth.pressure_angle_deg,
+    )?)
+}
+
+/// The same design with two, three and four arm sets at the scene's picking rate (the
+/// carrier slower as the arms are more): how the arm count balances the train. An arm
+/// count the model refuses for this design is left out.
+pub fn by_arm_count(scene: &Scene) -> Vec<(usize, Dynamics)> {
+    let rate = scene.train.picking_rate();
+    (2..=4)
+        .filter_map(|arms| {
+            let mut s = scene.clone();
+            s.train.arms = arms;
+            s.train.picks_per_minute = Some(rate);
+            dynamics_of(&s).ok().map(|d| (arms, d))
+        })
+        .collect()
+}
+
+/// The bodies and the cycle's extremes, for a person.
+pub fn table(d: &Dynamics) -> String {
+    let s = &d.summary;
+    let mut t = String::new();
+    let rpm = d.carrier_speed_rad_s * 60.0 / std::f64::consts::TAU;
+    let _ = writeln!(
+        t,
+        "carrier {rpm:.1} r/min, {} arm sets: {:.0} picks/min; pressure angle {:.1}°",
+        d.arms,
+        rpm * d.arms as f64,
+        d.pressure_angle_deg
+    );
+    let _ = writeln!(
+        t,
+        "\nbody (one arm set)       mass (kg)  centre of mass (mm)   J about it (kg·m²)"
+    );
+    for (name, b) in [
+        ("intermediate", d.intermediate),
+        ("planet gear", d.planet),
+        ("arm", d.arm),
+        ("planet with arm", d.planet_with_arm),
+    ] {
+        let _ = writeln!(
+            t,
+            "{name:<22} {:>10.4}  ({:>7.2}, {:>7.2})      {:>12.3e}",
+            b.mass_kg, b.centroid_mm.x, b.centroid_mm.y, b.inertia_kg_m2
+        );
+    }
+    let fluctuation = s
+        .torque_fluctuation
+        .map_or("— (mean below 1 % of RMS)".to_string(), |f| {
+            format!("{f:.2}")
+        });
+    let rows = [
+        (
+            "input torque, largest |T| (N·m)",
+            format!("{:.4}", s.torque_peak_nm),
+        ),
+        ("input torque, RMS (N·m)", format!("{:.4}", s.torque_rms_nm)),
+        (
+            "input torque, mean (N·m)",
+            format!("{:.4}", s.torque_mean_nm),
+        ),
+        (
+            "input torque, least and largest (N·m)",
+            format!("{:.4} … {:.4}", s.torque_min_nm, s.torque_max_nm),
+        ),
+        ("torque fluctuation (T_max − T_min)/T_mean", fluctuation),
+        (
+            "mesh force sun–intermediate, peak (N)",
+            format!("{:.2}", s.mesh_force_peak_n[0]),
+        ),
+        (
+            "mesh force intermediate–planet, peak (N)",
+            format!("{:.2}", s.mesh_force_peak_n[1]),
+        ),
+        (
+            "intermediate axle, peak (N)",
+            format!("{:.2}", s.intermediate_axle_peak_n),
+        ),
+        (
+            "planet axle, peak (N)",
+            format!("{:.2}", s.planet_axle_peak_n),
+        ),
+        ("sun shaft, peak (N)", format!("{:.2}", s.sun_shaft_peak_n)),
+        (
+            "carrier bearing, peak (N)",
+            format!("{:.2}", s.carrier_bearing_peak_n),
+        ),
+        (
+            "shaking force, peak (N)",
+            format!("{:.3}", s.shaking_force_peak_n),
+        ),
+        (
+            "shaking moment, peak (N·m)",
+            format!("{:.4}", s.shaking_moment_peak_nm),
+        ),
+        (
+            "Newton–Euler vs energy torque, largest difference / peak",
+            format!("{:.1e}", s.formulations_rel_diff),
+        ),
+    ];
+    t.push('\n');
+    for (name, value) in rows {
+        let _ = writeln!(t, "{name:<58} {value}");
+    }
+    t
+}
+
+/// The torque, the mesh forces, the axle loads over the cycle and as polar plots (the
+/// force's tip in the plane), the shaking force, and the input torque with each arm count
+/// of `arm_counts` ([`by_arm_count`]), into `dir`.
+#[cfg(feature = "figures")]
+pub fn figures(
+    d: &Dynamics,
+    arm_counts: &[(usize, Dynamics)],
+    dir: &std::path::Path,
+    options: &crate::figures::FigureOptions,
+) -> Result<Vec<std::path::PathBuf>> {
+    use crate::figures::{save, LinesFigure};
+    crate::files::create_dir(dir)?;
+    let theta = &d.carrier_deg;
+    let over_cycle = |v: &[f64]| theta.iter().copied().zip(v.iter().copied()).collect();
+    let magnitude = |v: &[[f64; 2]]| v.iter().map(|f| f[0].hypot(f[1])).collect::<Vec<_>>();
+    let rpm = d.carrier_speed_rad_s * 60.0 / std::f64::consts::TAU;
+    let speed = format!("{rpm:.0} r/min, {} arm sets", d.arms);
+    let x_desc = "carrier angle θ (°)".to_string();
+    let line = |title: String, y_desc: &str, series: Vec<(String, Vec<(f64, f64)>)>| LinesFigure {
+        title,
+        x_desc: x_desc.clone(),
+        y_desc: y_desc.to_string(),
+        series,
+        points_only: false,
+        markers: false,
+        band: None,
+    };
+    let polar = |title: String, series: Vec<(String, Vec<(f64, f64)>)>| LinesFigure {
+        title,
+        x_desc: "Fx (N)".into(),
+        y_desc: "Fy (N)".into(),
+        series,
+        points_only: false,
+        markers: false,
+        band: None,
+    };
+    let xy = |v: &[[f64; 2]]| v.iter().map(|f| (f[0], f[1])).collect::<Vec<_>>();
+    let mut files = Vec::new();
+    let figures = [
+        (
+            line(
+                format!("Input torque at the carrier ({speed})"),
+                "torque T (N·m)",
+                vec![
+                    ("Newton–Euler".into(), over_cycle(&d.input_torque_nm)),
+                    (
+                        "energy balance".into(),
+                        over_cycle(&d.input_torque_energy_nm),
+                    ),
+                ],
+            ),
+            "input_torque",
+        ),
+        (
+            line(
+                format!("Mesh forces along the lines of action, arm set I ({speed})"),
+                "normal force Fn (N)",
+                vec![
+                    ("sun–intermediate".into(), over_cycle(&d.mesh_force_n[0])),
+                    ("intermediate–planet".into(), over_cycle(&d.mesh_force_n[1])),
+                ],
+            ),
+            "mesh_forces",
+        ),
+        (
+            line(
+                format!("Axle loads ({speed})"),
+                "force |F| (N)",
+                vec![
+                    (
+                        "intermediate (set I)".into(),
+                        over_cycle(&magnitude(&d.intermediate_axle_n)),
+                    ),
+                    (
+                        "planet (set I)".into(),
+                        over_cycle(&magnitude(&d.planet_axle_n)),
+                    ),
+                    ("sun shaft".into(), over_cycle(&magnitude(&d.sun_shaft_n))),
+                    (
+                        "carrier bearing".into(),
+                        over_cycle(&magnitude(&d.carrier_bearing_n)),
+                    ),
+                ],
+            ),
+            "axle_loads",
+        ),
+        (
+            polar(
+                format!("Axle loads in the plane, polar ({speed})"),
+                vec![
+                    ("intermediate (set I)".into(), xy(&d.intermediate_axle_n)),
+                    ("planet (set I)".into(), xy(&d.planet_axle_n)),
+                    ("carrier bearing".into(), xy(&d.carrier_bearing_n)),
+                ],
+            ),
+            "axle_loads_polar",
+        ),
+        (
+            line(
+                format!("Shaking force on the frame ({speed})"),
+                "force (N)",
+                vec![(
+                    "|shaking force|".into(),
+                    over_cycle(&magnitude(&d.shaking_force_n)),
+                )],
+            ),
+            "shaking_force",
+        ),
+    ];
+    for (figure, name) in figures {
+        files.extend(save(&figure, &dir.join(name), options)?);
+    }
+    if !arm_counts.is_empty() {
+        let rate = rpm * d.arms as f64;
+        let series = (arm_counts.iter())
+            .map(|(arms, d)| {
+                let rpm = d.carrier_speed_rad_s * 60.0 / std::f64::consts::TAU;
+                let label = format!("{arms} arm sets, carrier {rpm:.0} r/min");
+                (
+                    label,
+                    d.carrier_deg
+                        .iter()
+                        .copied()
+                        .zip(d.input_torque_nm.iter().copied())
+                        .collect(),
+                )
+            })
+            .collect();
+        let figure = line(
+            format!("Input torque by arm count at {rate:.0} picks/min"),
+            "torque T (N·m)",
+            series,
+        );
+        files.extend(save(&figure, &dir.join("input_torque_by_arms"), options)?);
+    }
+    Ok(files)
+}
