@@ -29,13 +29,15 @@ from ._noncirc import (
     robustness,
     sensitivity,
 )
-from .api import evaluate, evaluate_batch, fit, inverse, optimise, repair
+from .api import dynamics, evaluate, evaluate_batch, fit, inverse, optimise, repair
 from .progress import ProgressBar
 from .results import (
     Batch,
+    Body,
     Change,
     Condition,
     Design,
+    Dynamics,
     Evaluation,
     EventShift,
     FitMeasure,
@@ -52,9 +54,11 @@ from .results import (
 
 __all__ = [
     "Batch",
+    "Body",
     "Change",
     "Condition",
     "Design",
+    "Dynamics",
     "Evaluation",
     "EventShift",
     "FitMeasure",
@@ -75,6 +79,7 @@ __all__ = [
     "SceneError",
     "SearchResult",
     "UnknownNameError",
+    "dynamics",
     "evaluate",
     "evaluate_batch",
     "fit",

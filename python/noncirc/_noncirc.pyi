@@ -170,6 +170,10 @@ def immigrate(checkpoint: str | os.PathLike[str], migrants: str) -> None:
     """Takes `migrants` (the text of `emigrants` from another island of the same search)
     into the checkpoint's search in place of its worst members; refuses another scene's."""
 
+def dynamics(scene: Scene) -> dict[str, Any]:
+    """The train at its working speed (`noncirc dynamics --format json`), as a dict; see
+    `noncirc.dynamics` for the typed result."""
+
 def robustness(
     scene: Scene, *, samples: Optional[int] = None, seed: Optional[int] = None, worst_case: bool = True
 ) -> dict[str, Any]:

@@ -12,7 +12,7 @@ import numpy.typing as npt
 from . import _noncirc
 from ._noncirc import Scene
 from .progress import ProgressBar, interactive
-from .results import Batch, Evaluation, FitResult, InverseResult, RepairResult, SearchResult
+from .results import Batch, Dynamics, Evaluation, FitResult, InverseResult, RepairResult, SearchResult
 
 Progress = Union[bool, Callable[[dict[str, Any]], Optional[bool]], None]
 
@@ -23,6 +23,14 @@ def evaluate(scene: Scene, *, samples_per_turn: Optional[int] = None, closure_re
     `ParameterError` for a bad setting and `ModelError` for a design the model cannot
     build."""
     return Evaluation._from_raw(_noncirc.evaluate(scene, samples_per_turn=samples_per_turn, closure_rel_tol=closure_rel_tol))
+
+
+def dynamics(scene: Scene) -> Dynamics:
+    """The scene's train at its working speed (`noncirc dynamics`, docs/dynamics.md): the
+    input torque, mesh forces, axle loads and shaking over a carrier turn, from the scene's
+    `[dynamics]` bodies and loads. Raises `ParameterError` for a bad value (naming the
+    field) and `ModelError` for a design the model cannot build."""
+    return Dynamics._from_raw(_noncirc.dynamics(scene))
 
 
 def evaluate_batch(

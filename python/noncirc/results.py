@@ -717,3 +717,104 @@ class RepairResult:
         delta_percent_of_box."""
         pd = _pandas()
         return pd.DataFrame([dataclasses.asdict(c) for c in self.changes])
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid body of one arm set in its own frame (its axle at the origin)."""
+
+    mass_kg: float
+    #: Centre of mass (mm), in the body's own frame.
+    centroid_mm: tuple[float, float]
+    #: Moment of inertia about the centre of mass, normal to the plane (kg·m²).
+    inertia_kg_m2: float
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any]) -> Body:
+        return Body(raw["mass_kg"], tuple(raw["centroid_mm"]), raw["inertia_kg_m2"])
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    """The train at its working speed over one carrier turn (`noncirc dynamics`,
+    docs/dynamics.md). Arrays run over `carrier_deg`; vectors are (angles, 2) arrays of
+    (x, y) in the ground frame, y up. Torques are positive where the drive delivers power."""
+
+    carrier_speed_rad_s: float
+    arms: int
+    pressure_angle_deg: float
+    intermediate: Body
+    planet: Body
+    arm: Body
+    planet_with_arm: Body
+    carrier_deg: np.ndarray
+    #: Input torque of all arm sets (N·m): Newton–Euler, and the energy balance.
+    input_torque_nm: np.ndarray
+    input_torque_energy_nm: np.ndarray
+    #: Arm set I: the meshes' moments on the intermediate about O2 and on the planet about O3 (N·m).
+    intermediate_moment_nm: np.ndarray
+    planet_moment_nm: np.ndarray
+    #: Arm set I: normal forces along the lines of action, sun–intermediate and
+    #: intermediate–planet (N).
+    mesh_force_sun_intermediate_n: np.ndarray
+    mesh_force_intermediate_planet_n: np.ndarray
+    #: Arm set I: the carrier's force on the intermediate's and the planet's axle (N).
+    intermediate_axle_n: np.ndarray
+    planet_axle_n: np.ndarray
+    #: All arm sets: the load on the sun shaft and on the carrier bearing (N).
+    sun_shaft_n: np.ndarray
+    carrier_bearing_n: np.ndarray
+    #: All arm sets: the shaking force (N) and moment about the carrier axis (N·m).
+    shaking_force_n: np.ndarray
+    shaking_moment_nm: np.ndarray
+    #: The cycle's extremes, as `noncirc dynamics` prints them (units in the names).
+    summary: dict[str, Any]
+    #: Everything the CLI's JSON holds (the joints' motion too).
+    report: dict[str, Any]
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any]) -> Dynamics:
+        a = lambda key: np.asarray(raw[key], dtype=float)  # noqa: E731
+        return Dynamics(
+            carrier_speed_rad_s=raw["carrier_speed_rad_s"],
+            arms=raw["arms"],
+            pressure_angle_deg=raw["pressure_angle_deg"],
+            intermediate=Body._from_raw(raw["intermediate"]),
+            planet=Body._from_raw(raw["planet"]),
+            arm=Body._from_raw(raw["arm"]),
+            planet_with_arm=Body._from_raw(raw["planet_with_arm"]),
+            carrier_deg=a("carrier_deg"),
+            input_torque_nm=a("input_torque_nm"),
+            input_torque_energy_nm=a("input_torque_energy_nm"),
+            intermediate_moment_nm=a("intermediate_moment_nm"),
+            planet_moment_nm=a("planet_moment_nm"),
+            mesh_force_sun_intermediate_n=np.asarray(raw["mesh_force_n"][0], dtype=float),
+            mesh_force_intermediate_planet_n=np.asarray(raw["mesh_force_n"][1], dtype=float),
+            intermediate_axle_n=a("intermediate_axle_n"),
+            planet_axle_n=a("planet_axle_n"),
+            sun_shaft_n=a("sun_shaft_n"),
+            carrier_bearing_n=a("carrier_bearing_n"),
+            shaking_force_n=a("shaking_force_n"),
+            shaking_moment_nm=a("shaking_moment_nm"),
+            summary=raw["summary"],
+            report=raw,
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data (lists, not arrays)."""
+        return {f.name: _plain(getattr(self, f.name)) for f in dataclasses.fields(self) if f.name != "report"}
+
+    def to_pandas(self) -> pandas.DataFrame:
+        """One row per carrier angle; a vector's components as `<name>_x_n` and `<name>_y_n`."""
+        columns: dict[str, Any] = {"carrier_deg": self.carrier_deg}
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if f.name == "carrier_deg" or not isinstance(value, np.ndarray):
+                continue
+            if value.ndim == 2:
+                stem = f.name.removesuffix("_n")
+                columns[f"{stem}_x_n"] = value[:, 0]
+                columns[f"{stem}_y_n"] = value[:, 1]
+            else:
+                columns[f.name] = value
+        return _pandas().DataFrame(columns)

@@ -36,6 +36,7 @@ fn _noncirc(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(search::emigrants, m)?)?;
     m.add_function(wrap_pyfunction!(search::immigrate, m)?)?;
     m.add_function(wrap_pyfunction!(studies::robustness, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::dynamics, m)?)?;
     m.add_function(wrap_pyfunction!(studies::sensitivity, m)?)?;
     errors::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -40,6 +40,17 @@ pub(crate) fn robustness<'py>(
     Ok(out)
 }
 
+/// The train at its working speed (`noncirc dynamics`): the CLI's JSON as a dict.
+#[pyfunction]
+pub(crate) fn dynamics<'py>(py: Python<'py>, scene: &Scene) -> Result<Bound<'py, PyDict>> {
+    let s = scene.inner.clone();
+    let d = py.allow_threads(|| noncirc::dynamics::dynamics_of(&s))?;
+    let value = serde_json::to_value(&d).map_err(internal)?;
+    Ok(json_to_py(py, &value)?
+        .into_bound(py)
+        .downcast_into::<PyDict>()?)
+}
+
 /// Sobol indices of every output over the scene's search box (`noncirc sensitivity`), in
 /// SALib's layout: `problem` (num_vars, names, bounds), `X` (N (k + 2), k) and `Y`
 /// (N (k + 2), outputs) in SALib's sample order, `outputs`, and per output `indices[name]`
