@@ -3,12 +3,10 @@
 //! ratio needs no torque, an eccentric mass shakes as the textbook says); the pitch points
 //! the forces pass through are the pitch curves' contacts.
 
-use noncirc::scene_file::{parse_scene, BUILTIN};
 use noncirc_core::{dynamics, events, CurveSpec, Dynamics, ObjectiveKind, Scene};
 
-fn paper() -> Scene {
-    parse_scene(BUILTIN[0].1, BUILTIN[0].0).unwrap()
-}
+mod common;
+use common::{paper, two_pair_design as two_pairs};
 
 fn run(scene: &Scene) -> Dynamics {
     let mut scene = scene.clone();
@@ -28,22 +26,6 @@ fn run(scene: &Scene) -> Dynamics {
         scene.gear.teeth.pressure_angle_deg,
     )
     .unwrap()
-}
-
-/// A train with two unlike pairs: an ellipse sun, a Fourier layer B.
-fn two_pairs() -> Scene {
-    let mut scene = paper();
-    scene.gear.curve = CurveSpec::Ellipse {
-        semi_major_mm: 32.0,
-        eccentricity: 0.12,
-    };
-    scene.gear.second_curve = Some(CurveSpec::Fourier {
-        c0_mm: 28.0,
-        cos_mm: vec![1.5, -0.8],
-        sin_mm: vec![-2.0, 0.4],
-    });
-    scene.resolution = scene.resolution.with_samples(720);
-    scene
 }
 
 #[test]

@@ -1,31 +1,13 @@
 //! Exact inversion (`noncirc_core::invert`): a target made by a train with two pairs comes
 //! back as pitch curves whose path matches it; closed forms; named failures.
 
-use noncirc::scene_file::{parse_scene, BUILTIN};
 use noncirc_core::{
-    invert, target_of, unit, CurveSpec, Evaluator, InverseSpec, Scene, Target, TargetKind, Vec2,
+    invert, target_of, unit, Evaluator, InverseSpec, Scene, Target, TargetKind, Vec2,
 };
 use std::f64::consts::TAU;
 
-fn paper() -> Scene {
-    parse_scene(BUILTIN[0].1, BUILTIN[0].0).unwrap()
-}
-
-/// A train with two unlike pairs: an ellipse sun, a Fourier layer B, a_A ≠ a_B.
-fn two_pair_design() -> Scene {
-    let mut scene = paper();
-    scene.gear.curve = CurveSpec::Ellipse {
-        semi_major_mm: 32.0,
-        eccentricity: 0.12,
-    };
-    scene.gear.second_curve = Some(CurveSpec::Fourier {
-        c0_mm: 28.0,
-        cos_mm: vec![1.5, -0.8],
-        sin_mm: vec![-2.0, 0.4],
-    });
-    scene.resolution = scene.resolution.with_samples(720);
-    scene
-}
+mod common;
+use common::{paper, two_pair_design};
 
 /// The design's path as a target of `points` points with tolerance `tolerance_mm`.
 fn target_of_design(scene: &Scene, points: usize, tolerance_mm: f64) -> Target {
