@@ -817,6 +817,7 @@ impl Kinematics {
     }
 
     /// [`Kinematics::state_at`] from the lag at `theta`.
+    #[inline(always)]
     fn state_from(&self, theta: f64, lag: &Lag) -> ArmState {
         let sigma = self.sigma;
         let Lag {
@@ -862,6 +863,7 @@ impl Kinematics {
     }
 
     /// The planet's lag at carrier angle `theta` (rad) with its first two derivatives.
+    #[inline(always)]
     fn lag_at(&self, theta: f64) -> Lag {
         let first = &self.gears.first;
         let (big_phi, _) = first.phi().eval(theta);
