@@ -57,6 +57,16 @@ impl Scene {
             // Checked with the scene, so that a file or an edit is refused where the
             // value is set, not at the first evaluation.
             self.train.validate()?;
+            if !self.dynamics.material.chars().any(char::is_alphabetic) {
+                return Err(Error::BadList {
+                    list: "dynamics.material",
+                    problem: format!(
+                        "{:?} names no material: the strength report says which one its \
+                         allowable stresses are",
+                        self.dynamics.material
+                    ),
+                });
+            }
             let arms = self.train.arms;
             if !self.resolution.samples_per_turn.is_multiple_of(arms) {
                 return Err(Error::OutOfRange {

@@ -63,6 +63,10 @@ pub struct Dynamics {
     /// Arm set I: the normal force along the line of action at the sun–intermediate and at
     /// the intermediate–planet mesh (N).
     pub mesh_force_n: [Vec<f64>; 2],
+    /// Arm set I: where each mesh's contact lies on its driving pitch curve (the sun's, then
+    /// the planet's or layer B's), as that curve's own parameter `ψ` (rad): the teeth it
+    /// loads.
+    pub mesh_contact_psi_rad: [Vec<f64>; 2],
     /// Arm set I: the force the carrier puts on the intermediate's and on the planet's
     /// axle (N).
     pub intermediate_axle_n: Vec<[f64; 2]>,
@@ -201,6 +205,7 @@ struct Node {
     intermediate_moment: f64,
     planet_moment: f64,
     mesh: [f64; 2],
+    contact_psi: [f64; 2],
     intermediate_axle: Vec2,
     planet_axle: Vec2,
     sun_load: Vec2,
@@ -308,6 +313,7 @@ pub fn dynamics(
             intermediate_moment,
             planet_moment,
             mesh: [f1, f2],
+            contact_psi: [contact_a.psi, contact_b.psi],
             intermediate_axle,
             planet_axle,
             sun_load: -f1v,
@@ -354,6 +360,8 @@ pub fn dynamics(
     let intermediate_axle = column(&|x| x.intermediate_axle);
     let planet_axle = column(&|x| x.planet_axle);
     let mesh_force_n = [0, 1].map(|i| nodes.iter().map(|x| x.mesh[i]).collect::<Vec<_>>());
+    let mesh_contact_psi_rad =
+        [0, 1].map(|i| nodes.iter().map(|x| x.contact_psi[i]).collect::<Vec<_>>());
     let mean = input_torque_nm.iter().sum::<f64>() / n as f64;
     let rms = (input_torque_nm.iter().map(|t| t * t).sum::<f64>() / n as f64).sqrt();
     let (min, max) = (input_torque_nm.iter())
@@ -399,6 +407,7 @@ pub fn dynamics(
         intermediate_moment_nm: nodes.iter().map(|x| x.intermediate_moment).collect(),
         planet_moment_nm: nodes.iter().map(|x| x.planet_moment).collect(),
         mesh_force_n,
+        mesh_contact_psi_rad,
         intermediate_axle_n: intermediate_axle.into_iter().map(xy).collect(),
         planet_axle_n: planet_axle.into_iter().map(xy).collect(),
         sun_shaft_n: sun_shaft.into_iter().map(xy).collect(),

@@ -1,12 +1,13 @@
 //! What the dynamics at working speed needs beyond the geometry: the gears' face width and
 //! material, the arm as a rigid body, the carrier, gravity and the loads at the tip
-//! (`[dynamics]` in a scene; docs/dynamics.md gives the sources of the defaults). The
-//! working speed is the train's (`train.carrier_speed_rpm` or `train.picks_per_minute`).
+//! (`[dynamics]` in a scene; docs/dynamics.md gives the sources of the defaults), and the
+//! gear material the teeth's stresses are checked against. The working speed is the
+//! train's (`train.carrier_speed_rpm` or `train.picks_per_minute`).
 
 use serde::{Deserialize, Serialize};
 
 /// The bodies' and loads' values (SI units except lengths in mm and angles in degrees).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct DynamicsSpec {
     /// Face width `b` of every gear (mm).
@@ -35,7 +36,26 @@ pub struct DynamicsSpec {
     /// count): the peaks of a sharp design need more than the kinematics' nodes
     /// (docs/dynamics.md: the paper's peak torque is 20 % low at 120, within 0.1 % at 360).
     pub samples_per_turn: usize,
+    /// The gear material, named (every gear of the train is of it).
+    pub material: String,
+    /// Young's modulus `E` of the material (GPa).
+    pub youngs_modulus_gpa: f64,
+    /// Poisson's ratio `ν` of the material.
+    pub poisson_ratio: f64,
+    /// Allowable tooth-root stress `σFE = YST·σFlim` (MPa): ISO 6336-5's bending endurance
+    /// of the material, against which the root stress gives the bending safety factor.
+    pub bending_limit_mpa: f64,
+    /// Allowable contact stress `σHlim` (MPa): ISO 6336-5's pitting endurance, against
+    /// which the flank's Hertz stress gives the contact safety factor.
+    pub contact_limit_mpa: f64,
+    /// Application factor `KA` (ISO 6336-1): the loads the cycle does not model (shocks
+    /// from the drive, the tray and the soil) as a factor on the computed mesh forces.
+    pub application_factor: f64,
 }
+
+/// The default material: a carburised and case-hardened steel such as 20CrMnTi, the usual
+/// choice for transplanter gearboxes, with ISO 6336-5's values for quality MQ.
+const DEFAULT_MATERIAL: &str = "case-hardened steel 20CrMnTi (ISO 6336-5, MQ)";
 
 impl Default for DynamicsSpec {
     fn default() -> Self {
@@ -51,6 +71,12 @@ impl Default for DynamicsSpec {
             planting_force_n: 0.0,
             planting_span_deg: 20.0,
             samples_per_turn: 720,
+            material: DEFAULT_MATERIAL.into(),
+            youngs_modulus_gpa: 206.0,
+            poisson_ratio: 0.3,
+            bending_limit_mpa: 1000.0,
+            contact_limit_mpa: 1500.0,
+            application_factor: 1.25,
         }
     }
 }

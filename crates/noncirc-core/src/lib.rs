@@ -56,6 +56,7 @@ mod fit;
 mod inverse;
 mod measure_value;
 mod objectives;
+mod strength;
 
 // Study: tolerances, sensitivity, and the search problem with its checkpoints.
 mod checkpoint;
@@ -96,6 +97,7 @@ pub use gear::{
 pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
 pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue};
 pub use planetary::{ArmState, Kinematics, PitchContact};
+pub use strength::{strength, tooth_forms, GearStrength, Strength, ToothForm};
 pub use teeth::{
     segment_distance, Cutter, Frame, GearTeethReport, MateRoots, Member, MeshReport, PairTrack,
     Side, TeethAccuracy, TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut,

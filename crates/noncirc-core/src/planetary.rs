@@ -217,12 +217,14 @@ pub struct ArmState {
 }
 
 /// Where a pitch curve touches its mate: the centre of the gear whose curve is read, the
-/// unit vector from that centre towards the mate's centre, and the curve's radius (mm) and
-/// its derivative in the gear's own angle (mm/rad) at the contact.
+/// unit vector from that centre towards the mate's centre, the curve's own parameter `ψ`
+/// there (rad, as the pair's teeth are cut on it), and the curve's radius (mm) and its
+/// derivative in the gear's own angle (mm/rad) at the contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PitchContact {
     pub centre: Vec2,
     pub towards: Vec2,
+    pub psi: f64,
     pub rho: f64,
     pub rho_d1: f64,
 }
@@ -295,6 +297,12 @@ impl SolvedPair {
             d1: &self.inv_d1,
             d2: &self.inv_d2,
         }
+    }
+
+    /// The driver curve's own parameter `start + sense·u` (rad) after the turn `u`.
+    fn parameter(&self, u: f64) -> f64 {
+        let grid = self.pair.grid();
+        grid.start + grid.sense.sign() * u
     }
 
     /// `g̃(u) = g(start + sense·u)` and `g̃'(u)` at any turn `u`, from the curve itself.
@@ -800,16 +808,19 @@ impl Kinematics {
         let mesh_a = PitchContact {
             centre: Vec2::ZERO,
             towards: towards(Vec2::ZERO, state.o2),
+            psi: self.gears.first.parameter(theta),
             rho: sun.rho,
             rho_d1: sun.d1,
         };
-        let (centre, other) = match self.gears.second {
-            None => (state.o3, state.o2),
-            Some(_) => (state.o2, state.o3),
+        // The planet, the sun's twin, read at its lag; or layer B at the intermediate's turn.
+        let (centre, other, psi) = match &self.gears.second {
+            None => (state.o3, state.o2, self.gears.first.parameter(lag.value)),
+            Some(second) => (state.o2, state.o3, second.parameter(lag.big_phi)),
         };
         let mesh_b = PitchContact {
             centre,
             towards: towards(centre, other),
+            psi,
             rho: mate.rho,
             rho_d1: mate.d1,
         };

@@ -105,4 +105,62 @@ pub(super) const FIELDS: &[Field] = &[
         refused: &["dynamics.samples_per_turn=3"],
         number: Some(integer!(usize, dynamics.samples_per_turn)),
     },
+    Field {
+        key: "dynamics.material",
+        symbol: "",
+        unit: "",
+        range: Range::Rule("a name of at least one letter"),
+        meaning: "The gear material, named in the strength report (its values are the \
+                  next five fields).",
+        refused: &["dynamics.material=\"\"", "dynamics.material=3"],
+        number: None,
+    },
+    Field {
+        key: "dynamics.youngs_modulus_gpa",
+        symbol: "E",
+        unit: "GPa",
+        range: Range::above_at_most(0.0, 1e4),
+        meaning: "Young's modulus of the gear material (steel: 206).",
+        refused: &["dynamics.youngs_modulus_gpa=0"],
+        number: Some(real!(dynamics.youngs_modulus_gpa)),
+    },
+    Field {
+        key: "dynamics.poisson_ratio",
+        symbol: "ν",
+        unit: "",
+        range: Range::from_below(0.0, 0.5),
+        meaning: "Poisson's ratio of the gear material (steel: 0.3).",
+        refused: &["dynamics.poisson_ratio=0.5", "dynamics.poisson_ratio=-0.1"],
+        number: Some(real!(dynamics.poisson_ratio)),
+    },
+    Field {
+        key: "dynamics.bending_limit_mpa",
+        symbol: "σFE",
+        unit: "MPa",
+        range: Range::above_at_most(0.0, 1e5),
+        meaning: "Allowable tooth-root stress YST·σFlim (ISO 6336-5; case-hardened MQ: 1000), \
+                  over the root stress: the bending safety factor.",
+        refused: &["dynamics.bending_limit_mpa=0"],
+        number: Some(real!(dynamics.bending_limit_mpa)),
+    },
+    Field {
+        key: "dynamics.contact_limit_mpa",
+        symbol: "σHlim",
+        unit: "MPa",
+        range: Range::above_at_most(0.0, 1e5),
+        meaning: "Allowable contact stress (ISO 6336-5; case-hardened MQ: 1500), over the \
+                  flank's Hertz stress: the contact safety factor.",
+        refused: &["dynamics.contact_limit_mpa=0", "dynamics.contact_limit_mpa=-1500"],
+        number: Some(real!(dynamics.contact_limit_mpa)),
+    },
+    Field {
+        key: "dynamics.application_factor",
+        symbol: "KA",
+        unit: "",
+        range: Range::from_to(1.0, 10.0),
+        meaning: "Application factor on the mesh forces (ISO 6336-1): shocks the cycle does \
+                  not model (uniform drive, moderate shocks: 1.25).",
+        refused: &["dynamics.application_factor=0.8"],
+        number: Some(real!(dynamics.application_factor)),
+    },
 ];
