@@ -17,7 +17,7 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("dynamics_beyond_kinematics");
     group.throughput(Throughput::Elements(1));
     for samples in [120, 720] {
-        let mut spec = scene.dynamics;
+        let mut spec = scene.dynamics.clone();
         spec.samples_per_turn = samples;
         group.bench_with_input(BenchmarkId::new("samples", samples), &spec, |b, spec| {
             b.iter(|| dynamics(black_box(&kin), &ev, spec, 20.0).unwrap())

@@ -1,9 +1,44 @@
 //! `noncirc dynamics`: a scene's train at its working speed (the core's
-//! [`noncirc_core::dynamics`]), as a table, JSON and figures (docs/dynamics.md).
+//! [`noncirc_core::dynamics`]) and its teeth's strength ([`noncirc_core::strength`]), as a
+//! table, JSON and figures (docs/dynamics.md).
 
+use crate::teeth::TeethRun;
 use crate::{Error, Result};
-use noncirc_core::{dynamics, Dynamics, Evaluator, Scene, SceneKind};
+use noncirc_core::{dynamics, strength, Dynamics, Evaluator, Scene, SceneKind, Strength};
+use serde::Serialize;
 use std::fmt::Write;
+
+/// What `noncirc dynamics` reports: the dynamics (its fields at the top level of the JSON)
+/// and the teeth's strength, or why there is none.
+#[derive(Debug, Clone, Serialize)]
+pub struct DynamicsReport {
+    #[serde(flatten)]
+    pub dynamics: Dynamics,
+    /// The teeth's stresses and safety factors; `None` when the scene's teeth cannot be
+    /// cut (`strength_unavailable` says why).
+    pub strength: Option<Strength>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub strength_unavailable: Option<String>,
+}
+
+/// The dynamics of `scene`'s design and the strength of its teeth, cut as `noncirc teeth`
+/// cuts them (the scene's tooth count, or its module rule's).
+pub fn report_of(scene: &Scene) -> Result<DynamicsReport> {
+    let d = dynamics_of(scene)?;
+    let cut = TeethRun::from_scene(scene, 0.0).and_then(|run| {
+        let pairs: Vec<_> = std::iter::once(run.pair).chain(run.second).collect();
+        Ok(strength(&d, &pairs, &scene.dynamics)?)
+    });
+    let (strength, strength_unavailable) = match cut {
+        Ok(s) => (Some(s), None),
+        Err(e) => (None, Some(format!("the teeth cannot be cut: {e}"))),
+    };
+    Ok(DynamicsReport {
+        dynamics: d,
+        strength,
+        strength_unavailable,
+    })
+}
 
 /// The dynamics of `scene`'s design at its resolution and working speed.
 pub fn dynamics_of(scene: &Scene) -> Result<Dynamics> {
@@ -40,6 +75,64 @@ pub fn by_arm_count(scene: &Scene) -> Vec<(usize, Dynamics)> {
             dynamics_of(&s).ok().map(|d| (arms, d))
         })
         .collect()
+}
+
+/// The dynamics' table and the strength's, for a person.
+pub fn report_table(r: &DynamicsReport) -> String {
+    let mut t = table(&r.dynamics);
+    t.push('\n');
+    match (&r.strength, &r.strength_unavailable) {
+        (Some(s), _) => t.push_str(&strength_table(s)),
+        (None, why) => {
+            let _ = writeln!(
+                t,
+                "tooth strength: not computed: {}",
+                why.as_deref().unwrap_or("—")
+            );
+        }
+    }
+    t
+}
+
+/// Each gear's worst root and contact stress, where they occur and the safety factors.
+pub fn strength_table(s: &Strength) -> String {
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "tooth strength (ISO 6336-3 method B on the cut teeth, Hertz at the pitch point): {}, \
+         b = {} mm, KA = {}; σFE = {} MPa, σHlim = {} MPa",
+        s.material, s.face_width_mm, s.application_factor, s.bending_limit_mpa, s.contact_limit_mpa
+    );
+    let _ = writeln!(
+        t,
+        "\ngear          teeth  m (mm)   YF least…largest   σF peak (MPa)  tooth  at θ (°)    SF   \
+         σH peak (MPa)  tooth  at θ (°)    SH"
+    );
+    for g in &s.gears {
+        let _ = writeln!(
+            t,
+            "{:<12} {:>6} {:>7.3}   {:>6.3} … {:<6.3}   {:>13.1} {:>6} {:>9.1} {:>6.2}   {:>13.1} {:>6} {:>9.1} {:>6.2}",
+            g.name,
+            g.teeth,
+            g.module_mm,
+            g.form_factor_range[0],
+            g.form_factor_range[1],
+            g.bending_peak_mpa,
+            g.bending_worst_tooth,
+            g.bending_peak_carrier_deg,
+            g.bending_safety,
+            g.contact_peak_mpa,
+            g.contact_worst_tooth,
+            g.contact_peak_carrier_deg,
+            g.contact_safety,
+        );
+    }
+    let _ = writeln!(
+        t,
+        "\nleast safety factor: bending {:.2}, contact {:.2}",
+        s.bending_safety_min, s.contact_safety_min
+    );
+    t
 }
 
 /// The bodies and the cycle's extremes, for a person.

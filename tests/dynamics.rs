@@ -175,3 +175,67 @@ fn the_joint_rates_are_the_derivatives_of_the_joint_angles() {
     let [s1, s2] = worst(&two_pairs());
     assert!(s1 < 1e-8 && s2 < 1e-5, "{s1} {s2}");
 }
+
+#[test]
+fn circular_gears_carry_the_hertz_line_contact_stress_of_iso_6336_2() {
+    // Equal circles cut with 30 teeth: at every carrier angle the flank's stress is
+    // ISO 6336-2's nominal contact stress `ZH·ZE·√(KA·Ft/(b·d)·(u + 1)/u)`, u = 1, from
+    // the mesh's normal force `Fn = Ft / cos α`; every tooth is alike, so the root stress
+    // is the same multiple of the force throughout.
+    let mut scene = paper();
+    scene.gear.curve = CurveSpec::Ellipse {
+        semi_major_mm: 30.0,
+        eccentricity: 0.0,
+    };
+    scene.gear.module.teeth = Some(30);
+    scene.train.picks_per_minute = Some(300.0);
+    let r = noncirc::dynamics::report_of(&scene).unwrap();
+    let s = r.strength.expect("circles cut");
+    let spec = &scene.dynamics;
+    let alpha = scene.gear.teeth.pressure_angle_deg.to_radians();
+    let e = spec.youngs_modulus_gpa * 1e3;
+    let z_e = (1.0 / (std::f64::consts::PI * 2.0 * (1.0 - spec.poisson_ratio.powi(2)) / e)).sqrt();
+    let z_h = (2.0 / (alpha.cos().powi(2) * alpha.tan())).sqrt();
+    let d = 60.0;
+    assert_eq!(s.gears.len(), 3);
+    for (g, meshes) in [(0, vec![0]), (1, vec![0, 1]), (2, vec![1])] {
+        let gear = &s.gears[g];
+        assert_eq!(gear.teeth, 30);
+        let [least, most] = gear.form_factor_range;
+        assert!(
+            most - least < 1e-6 * most,
+            "{}: {least} … {most}",
+            gear.name
+        );
+        for j in 0..r.dynamics.carrier_deg.len() {
+            let f = meshes
+                .iter()
+                .map(|&m| r.dynamics.mesh_force_n[m][j].abs())
+                .fold(0.0, f64::max);
+            let ft = spec.application_factor * f * alpha.cos();
+            let iso = z_h * z_e * (ft / (spec.face_width_mm * d) * 2.0).sqrt();
+            assert!(
+                (gear.contact_mpa[j] - iso).abs() <= 1e-9 * iso,
+                "{} at node {j}: {} against {iso}",
+                gear.name,
+                gear.contact_mpa[j]
+            );
+            let per_newton = gear.worst_form.stress_per_newton;
+            let bending = spec.application_factor * f * per_newton / spec.face_width_mm;
+            assert!((gear.bending_mpa[j] - bending).abs() <= 1e-6 * bending.max(1e-9));
+        }
+        assert!(gear.contact_peak_mpa > 0.0 && gear.bending_peak_mpa > 0.0);
+        assert!(
+            (gear.contact_safety - spec.contact_limit_mpa / gear.contact_peak_mpa).abs() < 1e-12
+        );
+    }
+}
+
+#[test]
+fn a_design_whose_teeth_cannot_be_cut_reports_why_it_has_no_strength() {
+    // The paper's sharp concave lobe (|R| = 1.9 mm) admits no rack.
+    let r = noncirc::dynamics::report_of(&paper()).unwrap();
+    assert!(r.strength.is_none());
+    let why = r.strength_unavailable.unwrap();
+    assert!(why.contains("concave") && why.contains("rack"), "{why}");
+}

@@ -42,6 +42,7 @@ from .results import (
     EventShift,
     FitMeasure,
     FitResult,
+    GearStrength,
     Goal,
     InverseResult,
     Objective,
@@ -50,6 +51,7 @@ from .results import (
     Quantity,
     RepairResult,
     SearchResult,
+    Strength,
 )
 
 __all__ = [
@@ -63,6 +65,7 @@ __all__ = [
     "EventShift",
     "FitMeasure",
     "FitResult",
+    "GearStrength",
     "Goal",
     "InternalError",
     "InverseResult",
@@ -78,6 +81,7 @@ __all__ = [
     "Scene",
     "SceneError",
     "SearchResult",
+    "Strength",
     "UnknownNameError",
     "dynamics",
     "evaluate",

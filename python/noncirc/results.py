@@ -735,6 +735,79 @@ class Body:
 
 
 @dataclass(frozen=True)
+class GearStrength:
+    """One gear's tooth stresses over the carrier turn and their worst (docs/dynamics.md,
+    "Tooth strength"): ISO 6336-3 method B on each cut tooth, Hertz at the pitch point."""
+
+    #: `sun`, `intermediate`, `layer B` or `planet`.
+    name: str
+    teeth: int
+    module_mm: float
+    #: Root stress of the tooth in mesh at each carrier angle (MPa).
+    bending_mpa: np.ndarray
+    #: Contact stress of the flank in mesh at each carrier angle (MPa).
+    contact_mpa: np.ndarray
+    #: The largest root stress (MPa), its tooth (index from the tooth at ψ = 0), carrier
+    #: angle (°), and the bending safety factor σFE/σF.
+    bending_peak_mpa: float
+    bending_worst_tooth: int
+    bending_peak_carrier_deg: float
+    bending_safety: float
+    #: The largest contact stress (MPa), its tooth, carrier angle (°), and σHlim/σH.
+    contact_peak_mpa: float
+    contact_worst_tooth: int
+    contact_peak_carrier_deg: float
+    contact_safety: float
+    #: The worst tooth's root geometry: root_chord_mm (sFn), lever_mm (hFe),
+    #: fillet_radius_mm (ρF), load_angle_deg (αFen), form_factor (YF),
+    #: stress_correction (YS), stress_per_newton (MPa/N on 1 mm of face), loaded flank.
+    worst_form: dict[str, Any]
+    #: The least and largest form factor YF over the gear's teeth.
+    form_factor_range: tuple[float, float]
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any]) -> GearStrength:
+        return GearStrength(
+            **{
+                **raw,
+                "bending_mpa": np.asarray(raw["bending_mpa"], dtype=float),
+                "contact_mpa": np.asarray(raw["contact_mpa"], dtype=float),
+                "form_factor_range": tuple(raw["form_factor_range"]),
+            }
+        )
+
+
+@dataclass(frozen=True)
+class Strength:
+    """The train's tooth strength at working speed, of the scene's material."""
+
+    material: str
+    face_width_mm: float
+    #: Application factor KA on the mesh forces.
+    application_factor: float
+    #: σFE and σHlim (MPa).
+    bending_limit_mpa: float
+    contact_limit_mpa: float
+    gears: list[GearStrength]
+    #: The least safety factors over the gears.
+    bending_safety_min: float
+    contact_safety_min: float
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any]) -> Strength:
+        return Strength(**{**raw, "gears": [GearStrength._from_raw(g) for g in raw["gears"]]})
+
+    def to_pandas(self) -> pandas.DataFrame:
+        """One row per gear: its worst stresses, where, and its safety factors."""
+        rows = []
+        for g in self.gears:
+            row = {k: v for k, v in dataclasses.asdict(g).items() if k not in ("bending_mpa", "contact_mpa", "worst_form")}
+            row["form_factor_least"], row["form_factor_largest"] = row.pop("form_factor_range")
+            rows.append(row)
+        return _pandas().DataFrame(rows)
+
+
+@dataclass(frozen=True)
 class Dynamics:
     """The train at its working speed over one carrier turn (`noncirc dynamics`,
     docs/dynamics.md). Arrays run over `carrier_deg`; vectors are (angles, 2) arrays of
@@ -769,6 +842,10 @@ class Dynamics:
     shaking_moment_nm: np.ndarray
     #: The cycle's extremes, as `noncirc dynamics` prints them (units in the names).
     summary: dict[str, Any]
+    #: The teeth's stresses and safety factors; None when the teeth cannot be cut
+    #: (`strength_unavailable` says why).
+    strength: Optional[Strength]
+    strength_unavailable: Optional[str]
     #: Everything the CLI's JSON holds (the joints' motion too).
     report: dict[str, Any]
 
@@ -797,6 +874,8 @@ class Dynamics:
             shaking_force_n=a("shaking_force_n"),
             shaking_moment_nm=a("shaking_moment_nm"),
             summary=raw["summary"],
+            strength=None if raw["strength"] is None else Strength._from_raw(raw["strength"]),
+            strength_unavailable=raw.get("strength_unavailable"),
             report=raw,
         )
 

@@ -155,3 +155,41 @@ def test_a_bad_body_is_refused_by_name():
     assert done.returncode == 2 and "dynamics.gear_density_kg_m3" in done.stderr, done.stderr
     done = subprocess.run([str(BIN), "dynamics", "ellipse-gear"], capture_output=True, text=True)
     assert done.returncode == 2 and "three_arm" in done.stderr, done.stderr
+
+
+def test_the_strength_is_typed_and_the_cli_s():
+    import noncirc
+
+    shaper = 'gear.teeth.cutter={kind="shaper",teeth=100}'
+    scene = noncirc.Scene.builtin("two-arm").with_set("gear.teeth.cutter", {"kind": "shaper", "teeth": 100})
+    d = noncirc.dynamics(scene)
+    done = subprocess.run([str(BIN), "dynamics", "two-arm", "--set", shaper, "--format", "json"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    cli = json.loads(done.stdout)["strength"]
+    s = d.strength
+    assert isinstance(s, noncirc.Strength) and d.strength_unavailable is None
+    assert [g.name for g in s.gears] == ["sun", "intermediate", "planet"]
+    for g, raw in zip(s.gears, cli["gears"]):
+        assert isinstance(g, noncirc.GearStrength)
+        assert np.array_equal(g.bending_mpa, raw["bending_mpa"])
+        # The peak is the cycle's largest, and the safety factor the limit over it.
+        assert g.bending_peak_mpa == np.max(g.bending_mpa)
+        assert g.contact_safety == pytest.approx(s.contact_limit_mpa / np.max(g.contact_mpa), rel=1e-12)
+    assert s.bending_safety_min == min(g.bending_safety for g in s.gears)
+    table = s.to_pandas()
+    assert list(table["name"]) == ["sun", "intermediate", "planet"]
+    assert {"bending_safety", "contact_safety", "form_factor_least", "form_factor_largest"} <= set(table.columns)
+    # The paper's teeth cannot be cut: no strength, and why.
+    p = noncirc.dynamics(noncirc.Scene.builtin("paper"))
+    assert p.strength is None and "concave" in p.strength_unavailable
+
+
+def test_a_material_without_a_name_or_an_allowable_stress_is_refused():
+    import noncirc
+
+    with pytest.raises(noncirc.NoncircError, match="dynamics.material"):
+        noncirc.Scene.builtin("paper").with_set("dynamics.material", "")
+    with pytest.raises(noncirc.NoncircError, match="dynamics.bending_limit_mpa"):
+        noncirc.Scene.builtin("paper").with_set("dynamics.bending_limit_mpa", 0)
+    done = subprocess.run([str(BIN), "dynamics", "--set", "dynamics.contact_limit_mpa=-1"], capture_output=True, text=True)
+    assert done.returncode == 2 and "dynamics.contact_limit_mpa" in done.stderr, done.stderr

@@ -179,16 +179,16 @@ pub(crate) fn moving_box(args: SceneArgs) -> Result<(), Box<dyn Error>> {
 /// The train at working speed.
 pub(crate) fn dynamics(args: SceneArgs) -> Result<(), Box<dyn Error>> {
     let scene = load_scene_with(args.input.scene.as_deref(), &args.input.set)?;
-    let d = noncirc::dynamics::dynamics_of(&scene)?;
+    let r = noncirc::dynamics::report_of(&scene)?;
     if let Some(dir) = &args.plot {
         let arm_counts = noncirc::dynamics::by_arm_count(&scene);
-        for f in noncirc::dynamics::figures(&d, &arm_counts, dir, &args.figures()?)? {
+        for f in noncirc::dynamics::figures(&r.dynamics, &arm_counts, dir, &args.figures()?)? {
             eprintln!("wrote {}", f.display());
         }
     }
     match args.format {
-        Format::Json => out(&json(&d)?)?,
-        Format::Table => out(&noncirc::dynamics::table(&d))?,
+        Format::Json => out(&json(&r)?)?,
+        Format::Table => out(&noncirc::dynamics::report_table(&r))?,
     }
     Ok(())
 }

@@ -425,9 +425,12 @@ fn flank_tangent_at_tip(tip: Vec2, below: Vec2, second: Vec2) -> Vec2 {
     (last * (1.0 / l2)).rotated(crate::angle::unit(extra))
 }
 
-/// For each tooth, the run of outline points on its left and on its right flank: (first
-/// index, count), in the outline's cyclic order.
-fn flank_runs(gear: &ToothedGear, name: &'static str) -> Result<Vec<[Option<(usize, usize)>; 2]>> {
+/// A flank's run of outline points: its first index and its count, in the outline's cyclic
+/// order.
+type Run = (usize, usize);
+
+/// For each tooth, the run of outline points on its left and on its right flank.
+fn flank_runs(gear: &ToothedGear, name: &'static str) -> Result<Vec<[Option<Run>; 2]>> {
     let n = gear.flank_of.len();
     let mut runs = vec![[None; 2]; gear.teeth.len()];
     // Start where no flank is, so that no run wraps past the start.

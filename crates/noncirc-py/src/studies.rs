@@ -44,7 +44,7 @@ pub(crate) fn robustness<'py>(
 #[pyfunction]
 pub(crate) fn dynamics<'py>(py: Python<'py>, scene: &Scene) -> Result<Bound<'py, PyDict>> {
     let s = scene.inner.clone();
-    let d = py.allow_threads(|| noncirc::dynamics::dynamics_of(&s))?;
+    let d = py.allow_threads(|| noncirc::dynamics::report_of(&s))?;
     let value = serde_json::to_value(&d).map_err(internal)?;
     Ok(json_to_py(py, &value)?
         .into_bound(py)
