@@ -5,8 +5,8 @@
 //!
 //! `cargo run --release --example parameter_response -- docs/figures/response`
 
-use noncirc::core::Measure;
 use noncirc::core::{Evaluator, Param, Scene};
+use noncirc::core::{Measure, Measured};
 use noncirc::figures::{save, FigureOptions, LinesFigure, FIGURE_SAMPLES};
 use noncirc::scene_file::load_scene;
 use std::path::PathBuf;
@@ -87,10 +87,10 @@ fn main() -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
             let mut s = scene.clone();
             p.set(&mut s, v);
             let eval = Evaluator::new().evaluate(&s)?;
-            let anatomy = eval.anatomy(&s.agronomy);
+            let on = Measured::new(&eval, &s);
             rows.push(
                 (measures.iter())
-                    .map(|m| m.value(&eval, anatomy.as_ref()).unwrap_or(f64::NAN))
+                    .map(|m| m.value(&on).unwrap_or(f64::NAN))
                     .collect(),
             );
             if i % 4 == 0 {

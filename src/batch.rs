@@ -3,7 +3,9 @@
 //! trajectory outlives its row. The benchmarks time this same code.
 
 use crate::search::map_batch;
-use noncirc_core::{Evaluator, Fitness, Measure, ObjectiveValue, Resolution, Scene, SceneProblem};
+use noncirc_core::{
+    Evaluator, Fitness, Measure, Measured, ObjectiveValue, Resolution, Scene, SceneProblem,
+};
 
 /// One row's objectives and measures (`None` where the scene does not compute one), or
 /// the error that refused the design.
@@ -14,7 +16,6 @@ pub struct BatchRows<'a> {
     problem: &'a SceneProblem,
     resolution: &'a Resolution,
     measures: &'a [Measure],
-    needs_anatomy: bool,
 }
 
 impl<'a> BatchRows<'a> {
@@ -23,12 +24,10 @@ impl<'a> BatchRows<'a> {
         resolution: &'a Resolution,
         measures: &'a [Measure],
     ) -> Self {
-        let needs_anatomy = measures.iter().any(|m| m.needs_anatomy());
         BatchRows {
             problem,
             resolution,
             measures,
-            needs_anatomy,
         }
     }
 
@@ -39,14 +38,8 @@ impl<'a> BatchRows<'a> {
             (self.problem).fitness_at_values(x, evaluator, scratch, self.resolution);
         let outcome = outcome
             .map(|eval| {
-                let anatomy = if self.needs_anatomy {
-                    eval.anatomy(&scratch.agronomy)
-                } else {
-                    None
-                };
-                let values = (self.measures.iter())
-                    .map(|m| m.value(&eval, anatomy.as_ref()))
-                    .collect();
+                let on = Measured::new(&eval, scratch);
+                let values = self.measures.iter().map(|m| m.value(&on)).collect();
                 (eval.objectives, values)
             })
             .map_err(|e| e.to_string());

@@ -12,7 +12,8 @@
 //! and a shape factor (the paths').
 
 use noncirc_core::{
-    anatomy, quantile, Evaluation, Evaluator, Goal, Measure, ObjectiveKind, Scene, SceneKind,
+    anatomy, quantile, Evaluation, Evaluator, Goal, Measure, Measured, ObjectiveKind, Scene,
+    SceneKind,
 };
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -166,8 +167,9 @@ fn speeds_of(scene: &Scene, eval: &Evaluation, measure: Measure) -> Speeds {
         (Some(kin), Some(ev)) => Some(anatomy(kin, &scene.agronomy, ev)),
         _ => None,
     };
-    let value = |m: &str| Measure::parse(m).ok()?.value(eval, anatomy.as_ref());
-    let compared = measure.value(eval, anatomy.as_ref());
+    let on = Measured::with_anatomy(eval, scene, anatomy);
+    let value = |m: &str| Measure::parse(m).ok()?.value(&on);
+    let compared = measure.value(&on);
     let omega = scene.train.carrier_rpm() * TAU / 60.0;
     let gear_overlap_mm = value("gear_overlap_mm");
     Speeds {

@@ -2,9 +2,10 @@
 //! [`noncirc_core::dynamics`]) and its teeth's strength ([`noncirc_core::strength`]), as a
 //! table, JSON and figures (docs/dynamics.md).
 
-use crate::teeth::TeethRun;
 use crate::{Error, Result};
-use noncirc_core::{dynamics, strength, Dynamics, Evaluator, Scene, SceneKind, Strength};
+use noncirc_core::{
+    cut_train, dynamics, strength, Dynamics, Evaluation, Evaluator, Scene, SceneKind, Strength,
+};
 use serde::Serialize;
 use std::fmt::Write;
 
@@ -22,13 +23,16 @@ pub struct DynamicsReport {
 }
 
 /// The dynamics of `scene`'s design and the strength of its teeth, cut as `noncirc teeth`
-/// cuts them (the scene's tooth count, or its module rule's).
+/// cuts them (the scene's tooth count, or its module rule's), as the objectives
+/// `bending_safety` and `contact_safety` compute it ([`noncirc_core::train_strength`]).
 pub fn report_of(scene: &Scene) -> Result<DynamicsReport> {
-    let d = dynamics_of(scene)?;
-    let cut = TeethRun::from_scene(scene, 0.0).and_then(|run| {
-        let pairs: Vec<_> = std::iter::once(run.pair).chain(run.second).collect();
-        Ok(strength(&d, &pairs, &scene.dynamics)?)
-    });
+    let (eval, d) = evaluated_dynamics(scene)?;
+    let cut = eval
+        .kinematics
+        .as_ref()
+        .ok_or_else(|| noncirc_core::Error::Infeasible("no train to cut".into()))
+        .and_then(|kin| cut_train(kin, scene))
+        .and_then(|pairs| strength(&d, &pairs, &scene.dynamics));
     let (strength, strength_unavailable) = match cut {
         Ok(s) => (Some(s), None),
         Err(e) => (None, Some(format!("the teeth cannot be cut: {e}"))),
@@ -42,6 +46,11 @@ pub fn report_of(scene: &Scene) -> Result<DynamicsReport> {
 
 /// The dynamics of `scene`'s design at its resolution and working speed.
 pub fn dynamics_of(scene: &Scene) -> Result<Dynamics> {
+    Ok(evaluated_dynamics(scene)?.1)
+}
+
+/// `scene`'s evaluation (which has a motion) and its dynamics.
+fn evaluated_dynamics(scene: &Scene) -> Result<(Evaluation, Dynamics)> {
     if !matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
         return Err(Error::Input(format!(
             "dynamics needs a three_arm or transplanter scene, not {}",
@@ -54,12 +63,13 @@ pub fn dynamics_of(scene: &Scene) -> Result<Dynamics> {
             "the design has no motion to move the bodies".into(),
         ));
     };
-    Ok(dynamics(
+    let d = dynamics(
         kin,
         events,
         &scene.dynamics,
         scene.gear.teeth.pressure_angle_deg,
-    )?)
+    )?;
+    Ok((eval, d))
 }
 
 /// The same design with two, three and four arm sets at the scene's picking rate (the

@@ -3,8 +3,8 @@
 //! person or a program reads.
 
 use noncirc_core::{
-    analyse, saltelli_points, sobol_indices, Evaluator, Measure, Scene, SceneKind, SceneProblem,
-    SobolIndices, ToleranceReport, Tolerances, REPORTED_QUANTILES,
+    analyse, saltelli_points, sobol_indices, Evaluator, Measure, Measured, Scene, SceneKind,
+    SceneProblem, SobolIndices, ToleranceReport, Tolerances, REPORTED_QUANTILES,
 };
 use serde::Serialize;
 
@@ -284,16 +284,15 @@ pub fn sensitivity(
         })
         .collect();
     let measures = outputs(scene);
-    let anatomy = measures.iter().any(|m| m.needs_anatomy());
     let pool = thread_pool(threads)?;
     let planned = Evaluator::planned(&scene.resolution);
     let y: Vec<Vec<f64>> = map_batch(&pool, &planned, scene, &points, |(ev, s), u| {
         problem.apply(u, s);
         match ev.evaluate(s) {
             Ok(e) => {
-                let a = anatomy.then(|| e.anatomy(&s.agronomy)).flatten();
+                let on = Measured::new(&e, s);
                 (measures.iter())
-                    .map(|m| m.value(&e, a.as_ref()).unwrap_or(f64::NAN))
+                    .map(|m| m.value(&on).unwrap_or(f64::NAN))
                     .collect()
             }
             Err(_) => vec![f64::NAN; measures.len()],

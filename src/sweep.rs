@@ -1,7 +1,7 @@
 //! Parameter sweeps: every objective's response, and the chosen measures', to one
 //! parameter (three-arm paper §4.2), evaluated in parallel.
 
-use noncirc_core::{Evaluator, Measure, Scene};
+use noncirc_core::{Evaluator, Measure, Measured, Scene};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -33,7 +33,6 @@ pub fn sweep(
     steps: usize,
     measures: &[Measure],
 ) -> Result<Vec<SweepRow>> {
-    let anatomy_needed = measures.iter().any(|m| m.needs_anatomy());
     let p = noncirc_core::Param::parse(param, scene)?;
     if !(2..=MAX_SWEEP_STEPS).contains(&steps) || !from.is_finite() || !to.is_finite() {
         return Err(Error::Input(format!(
@@ -58,9 +57,9 @@ pub fn sweep(
                         .map(|o| (o.kind.name().to_string(), o.value))
                         .collect(),
                     measures: {
-                        let anatomy = anatomy_needed.then(|| e.anatomy(&s.agronomy)).flatten();
+                        let on = Measured::new(&e, &s);
                         (measures.iter())
-                            .filter_map(|m| Some((m.name(), m.value(&e, anatomy.as_ref())?)))
+                            .filter_map(|m| Some((m.name(), m.value(&on)?)))
                             .collect()
                     },
                     violation: Some(e.total_violation()),

@@ -1,9 +1,14 @@
 //! Dynamics at working speed (`noncirc_core::dynamics`): the Newton–Euler torque equals
 //! the energy balance's for every arm count and both trains; closed forms (a constant
 //! ratio needs no torque, an eccentric mass shakes as the textbook says); the pitch points
-//! the forces pass through are the pitch curves' contacts.
+//! the forces pass through are the pitch curves' contacts. Tooth strength: circular gears
+//! carry ISO 6336-2's contact stress; the safety factors as objectives, measures and goals
+//! are the dynamics report's; a design whose teeth cannot be cut says why.
 
-use noncirc_core::{dynamics, events, CurveSpec, Dynamics, ObjectiveKind, Scene};
+use noncirc_core::{
+    dynamics, events, CurveSpec, Dynamics, Evaluator, Goal, Measure, MeasureCost, Measured,
+    ObjectiveKind, Scene,
+};
 
 mod common;
 use common::{paper, two_pair_design as two_pairs};
@@ -238,4 +243,66 @@ fn a_design_whose_teeth_cannot_be_cut_reports_why_it_has_no_strength() {
     assert!(r.strength.is_none());
     let why = r.strength_unavailable.unwrap();
     assert!(why.contains("concave") && why.contains("rack"), "{why}");
+}
+
+#[test]
+fn the_strength_objectives_measures_and_goals_read_the_dynamics_report() {
+    // The two-arm scene's design, cut by a shaper (a rack cannot cut its concave arcs).
+    let mut scene = noncirc::scene_file::load_scene(Some("two-arm")).unwrap();
+    scene.gear.teeth.cutter = noncirc_core::Cutter::Shaper { teeth: 100 };
+    let report = noncirc::dynamics::report_of(&scene).unwrap();
+    let strength = report.strength.as_ref().unwrap();
+    // By default no objective asks for the strength, and none is computed.
+    let mut ev = Evaluator::new();
+    let plain = ev.evaluate(&scene).unwrap();
+    assert!(plain.strength.is_none() && ev.counts().strength == 0);
+    // Listed, the safety factors are objectives against their bounds.
+    scene
+        .objectives
+        .extend([ObjectiveKind::BendingSafety, ObjectiveKind::ContactSafety]);
+    scene.bounds.contact_safety_min = strength.contact_safety_min + 0.5;
+    let mut ev = Evaluator::new();
+    let eval = ev.evaluate(&scene).unwrap();
+    assert_eq!(ev.counts().strength, 1);
+    let bending = eval.objective(ObjectiveKind::BendingSafety).unwrap();
+    let contact = eval.objective(ObjectiveKind::ContactSafety).unwrap();
+    assert_eq!(bending.value, strength.bending_safety_min);
+    assert_eq!(contact.value, strength.contact_safety_min);
+    assert_eq!(bending.violation, 0.0);
+    assert!((contact.violation - 0.5).abs() < 1e-12, "{contact:?}");
+    // As measures and goals, the same numbers; the dynamics' measures are its summary's.
+    let on = Measured::new(&eval, &scene);
+    let value = |name: &str| Measure::parse(name).unwrap().value(&on).unwrap();
+    assert_eq!(value("bending_safety"), strength.bending_safety_min);
+    let s = &report.dynamics.summary;
+    assert_eq!(value("input_torque_peak_nm"), s.torque_peak_nm);
+    assert_eq!(value("input_torque_rms_nm"), s.torque_rms_nm);
+    assert_eq!(value("sun_shaft_peak_n"), s.sun_shaft_peak_n);
+    assert_eq!(
+        value("mesh_force_peak_n"),
+        s.mesh_force_peak_n[0].max(s.mesh_force_peak_n[1])
+    );
+    let goal = Goal::parse("min:input_torque_peak_nm").unwrap();
+    let q = goal.quantity(&scene.bounds);
+    assert_eq!((q.name.as_str(), q.unit), ("input_torque_peak_nm", "N·m"));
+    assert_eq!(q.label(), "input torque peak (N·m), minimised");
+    // Without the objective, the measure cuts the teeth itself.
+    let on = Measured::new(&plain, &scene);
+    let measure = Measure::parse("contact_safety").unwrap();
+    assert_eq!(measure.cost(), MeasureCost::Strength);
+    assert_eq!(measure.value(&on), Some(strength.contact_safety_min));
+}
+
+#[test]
+fn a_design_whose_teeth_cannot_be_cut_fails_the_strength_objective_and_says_why() {
+    let mut scene = paper();
+    scene.objectives = vec![ObjectiveKind::PickingAngle, ObjectiveKind::BendingSafety];
+    let eval = Evaluator::new().evaluate(&scene).unwrap();
+    let o = eval.objective(ObjectiveKind::BendingSafety).unwrap();
+    assert_eq!(
+        (o.value, o.violation),
+        (0.0, scene.bounds.bending_safety_min)
+    );
+    assert!(eval.strength.is_none());
+    assert!(eval.strength_unavailable.unwrap().contains("rack"));
 }

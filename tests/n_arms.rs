@@ -292,7 +292,8 @@ fn four_arm_sets_crowd_the_gearbox_where_two_and_three_have_room() {
     let overlap = |scene: &Scene| {
         let eval = Evaluator::new().evaluate(scene).unwrap();
         let m = noncirc::core::Measure::parse("gear_overlap_mm").unwrap();
-        m.value(&eval, None).unwrap()
+        m.value(&noncirc::core::Measured::new(&eval, scene))
+            .unwrap()
     };
     // The paper's gears: adjacent intermediates 2a·sin 45° = 120 mm apart with four sets,
     // each reaching a − r_min = 73 mm.

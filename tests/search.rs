@@ -466,7 +466,7 @@ fn measures_are_search_goals() {
 #[test]
 fn sweeps_report_any_measure() {
     use noncirc::core::Measure;
-    use noncirc::core::{Evaluator, Param};
+    use noncirc::core::{Evaluator, Measured, Param};
     let scene = load_scene(Some("paper")).unwrap();
     let measures = [
         Measure::parse("loop_height_mm").unwrap(),
@@ -481,10 +481,10 @@ fn sweeps_report_any_measure() {
             .unwrap()
             .set(&mut s, row.value);
         let eval = Evaluator::new().evaluate(&s).unwrap();
-        let anatomy = eval.anatomy(&s.agronomy);
+        let on = Measured::new(&eval, &s);
         for m in measures {
             // A measure the design lacks (no runner-up extreme) is absent in both.
-            let expected = m.value(&eval, anatomy.as_ref());
+            let expected = m.value(&on);
             assert_eq!(
                 row.measures.get(&m.name()).copied(),
                 expected,

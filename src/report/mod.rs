@@ -1,11 +1,11 @@
 //! Reports: what the CLI prints, as serialisable structs and readable tables.
 
 use noncirc_core::GearSummary;
-use noncirc_core::Measure;
-use noncirc_core::{Anatomy, SectionMeasures};
+use noncirc_core::SectionMeasures;
 use noncirc_core::{BoxReport, FitReport};
 use noncirc_core::{Evaluation, Evaluator, GearPair, ObjectiveValue, Result, Scene, SceneKind};
 use noncirc_core::{Events, PickingCheck};
+use noncirc_core::{Measure, MeasureCost, Measured};
 use serde::Serialize;
 
 mod tables;
@@ -226,12 +226,14 @@ pub struct MeasureRow {
     pub description: String,
 }
 
-/// Every measure an evaluation has, in `Measure::all()` order.
-pub fn measure_rows(eval: &Evaluation, anatomy: Option<&Anatomy>) -> Vec<MeasureRow> {
+/// Every measure an evaluation has, in `Measure::all()` order: the teeth's strength only
+/// where the scene's objectives computed it (cutting the teeth costs tenths of a second).
+pub fn measure_rows(on: &Measured) -> Vec<MeasureRow> {
     Measure::all()
         .into_iter()
+        .filter(|m| m.cost() != MeasureCost::Strength || on.eval.strength.is_some())
         .filter_map(|m| {
-            m.value(eval, anatomy).map(|value| MeasureRow {
+            m.value(on).map(|value| MeasureRow {
                 name: m.name(),
                 value,
                 unit: m.unit(),
@@ -362,9 +364,9 @@ impl EvaluationReport {
             total_violation: eval.total_violation(),
             events: (eval.events.as_ref())
                 .map(|e| EventsRow::new(e, eval.kinematics.as_ref().map_or(3, |k| k.arms()))),
-            sections: anatomy.map(|a| a.sections),
+            sections: anatomy.as_ref().map(|a| a.sections),
             objectives: eval.objectives.iter().map(ObjectiveRow::from).collect(),
-            measures: measure_rows(eval, anatomy.as_ref()),
+            measures: measure_rows(&Measured::with_anatomy(eval, scene, anatomy)),
             gear: eval.gear,
             moving_box: eval.moving_box,
             fit: eval
@@ -567,7 +569,7 @@ mod tests {
 #[cfg(test)]
 mod names {
     use super::EvaluationReport;
-    use noncirc_core::{Evaluator, Measure, Scalar, Scene};
+    use noncirc_core::{Evaluator, Measure, Measured, Scalar, Scene};
 
     /// The report's events are written by the measures' names where they report the
     /// same number: a measure is read by one name wherever it is printed.
@@ -585,7 +587,7 @@ mod names {
             Scalar::PlantingBranchGap,
         ] {
             let m = Measure::Scalar(s);
-            let value = m.value(&eval, None).unwrap();
+            let value = m.value(&Measured::new(&eval, &scene)).unwrap();
             let printed = events[m.name()].as_f64();
             assert_eq!(printed, Some(value), "{}", m.name());
             for arm in events["arms"].as_array().unwrap() {

@@ -17,6 +17,7 @@ use crate::planetary::Kinematics;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use crate::scene::{Scene, SceneKind};
+use crate::strength::{train_strength, Strength};
 use crate::target::{PreparedTarget, Target};
 use crate::teeth::{TeethReport, ToothedPair};
 use serde::Serialize;
@@ -30,12 +31,15 @@ pub struct StageCounts {
     pub kinematics: u64,
     pub events: u64,
     /// Per objective, in `ObjectiveKind::ALL` order.
-    pub objectives: [u64; 9],
+    pub objectives: [u64; 11],
     pub moving_box: u64,
     /// Toothed pairs cut and checked (the module rule `teeth`).
     pub teeth: u64,
     /// Fits to the scene's target measured.
     pub fit: u64,
+    /// Strength checks (dynamics at working speed, teeth cut, stresses) run for the
+    /// objectives `bending_safety` and `contact_safety`.
+    pub strength: u64,
 }
 
 /// A gear pair's summary: the (first) pair's geometry and the train's module.
@@ -91,6 +95,10 @@ pub struct Evaluation {
     pub second_teeth: Option<TeethReport>,
     /// The fit to the scene's target, when it has one.
     pub fit: Option<FitReport>,
+    /// The teeth's strength at working speed, when an objective asks for it; or why there
+    /// is none (the teeth cannot be cut, the dynamics cannot be solved).
+    pub strength: Option<Strength>,
+    pub strength_unavailable: Option<String>,
 }
 
 impl Evaluation {
@@ -109,6 +117,8 @@ impl Evaluation {
             teeth: None,
             second_teeth: None,
             fit: None,
+            strength: None,
+            strength_unavailable: None,
         }
     }
 
@@ -301,6 +311,13 @@ impl Evaluator {
                     .map_err(|e| Error::SecondPair(Box::new(e)))?;
             }
         }
+        if let (true, Some(ev)) = (scene.objectives.iter().any(|o| o.needs_strength()), &ev) {
+            self.counts.strength += 1;
+            match train_strength(&kin, ev, scene) {
+                Ok((_, s)) => out.strength = Some(s),
+                Err(e) => out.strength_unavailable = Some(e.to_string()),
+            }
+        }
         for &kind in &scene.objectives {
             self.counts.objectives[kind as usize] += 1;
             let value = objective_value(
@@ -309,6 +326,7 @@ impl Evaluator {
                 ev.as_ref(),
                 &scene.agronomy,
                 gear_module.as_ref(),
+                out.strength.as_ref(),
             );
             let mut value = ObjectiveValue::new(kind, value, &scene.bounds);
             if kind == ObjectiveKind::Module {

@@ -25,7 +25,7 @@ pub struct GoalQuantity {
 impl GoalQuantity {
     /// As a person reads it on an axis: `module (mm), maximised`.
     pub fn label(&self) -> String {
-        let token = format!("_{}", self.unit.replace('/', "_"));
+        let token = format!("_{}", unit_token(self.unit));
         let bare = self.name.strip_suffix(&token).unwrap_or(&self.name);
         let unit = if self.unit.is_empty() {
             String::new()
@@ -43,12 +43,17 @@ impl GoalQuantity {
 
 /// `name` ending in `unit` once: (`module`, `mm`) gives `module_mm`.
 fn with_unit(name: &str, unit: &str) -> String {
-    let token = unit.replace('/', "_");
+    let token = unit_token(unit);
     if token.is_empty() || name.ends_with(&format!("_{token}")) {
         name.to_string()
     } else {
         format!("{name}_{token}")
     }
+}
+
+/// A unit as names end in it: `m/s` → `m_s`, `N·m` → `nm`, `N` → `n`.
+pub(crate) fn unit_token(unit: &str) -> String {
+    unit.replace('/', "_").replace('·', "").to_lowercase()
 }
 
 /// A goal to minimise once the constraints are met.
@@ -296,8 +301,12 @@ mod tests {
         for measure in Measure::all() {
             for maximise in [false, true] {
                 let q = Goal::Measure { measure, maximise }.quantity(&bounds);
-                let token = measure.unit().replace('/', "_");
-                assert!(q.name.ends_with(&format!("_{token}")), "{}", q.name);
+                let token = unit_token(measure.unit());
+                assert!(
+                    token.is_empty() || q.name.ends_with(&format!("_{token}")),
+                    "{}",
+                    q.name
+                );
                 assert!(
                     !q.name.ends_with(&format!("_{token}_{token}")),
                     "{}",

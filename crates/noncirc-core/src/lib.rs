@@ -75,7 +75,8 @@ pub use curve::{
 pub use dynamics_spec::DynamicsSpec;
 pub use goal::{Goal, GoalQuantity, INVALID_CV};
 pub use measure::{
-    FitMeasure, Measure, MeasureCost, PoseQuantity, Scalar, Section, SectionQuantity,
+    DynamicsQuantity, FitMeasure, Measure, MeasureCost, PoseQuantity, Scalar, Section,
+    SectionQuantity,
 };
 pub use moving_box::BoxSpec;
 pub use objective_kind::{scale, Bounds, ObjectiveKind};
@@ -94,10 +95,13 @@ pub use events::{attitude_deg, events, Event, Events, PickingCheck};
 pub use gear::{
     solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, Rotation, SampleGrid,
 };
+pub use measure_value::Measured;
 pub use moving_box::{box_curves, eccentricity_for_ratio, evaluate_box, BoxCurves, BoxReport};
 pub use objectives::{advance_per_rad, evaluate_all, travel_sign, ObjectiveValue};
 pub use planetary::{ArmState, Kinematics, PitchContact};
-pub use strength::{strength, tooth_forms, GearStrength, Strength, ToothForm};
+pub use strength::{
+    cut_train, strength, tooth_forms, train_strength, GearStrength, Strength, ToothForm,
+};
 pub use teeth::{
     segment_distance, Cutter, Frame, GearTeethReport, MateRoots, Member, MeshReport, PairTrack,
     Side, TeethAccuracy, TeethReport, Tooth, ToothSpec, ToothedGear, ToothedPair, Undercut,

@@ -1,6 +1,6 @@
 //! Measures: every named number noncirc reports about a design, with its unit. The
-//! objectives' values, the events, the trajectory's sections (the anatomy) and the
-//! moving box's travel. `sweep --measure`, the search goals `min:NAME`/`max:NAME` and
+//! objectives' values, the events, the trajectory's sections (the anatomy), the
+//! moving box's travel and the dynamics at working speed. `sweep --measure`, the search goals `min:NAME`/`max:NAME` and
 //! Python read them by name.
 
 use crate::error::{Error, Result};
@@ -172,6 +172,92 @@ impl Scalar {
     }
 }
 
+/// A quantity of the dynamics at working speed (`noncirc dynamics`, docs/dynamics.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DynamicsQuantity {
+    TorquePeak,
+    TorqueRms,
+    TorqueFluctuation,
+    MeshForcePeak,
+    IntermediateAxlePeak,
+    PlanetAxlePeak,
+    SunShaftPeak,
+    CarrierBearingPeak,
+    ShakingForcePeak,
+    ShakingMomentPeak,
+}
+
+impl DynamicsQuantity {
+    const ALL: [DynamicsQuantity; 10] = [
+        DynamicsQuantity::TorquePeak,
+        DynamicsQuantity::TorqueRms,
+        DynamicsQuantity::TorqueFluctuation,
+        DynamicsQuantity::MeshForcePeak,
+        DynamicsQuantity::IntermediateAxlePeak,
+        DynamicsQuantity::PlanetAxlePeak,
+        DynamicsQuantity::SunShaftPeak,
+        DynamicsQuantity::CarrierBearingPeak,
+        DynamicsQuantity::ShakingForcePeak,
+        DynamicsQuantity::ShakingMomentPeak,
+    ];
+
+    /// Name (with its unit), unit and description.
+    fn describe(self) -> (&'static str, &'static str, &'static str) {
+        match self {
+            DynamicsQuantity::TorquePeak => (
+                "input_torque_peak_nm",
+                "N·m",
+                "largest |torque| driving the carrier over a turn at working speed",
+            ),
+            DynamicsQuantity::TorqueRms => (
+                "input_torque_rms_nm",
+                "N·m",
+                "RMS of the torque driving the carrier over a turn",
+            ),
+            DynamicsQuantity::TorqueFluctuation => (
+                "input_torque_fluctuation",
+                "",
+                "(largest − least input torque) / mean (none where the mean is below 1 % of the RMS)",
+            ),
+            DynamicsQuantity::MeshForcePeak => (
+                "mesh_force_peak_n",
+                "N",
+                "largest normal force at either mesh of an arm set",
+            ),
+            DynamicsQuantity::IntermediateAxlePeak => (
+                "intermediate_axle_peak_n",
+                "N",
+                "largest force on an intermediate's axle",
+            ),
+            DynamicsQuantity::PlanetAxlePeak => (
+                "planet_axle_peak_n",
+                "N",
+                "largest force on a planet's axle",
+            ),
+            DynamicsQuantity::SunShaftPeak => (
+                "sun_shaft_peak_n",
+                "N",
+                "largest force of all arm sets on the sun's shaft",
+            ),
+            DynamicsQuantity::CarrierBearingPeak => (
+                "carrier_bearing_peak_n",
+                "N",
+                "largest force on the carrier's bearing, its weight included",
+            ),
+            DynamicsQuantity::ShakingForcePeak => (
+                "shaking_force_peak_n",
+                "N",
+                "largest inertial force the gearbox puts on the frame",
+            ),
+            DynamicsQuantity::ShakingMomentPeak => (
+                "shaking_moment_peak_nm",
+                "N·m",
+                "largest inertial moment the gearbox puts on the frame",
+            ),
+        }
+    }
+}
+
 /// A quantity of a key pose's fit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PoseQuantity {
@@ -267,6 +353,13 @@ pub enum MeasureCost {
     /// Read from the fit to the scene's target, which an evaluation computes when the
     /// scene has one (about a third of an evaluation's time); none without.
     Target,
+    /// Needs the dynamics at working speed (`dynamics.samples_per_turn` carrier angles):
+    /// about ten evaluations' time at 720.
+    Dynamics,
+    /// Needs the teeth cut and their stresses (the objectives `bending_safety`,
+    /// `contact_safety`): tenths of a second a design, unless the scene's objectives
+    /// already computed them.
+    Strength,
 }
 
 /// A named measure.
@@ -276,11 +369,12 @@ pub enum Measure {
     Section(Section, SectionQuantity),
     Scalar(Scalar),
     Fit(FitMeasure),
+    Dynamics(DynamicsQuantity),
 }
 
 impl Measure {
     /// Every measure, objectives first, then the events and shape, then the sections, then
-    /// the fit to a target.
+    /// the fit to a target, then the dynamics.
     pub fn all() -> Vec<Measure> {
         let objectives = ObjectiveKind::ALL.iter().map(|&k| Measure::Objective(k));
         let scalars = Scalar::ALL.iter().map(|&s| Measure::Scalar(s));
@@ -290,10 +384,12 @@ impl Measure {
                 .map(move |&q| Measure::Section(s, q))
         });
         let fits = FitMeasure::all().map(Measure::Fit);
+        let dynamics = DynamicsQuantity::ALL.iter().map(|&q| Measure::Dynamics(q));
         objectives
             .chain(scalars)
             .chain(sections)
             .chain(fits)
+            .chain(dynamics)
             .collect()
     }
 
@@ -303,6 +399,7 @@ impl Measure {
             Measure::Objective(k) => k.name().to_string(),
             Measure::Scalar(s) => s.describe().0.to_string(),
             Measure::Fit(m) => m.describe().0,
+            Measure::Dynamics(q) => q.describe().0.to_string(),
             Measure::Section(s, q) => format!(
                 "{}_{}",
                 s.name(),
@@ -316,10 +413,11 @@ impl Measure {
         }
     }
 
-    /// Unit: `mm`, `deg` or `m/s`.
+    /// Unit: `mm`, `deg`, `m/s`, `N`, `N·m`, or "" for a ratio.
     pub fn unit(self) -> &'static str {
         match self {
             Measure::Objective(k) => k.unit(),
+            Measure::Dynamics(q) => q.describe().1,
             Measure::Section(_, SectionQuantity::Span) => "deg",
             Measure::Section(..) => "mm",
             Measure::Scalar(
@@ -343,6 +441,7 @@ impl Measure {
             Measure::Objective(k) => format!("objective: {}", k.label()),
             Measure::Scalar(s) => s.describe().1.to_string(),
             Measure::Fit(m) => format!("fit: {}", m.describe().1),
+            Measure::Dynamics(q) => format!("dynamics: {}", q.describe().2),
             Measure::Section(s, q) => format!(
                 "{} section: {}",
                 s.label(),
@@ -383,6 +482,8 @@ impl Measure {
             ) => MeasureCost::Anatomy,
             Measure::Scalar(Scalar::GearOverlap) => MeasureCost::Gearbox,
             Measure::Fit(_) => MeasureCost::Target,
+            Measure::Dynamics(_) => MeasureCost::Dynamics,
+            Measure::Objective(k) if k.needs_strength() => MeasureCost::Strength,
             _ => MeasureCost::Read,
         }
     }

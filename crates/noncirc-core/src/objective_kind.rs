@@ -26,6 +26,11 @@ pub struct Bounds {
     pub module_min_mm: f64,
     /// Least margin of the picking conditions (mm): how far the worst of them holds.
     pub picking_admissible_min_mm: f64,
+    /// Least bending safety factor `SFmin` of the teeth at working speed (ISO 6336-1's
+    /// usual minimum: 1.4).
+    pub bending_safety_min: f64,
+    /// Least contact (pitting) safety factor `SHmin` (ISO 6336-1's usual minimum: 1.0).
+    pub contact_safety_min: f64,
 }
 
 impl Bounds {
@@ -62,11 +67,15 @@ impl Default for Bounds {
             trajectory_height_min_mm: 260.0,
             module_min_mm: 2.5,
             picking_admissible_min_mm: 0.0,
+            bending_safety_min: 1.4,
+            contact_safety_min: 1.0,
         }
     }
 }
 
-/// The paper's eight objectives in its order, then whether a machine can pick at all.
+/// The paper's eight objectives in its order, then whether a machine can pick at all, then
+/// the teeth's strength at working speed (the strength check that can replace the module
+/// proxy; not among a scene's default objectives: it needs the dynamics and the cut teeth).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, PartialOrd, Ord)]
 #[serde(rename_all = "snake_case")]
 pub enum ObjectiveKind {
@@ -79,11 +88,29 @@ pub enum ObjectiveKind {
     TrajectoryHeight,
     Module,
     PickingAdmissible,
+    BendingSafety,
+    ContactSafety,
 }
 
 impl ObjectiveKind {
-    /// All nine, in order.
-    pub const ALL: [ObjectiveKind; 9] = [
+    /// All eleven, in order.
+    pub const ALL: [ObjectiveKind; 11] = [
+        ObjectiveKind::Interference,
+        ObjectiveKind::PickingAngle,
+        ObjectiveKind::PushingAngle,
+        ObjectiveKind::AngleDifference,
+        ObjectiveKind::SeedlingPush,
+        ObjectiveKind::GroundClearance,
+        ObjectiveKind::TrajectoryHeight,
+        ObjectiveKind::Module,
+        ObjectiveKind::PickingAdmissible,
+        ObjectiveKind::BendingSafety,
+        ObjectiveKind::ContactSafety,
+    ];
+
+    /// A scene's objectives by default: the paper's eight and `picking_admissible`, read
+    /// from the kinematics alone.
+    pub const DEFAULT: [ObjectiveKind; 9] = [
         ObjectiveKind::Interference,
         ObjectiveKind::PickingAngle,
         ObjectiveKind::PushingAngle,
@@ -107,6 +134,8 @@ impl ObjectiveKind {
             ObjectiveKind::TrajectoryHeight => "trajectory_height",
             ObjectiveKind::Module => "module",
             ObjectiveKind::PickingAdmissible => "picking_admissible",
+            ObjectiveKind::BendingSafety => "bending_safety",
+            ObjectiveKind::ContactSafety => "contact_safety",
         }
     }
 
@@ -122,6 +151,8 @@ impl ObjectiveKind {
             ObjectiveKind::TrajectoryHeight => "trajectory height",
             ObjectiveKind::Module => "gear module",
             ObjectiveKind::PickingAdmissible => "a machine can pick there",
+            ObjectiveKind::BendingSafety => "teeth's least bending safety factor",
+            ObjectiveKind::ContactSafety => "teeth's least contact safety factor",
         }
     }
 
@@ -131,6 +162,7 @@ impl ObjectiveKind {
             ObjectiveKind::PickingAngle
             | ObjectiveKind::PushingAngle
             | ObjectiveKind::AngleDifference => "deg",
+            ObjectiveKind::BendingSafety | ObjectiveKind::ContactSafety => "",
             _ => "mm",
         }
     }
@@ -154,7 +186,18 @@ impl ObjectiveKind {
             ObjectiveKind::TrajectoryHeight => (Some(b.trajectory_height_min_mm), None),
             ObjectiveKind::Module => (Some(b.module_min_mm), None),
             ObjectiveKind::PickingAdmissible => (Some(b.picking_admissible_min_mm), None),
+            ObjectiveKind::BendingSafety => (Some(b.bending_safety_min), None),
+            ObjectiveKind::ContactSafety => (Some(b.contact_safety_min), None),
         }
+    }
+
+    /// Whether this objective is the teeth's strength (it needs the dynamics at working
+    /// speed and the cut teeth).
+    pub fn needs_strength(self) -> bool {
+        matches!(
+            self,
+            ObjectiveKind::BendingSafety | ObjectiveKind::ContactSafety
+        )
     }
 
     /// Whether this objective needs the picking/planting events.

@@ -7,6 +7,7 @@ use crate::events::{events, housing_radius, Events};
 use crate::gear::{ModuleReport, ModuleRule};
 use crate::objective_kind::{Bounds, ObjectiveKind};
 use crate::planetary::Kinematics;
+use crate::strength::Strength;
 use crate::vec2::Vec2;
 use serde::Serialize;
 
@@ -259,14 +260,17 @@ pub(crate) fn ground_clearance(kin: &Kinematics, agro: &Agronomy, ev: &Events) -
     -housing - ground
 }
 
-/// One objective's value for a moved mechanism. `ev` must be given when `needs_events`, and
-/// `gear_module` (from [`module`], computed once per design) for the module objective.
+/// One objective's value for a moved mechanism. `ev` must be given when `needs_events`,
+/// `gear_module` (from [`module`], computed once per design) for the module objective, and
+/// the teeth's `strength` for the safety factors (`None`: the teeth cannot be cut, and
+/// their safety factor is 0).
 pub(crate) fn objective_value(
     kind: ObjectiveKind,
     kin: &Kinematics,
     ev: Option<&Events>,
     agro: &Agronomy,
     gear_module: Option<&ModuleReport>,
+    strength: Option<&Strength>,
 ) -> f64 {
     let ev = || ev.expect("events are located before the objectives that need them");
     match kind {
@@ -283,10 +287,13 @@ pub(crate) fn objective_value(
                 .expect("the module is computed before the objective that needs it")
                 .module_max_mm
         }
+        ObjectiveKind::BendingSafety => strength.map_or(0.0, |s| s.bending_safety_min),
+        ObjectiveKind::ContactSafety => strength.map_or(0.0, |s| s.contact_safety_min),
     }
 }
 
-/// Every objective with its value, in the paper's order, and the events.
+/// Every default objective ([`ObjectiveKind::DEFAULT`]) with its value, in the paper's
+/// order, and the events.
 pub fn evaluate_all(
     kin: &Kinematics,
     agro: &Agronomy,
@@ -295,12 +302,12 @@ pub fn evaluate_all(
 ) -> (Vec<ObjectiveValue>, Events) {
     let ev = events(kin, agro);
     let gear_module = kin.module(rule);
-    let values = ObjectiveKind::ALL
+    let values = ObjectiveKind::DEFAULT
         .iter()
         .map(|&kind| {
             ObjectiveValue::new(
                 kind,
-                objective_value(kind, kin, Some(&ev), agro, Some(&gear_module)),
+                objective_value(kind, kin, Some(&ev), agro, Some(&gear_module), None),
                 bounds,
             )
         })

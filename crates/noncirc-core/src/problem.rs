@@ -4,6 +4,7 @@
 use crate::error::{Error, Result};
 use crate::evaluation::{Evaluation, Evaluator};
 use crate::goal::{Goal, GoalQuantity, INVALID_CV};
+use crate::measure_value::Measured;
 use crate::objective_kind::{scale, ObjectiveKind};
 use crate::objectives::ObjectiveValue;
 use crate::params::Param;
@@ -398,12 +399,9 @@ impl Goal {
             Goal::Probability | Goal::MarginQuantile(_) => f64::NAN,
             Goal::Fit => eval.fit.as_ref().map_or(f64::INFINITY, |f| f.cost),
             Goal::Measure { measure, maximise } => {
-                let anatomy = if measure.needs_anatomy() {
-                    eval.anatomy(&scene.agronomy)
-                } else {
-                    None
-                };
-                let v = measure.value(eval, anatomy.as_ref()).unwrap_or(f64::NAN);
+                let v = measure
+                    .value(&Measured::new(eval, scene))
+                    .unwrap_or(f64::NAN);
                 if maximise {
                     -v
                 } else {
@@ -431,7 +429,7 @@ mod tests {
             .evaluate_at(&scene, &scene.resolution)
             .unwrap();
         let b = &scene.bounds;
-        for &k in &ObjectiveKind::ALL {
+        for &k in &ObjectiveKind::DEFAULT {
             let o = eval.objective(k).unwrap();
             let goal = Goal::Margin(k);
             let physical = goal.physical(goal.value(&eval, &scene), b);

@@ -152,7 +152,7 @@ impl Default for SearchSpec {
 }
 
 fn all_objectives() -> Vec<ObjectiveKind> {
-    ObjectiveKind::ALL.to_vec()
+    ObjectiveKind::DEFAULT.to_vec()
 }
 
 /// A scene: the design, what is asked of it and at which resolution.

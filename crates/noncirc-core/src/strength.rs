@@ -20,9 +20,12 @@
 //! the face is loaded evenly); the life and size factors are 1 (endurance). ISO 6336-3's
 //! `YS` is fitted for `1 ≤ qs < 8`; `qs` is held in that range.
 
-use crate::dynamics::Dynamics;
+use crate::dynamics::{dynamics, Dynamics};
 use crate::dynamics_spec::DynamicsSpec;
 use crate::error::{Error, Result};
+use crate::events::Events;
+use crate::planetary::Kinematics;
+use crate::scene::Scene;
 use crate::teeth::{Member, PairTrack, Side, ToothedGear, ToothedPair};
 use crate::vec2::Vec2;
 use serde::Serialize;
@@ -95,6 +98,63 @@ pub struct Strength {
     /// The least safety factors over the gears.
     pub bending_safety_min: f64,
     pub contact_safety_min: f64,
+}
+
+/// The gears of `scene`'s train `kin` cut with the scene's tooth count
+/// (`gear.module.teeth`, or the module rule's, as `noncirc teeth` cuts them): the sun's
+/// pair, and layer B's in the train with two pairs.
+pub fn cut_train(kin: &Kinematics, scene: &Scene) -> Result<Vec<ToothedPair>> {
+    let rule = &scene.gear.module;
+    let teeth = match rule.teeth {
+        Some(z) => z,
+        None => match kin.module(rule).teeth {
+            0 => {
+                return Err(Error::Infeasible(
+                    "no tooth count: the module rule admits no module for this curve; set \
+                     gear.module.teeth"
+                        .into(),
+                ))
+            }
+            z => z,
+        },
+    };
+    let first = kin.pair();
+    let mut pairs = vec![ToothedPair::cut(
+        first.curve(),
+        first.centre_distance(),
+        teeth,
+        &scene.gear.teeth,
+    )?];
+    if let Some(second) = kin.second_pair() {
+        pairs.push(
+            ToothedPair::cut(
+                second.curve(),
+                second.centre_distance(),
+                teeth,
+                &scene.gear.teeth,
+            )
+            .map_err(|e| Error::SecondPair(Box::new(e)))?,
+        );
+    }
+    Ok(pairs)
+}
+
+/// The dynamics of `scene`'s train `kin` (with its `events`) at its working speed and the
+/// strength of its teeth as [`cut_train`] cuts them.
+pub fn train_strength(
+    kin: &Kinematics,
+    events: &Events,
+    scene: &Scene,
+) -> Result<(Dynamics, Strength)> {
+    let d = dynamics(
+        kin,
+        events,
+        &scene.dynamics,
+        scene.gear.teeth.pressure_angle_deg,
+    )?;
+    let pairs = cut_train(kin, scene)?;
+    let s = strength(&d, &pairs, &scene.dynamics)?;
+    Ok((d, s))
 }
 
 /// The strength of the train whose dynamics is `dynamics`, its gears cut as `pairs` (the

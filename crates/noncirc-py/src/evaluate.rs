@@ -5,7 +5,7 @@ use crate::convert::{json_to_py, points, pool, resolution};
 use crate::errors::{internal, invalid, parameter, Result};
 use crate::scene::Scene;
 use noncirc::batch::BatchRows;
-use noncirc::core::{Evaluator, Measure, Scalar, SceneProblem};
+use noncirc::core::{Evaluator, Measure, MeasureCost, Measured, Scalar, SceneProblem};
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
@@ -89,8 +89,13 @@ pub(crate) fn evaluate<'py>(
         out.set_item("sections", sections)?;
     }
     let measures = PyDict::new(py);
+    let on = Measured::with_anatomy(&eval, &s, anatomy);
+    // The teeth's strength only where the objectives computed it (as `noncirc evaluate`).
     for m in Measure::all() {
-        if let Some(v) = m.value(&eval, anatomy.as_ref()) {
+        if m.cost() == MeasureCost::Strength && eval.strength.is_none() {
+            continue;
+        }
+        if let Some(v) = m.value(&on) {
             let d = PyDict::new(py);
             d.set_item("value", v)?;
             d.set_item("unit", m.unit())?;

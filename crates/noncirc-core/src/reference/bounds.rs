@@ -87,4 +87,27 @@ pub(super) const FIELDS: &[Field] = &[
         refused: &["bounds.picking_admissible_min_mm=nan"],
         number: Some(real!(bounds.picking_admissible_min_mm)),
     },
+    Field {
+        key: "bounds.bending_safety_min",
+        symbol: "SFmin",
+        unit: "",
+        range: Range::from_to(0.0, 100.0),
+        meaning: "Least bending safety factor of the teeth at working speed (objective \
+                  `bending_safety`; ISO 6336-1's usual minimum 1.4).",
+        refused: &[
+            "bounds.bending_safety_min=-1",
+            "bounds.bending_safety_min=nan",
+        ],
+        number: Some(real!(bounds.bending_safety_min)),
+    },
+    Field {
+        key: "bounds.contact_safety_min",
+        symbol: "SHmin",
+        unit: "",
+        range: Range::from_to(0.0, 100.0),
+        meaning: "Least contact (pitting) safety factor of the teeth at working speed \
+                  (objective `contact_safety`; ISO 6336-1's usual minimum 1.0).",
+        refused: &["bounds.contact_safety_min=-0.5"],
+        number: Some(real!(bounds.contact_safety_min)),
+    },
 ];
