@@ -1,12 +1,14 @@
 //! The dynamics at working speed beyond the kinematics: the paper's design, all three arm
 //! sets, at 120 carrier angles (the default resolution's nodes) and at the default 720.
+//! The teeth's strength beyond the dynamics: the two-arm scene's design cut by a shaper
+//! (the paper's cannot be cut), the cut and the stresses on the cut teeth apart.
 
 /// The binaries' allocator (the CLI and the Python extension set it too).
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use noncirc::core::{dynamics, events, Scene};
+use noncirc::core::{cut_train, dynamics, events, strength, Cutter, Scene};
 use noncirc::scene_file::load_scene;
 use std::hint::black_box;
 
@@ -23,6 +25,23 @@ fn bench(c: &mut Criterion) {
             b.iter(|| dynamics(black_box(&kin), &ev, spec, 20.0).unwrap())
         });
     }
+    group.finish();
+
+    let mut scene: Scene = load_scene(Some("two-arm")).unwrap();
+    scene.gear.teeth.cutter = Cutter::Shaper { teeth: 100 };
+    let kin = scene.kinematics(&scene.resolution).unwrap();
+    let ev = events(&kin, &scene.agronomy);
+    let d = dynamics(&kin, &ev, &scene.dynamics, 20.0).unwrap();
+    let pairs = cut_train(&kin, &scene).unwrap();
+    let mut group = c.benchmark_group("strength_beyond_dynamics");
+    group.throughput(Throughput::Elements(1));
+    group.sample_size(10);
+    group.bench_function("cut_teeth", |b| {
+        b.iter(|| cut_train(black_box(&kin), &scene).unwrap())
+    });
+    group.bench_function("stresses_on_cut_teeth", |b| {
+        b.iter(|| strength(black_box(&d), &pairs, &scene.dynamics).unwrap())
+    });
     group.finish();
 }
 

@@ -240,6 +240,7 @@ pub fn table(d: &Dynamics) -> String {
 #[cfg(feature = "figures")]
 pub fn figures(
     d: &Dynamics,
+    strength: Option<&Strength>,
     arm_counts: &[(usize, Dynamics)],
     dir: &std::path::Path,
     options: &crate::figures::FigureOptions,
@@ -345,6 +346,26 @@ pub fn figures(
     ];
     for (figure, name) in figures {
         files.extend(save(&figure, &dir.join(name), options)?);
+    }
+    if let Some(s) = strength {
+        // The tooth in mesh at each carrier angle: each gear's root stress, and each
+        // mesh's contact stress (both its gears carry the same; the sun is in the first
+        // mesh only, the planet in the second only).
+        let root = (s.gears.iter())
+            .map(|g| (g.name.to_string(), over_cycle(&g.bending_mpa)))
+            .collect();
+        let mut contact = Vec::new();
+        if let (Some(sun), Some(planet)) = (s.gears.first(), s.gears.last()) {
+            contact.push(("sun mesh".to_string(), over_cycle(&sun.contact_mpa)));
+            contact.push(("planet mesh".to_string(), over_cycle(&planet.contact_mpa)));
+        }
+        for (title, y_desc, series, name) in [
+            ("Root stress", "root stress σF (MPa)", root, "tooth_root_stress"),
+            ("Contact stress", "contact stress σH (MPa)", contact, "tooth_contact_stress"),
+        ] {
+            let figure = line(format!("{title}, tooth in mesh ({speed})"), y_desc, series);
+            files.extend(save(&figure, &dir.join(name), options)?);
+        }
     }
     if !arm_counts.is_empty() {
         let rate = rpm * d.arms as f64;

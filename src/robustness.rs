@@ -208,12 +208,17 @@ pub struct Sensitivity {
 }
 
 /// The outputs a scene computes: its objectives, then every measure of a three-arm path
-/// (the moving box's only in a transplanter scene). The gearbox's overlap is left out: a
+/// (the moving box's only in a transplanter scene, the dynamics' only where the
+/// objectives include the teeth's strength). The gearbox's overlap is left out: a
 /// check that is zero over most of the box, not a response of the path.
 fn outputs(scene: &Scene) -> Vec<Measure> {
+    // The dynamics' measures where the objectives already pay for the teeth's strength
+    // (the dynamics is a small part of it); else a sample costs ten evaluations' time more.
+    let strength = scene.objectives.iter().any(|k| k.needs_strength());
     (Measure::all().into_iter())
         .filter(|m| match m {
             Measure::Objective(k) => scene.objectives.contains(k),
+            Measure::Dynamics(_) => strength,
             m if m.name() == "box_travel_mm" => scene.kind == SceneKind::Transplanter,
             m => m.name() != "gear_overlap_mm",
         })

@@ -182,7 +182,13 @@ pub(crate) fn dynamics(args: SceneArgs) -> Result<(), Box<dyn Error>> {
     let r = noncirc::dynamics::report_of(&scene)?;
     if let Some(dir) = &args.plot {
         let arm_counts = noncirc::dynamics::by_arm_count(&scene);
-        for f in noncirc::dynamics::figures(&r.dynamics, &arm_counts, dir, &args.figures()?)? {
+        for f in noncirc::dynamics::figures(
+            &r.dynamics,
+            r.strength.as_ref(),
+            &arm_counts,
+            dir,
+            &args.figures()?,
+        )? {
             eprintln!("wrote {}", f.display());
         }
     }
