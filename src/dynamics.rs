@@ -360,8 +360,18 @@ pub fn figures(
             contact.push(("planet mesh".to_string(), over_cycle(&planet.contact_mpa)));
         }
         for (title, y_desc, series, name) in [
-            ("Root stress", "root stress σF (MPa)", root, "tooth_root_stress"),
-            ("Contact stress", "contact stress σH (MPa)", contact, "tooth_contact_stress"),
+            (
+                "Root stress",
+                "root stress σF (MPa)",
+                root,
+                "tooth_root_stress",
+            ),
+            (
+                "Contact stress",
+                "contact stress σH (MPa)",
+                contact,
+                "tooth_contact_stress",
+            ),
         ] {
             let figure = line(format!("{title}, tooth in mesh ({speed})"), y_desc, series);
             files.extend(save(&figure, &dir.join(name), options)?);

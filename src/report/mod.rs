@@ -278,6 +278,10 @@ pub struct EvaluationReport {
     /// The fit to the scene's target, with the target's tolerances (a scene with a
     /// `[target]`).
     pub fit: Option<FitRow>,
+    /// Why the objectives `bending_safety` and `contact_safety` have no strength to read
+    /// (the teeth cannot be cut); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub strength_unavailable: Option<String>,
 }
 
 /// `v` with its sign and `decimals` decimals, `+` where it rounds to zero (never `-0.00`).
@@ -378,6 +382,7 @@ impl EvaluationReport {
                     path_counts: t.counts,
                     report,
                 }),
+            strength_unavailable: eval.strength_unavailable.clone(),
         }
     }
 
@@ -405,6 +410,9 @@ impl EvaluationReport {
             );
         }
         out += &objective_table(&self.objectives);
+        if let Some(why) = &self.strength_unavailable {
+            out += &format!("  no tooth strength: {why}\n");
+        }
         if let Some(e) = &self.events {
             out += &format!(
                 "\npicking  at carrier {:7.2}°  tip ({:8.2}, {:8.2}) mm  attitude {:6.2}°  window {:.1}°..{:.1}°  tip speed {:.3} m/s\n",

@@ -279,7 +279,8 @@ pub(crate) enum Command {
     Evaluate(SceneArgs),
     /// The train at its working speed: the input torque, the mesh forces, the axle loads
     /// and the shaking force over a carrier turn, from the scene's `[dynamics]` bodies and
-    /// loads (Newton–Euler, checked against the energy balance). docs/dynamics.md
+    /// loads (Newton–Euler, checked against the energy balance), and the teeth's root and
+    /// contact stresses and safety factors where they can be cut. docs/dynamics.md
     Dynamics(SceneArgs),
     /// The variable-speed moving box: box travel while picking, speeds, forces.
     /// With no scene: the moving-box paper's setting.
