@@ -204,11 +204,11 @@ pub fn strength(
         });
     }
     let pair_of_mesh = |m: usize| &pairs[if two_pairs { m } else { 0 }];
-    // Each mesh: its pair, the pitch curvatures' sum and the teeth in contact at each node.
     let e_star = 1e3 * spec.youngs_modulus_gpa / (2.0 * (1.0 - spec.poisson_ratio.powi(2)));
     let b = spec.face_width_mm;
     let ka = spec.application_factor;
     let n = dynamics.carrier_deg.len();
+    // Each mesh over the cycle: its factored load, the teeth in contact, its Hertz stress.
     let meshes: Vec<MeshCycle> = (0..2)
         .map(|m| {
             MeshCycle::new(
@@ -221,7 +221,7 @@ pub fn strength(
             )
         })
         .collect::<Result<_>>()?;
-    // The gears: name, pair, member, and the meshes (with the gear's side of each).
+    // The gears: name, pair, member, and the meshes it is in.
     let gears: Vec<(&str, usize, Member, Vec<usize>)> = if two_pairs {
         vec![
             ("sun", 0, Member::Driver, vec![0]),
@@ -236,27 +236,28 @@ pub fn strength(
             ("planet", 0, Member::Driver, vec![1]),
         ]
     };
+    // Each cut gear's tooth forms, once (the paper's sun and planet are one gear's twins).
     let mut forms: Vec<((usize, Member), Vec<ToothForm>)> = Vec::new();
     let mut result = Vec::new();
     for (name, p, member, on) in gears {
         let pair = &pairs[p];
         let index = usize::from(member == Member::Driven);
-        if !forms.iter().any(|(key, _)| *key == (p, member)) {
-            let cut = tooth_forms(
-                &pair.gears[index],
-                name,
-                &pair.track,
-                member,
-                pair.module_mm,
-                pair.spec.pressure_angle_deg.to_radians(),
-            )?;
-            forms.push(((p, member), cut));
-        }
-        let tooth_forms = &forms
-            .iter()
-            .find(|(key, _)| *key == (p, member))
-            .expect("cut")
-            .1;
+        let at = match forms.iter().position(|(key, _)| *key == (p, member)) {
+            Some(at) => at,
+            None => {
+                let cut = tooth_forms(
+                    &pair.gears[index],
+                    name,
+                    &pair.track,
+                    member,
+                    pair.module_mm,
+                    pair.spec.pressure_angle_deg.to_radians(),
+                )?;
+                forms.push(((p, member), cut));
+                forms.len() - 1
+            }
+        };
+        let tooth_forms = &forms[at].1;
         let mut bending = vec![0.0; n];
         let mut bending_tooth = vec![0usize; n];
         let mut contact = vec![0.0; n];
@@ -409,7 +410,7 @@ pub fn tooth_forms(
                 Vec2::new(d.dot(frame.tangent), d.dot(frame.normal))
             };
             let sides = [0, 1].map(|s| {
-                let (first, len) = runs[k][s].expect("every tooth has two flanks");
+                let (first, len) = runs[k][s];
                 FlankEnds::new(outline.len(), first, len, &local)
             });
             let arc_mm = gear.teeth[k].centre_arc_mm;
@@ -458,10 +459,12 @@ pub fn tooth_forms(
                     stress_per_newton: 6.0 * lever * cos_load * ys / (chord * chord),
                 }
             };
-            let worse = [form(0), form(1)]
-                .into_iter()
-                .max_by(|x, y| x.stress_per_newton.total_cmp(&y.stress_per_newton))
-                .expect("two flanks");
+            let (left, right) = (form(0), form(1));
+            let worse = if right.stress_per_newton > left.stress_per_newton {
+                right
+            } else {
+                left
+            };
             if !(worse.lever_mm > 0.0 && chord > 0.0 && worse.stress_per_newton.is_finite()) {
                 return Err(fail(format!(
                     "no root section below its tip (section {chord:.4} mm wide, lever {:.4} mm)",
@@ -490,7 +493,7 @@ fn flank_tangent_at_tip(tip: Vec2, below: Vec2, second: Vec2) -> Vec2 {
 type Run = (usize, usize);
 
 /// For each tooth, the run of outline points on its left and on its right flank.
-fn flank_runs(gear: &ToothedGear, name: &'static str) -> Result<Vec<[Option<Run>; 2]>> {
+fn flank_runs(gear: &ToothedGear, name: &'static str) -> Result<Vec<[Run; 2]>> {
     let n = gear.flank_of.len();
     let mut runs = vec![[None; 2]; gear.teeth.len()];
     // Start where no flank is, so that no run wraps past the start.
@@ -512,15 +515,17 @@ fn flank_runs(gear: &ToothedGear, name: &'static str) -> Result<Vec<[Option<Run>
             });
         }
     }
-    if let Some(k) = runs.iter().position(|r| r.iter().any(Option::is_none)) {
-        return Err(Error::Teeth {
-            gear: name,
-            tooth: k,
-            arc_mm: gear.teeth[k].centre_arc_mm,
-            why: "a flank is missing from the outline".into(),
-        });
-    }
-    Ok(runs)
+    (runs.iter().enumerate())
+        .map(|(k, sides)| match sides {
+            [Some(left), Some(right)] => Ok([*left, *right]),
+            _ => Err(Error::Teeth {
+                gear: name,
+                tooth: k,
+                arc_mm: gear.teeth[k].centre_arc_mm,
+                why: "a flank is missing from the outline".into(),
+            }),
+        })
+        .collect()
 }
 
 /// A flank's run seen from its tooth: the outline index of its foot (the end nearer the

@@ -130,3 +130,40 @@ fn a_non_circular_tooth_is_the_spur_tooth_of_its_osculating_circle() {
         assert!(most / least > 1.05, "gear {g}: YF from {least} to {most}");
     }
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(32))]
+
+    /// Over random elliptic pairs, tooth counts and profile shifts, every cut tooth of
+    /// both gears has a section, a lever and a load angle, and the form factor of the
+    /// spur tooth of its osculating circle (the same shift) to 1 %.
+    #[test]
+    fn every_tooth_of_a_random_elliptic_pair_is_its_osculating_spur_tooth(
+        e in 0.0f64..0.4,
+        z in 24u32..48,
+        x in -0.2f64..0.3,
+    ) {
+        let spec = ToothSpec { profile_shift: x, ..ToothSpec::default() };
+        let curve = PitchCurve::Ellipse(Ellipse::new(40.0, e).unwrap());
+        // An ellipse is convex everywhere: the rack cuts it.
+        let pair = ToothedPair::cut(&curve, 80.0, z, &spec).unwrap();
+        let (m, alpha) = (pair.module_mm, spec.pressure_angle_deg.to_radians());
+        for (g, member) in [Member::Driver, Member::Driven].into_iter().enumerate() {
+            let shift = if g == 0 { x } else { -x };
+            let forms = tooth_forms(&pair.gears[g], "gear", &pair.track, member, m, alpha).unwrap();
+            for (tooth, f) in pair.gears[g].teeth.iter().zip(&forms) {
+                proptest::prop_assert!(f.root_chord_mm > 0.0 && f.lever_mm > 0.0);
+                proptest::prop_assert!(f.load_angle_deg > 0.0 && f.load_angle_deg < 60.0);
+                proptest::prop_assert!(f.stress_correction >= 1.0);
+                let frame = pair.track.frame(member, pair.track.psi_at(tooth.centre_arc_mm));
+                let z_virtual = 2.0 / (frame.curvature * m);
+                let [.., yf, _] = iso_method_b(z_virtual, alpha, 1.25, 0.38, shift, 1.0);
+                proptest::prop_assert!(
+                    (f.form_factor - yf).abs() < 0.01 * yf,
+                    "e {e}, z {z}, x {shift}, z_v {z_virtual:.1}: YF {} against {yf}",
+                    f.form_factor
+                );
+            }
+        }
+    }
+}
