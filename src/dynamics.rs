@@ -4,7 +4,8 @@
 
 use crate::{Error, Result};
 use noncirc_core::{
-    cut_train, dynamics, strength, Dynamics, Evaluation, Evaluator, Scene, SceneKind, Strength,
+    cut_train, scene_dynamics, strength, Dynamics, Evaluation, Evaluator, Scene, SceneKind,
+    Strength,
 };
 use serde::Serialize;
 use std::fmt::Write;
@@ -63,12 +64,7 @@ fn evaluated_dynamics(scene: &Scene) -> Result<(Evaluation, Dynamics)> {
             "the design has no motion to move the bodies".into(),
         ));
     };
-    let d = dynamics(
-        kin,
-        events,
-        &scene.dynamics,
-        scene.gear.teeth.pressure_angle_deg,
-    )?;
+    let d = scene_dynamics(kin, events, scene)?;
     Ok((eval, d))
 }
 

@@ -22,6 +22,7 @@ use crate::dynamics_spec::DynamicsSpec;
 use crate::error::{Error, Result};
 use crate::events::Events;
 use crate::planetary::{ArmState, Kinematics, PitchContact};
+use crate::scene::Scene;
 use crate::vec2::Vec2;
 use serde::Serialize;
 
@@ -212,6 +213,17 @@ struct Node {
     inertial_force: Vec2,
     inertial_moment: f64,
     joint: [[f64; 3]; 3],
+}
+
+/// The dynamics of `scene`'s train `kin` with its `events`: [`dynamics`] with the scene's
+/// bodies and loads and its teeth's pressure angle.
+pub fn scene_dynamics(kin: &Kinematics, events: &Events, scene: &Scene) -> Result<Dynamics> {
+    dynamics(
+        kin,
+        events,
+        &scene.dynamics,
+        scene.gear.teeth.pressure_angle_deg,
+    )
 }
 
 /// The dynamics of the train `kin` at its working speed (`kin.spec()`), with its events

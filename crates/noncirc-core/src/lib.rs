@@ -90,7 +90,7 @@ pub use target::{DesignPull, Pose, PoseAt, PreparedTarget, Target, TargetKind};
 // The model: gear pairs, the train's motion, events, sections, measures.
 pub use anatomy::{anatomy, Anatomy, SectionMeasures};
 pub use angle::unit;
-pub use dynamics::{dynamics, Dynamics, DynamicsSummary};
+pub use dynamics::{dynamics, scene_dynamics, Dynamics, DynamicsSummary};
 pub use events::{attitude_deg, events, Event, Events, PickingCheck};
 pub use gear::{
     solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, Rotation, SampleGrid,

@@ -3,7 +3,7 @@
 //! dynamics at working speed, the teeth's strength), or from the fit to a target.
 
 use crate::anatomy::Anatomy;
-use crate::dynamics::{dynamics, Dynamics};
+use crate::dynamics::{scene_dynamics, Dynamics};
 use crate::evaluation::Evaluation;
 use crate::measure::{DynamicsQuantity, Measure, Scalar, SectionQuantity};
 use crate::objective_kind::ObjectiveKind;
@@ -54,8 +54,7 @@ impl<'a> Measured<'a> {
         (self.dynamics)
             .get_or_init(|| {
                 let (kin, events) = (self.eval.kinematics.as_ref()?, self.eval.events.as_ref()?);
-                let s = self.scene;
-                dynamics(kin, events, &s.dynamics, s.gear.teeth.pressure_angle_deg).ok()
+                scene_dynamics(kin, events, self.scene).ok()
             })
             .as_ref()
     }

@@ -20,7 +20,7 @@
 //! the face is loaded evenly); the life and size factors are 1 (endurance). ISO 6336-3's
 //! `YS` is fitted for `1 ≤ qs < 8`; `qs` is held in that range.
 
-use crate::dynamics::{dynamics, Dynamics};
+use crate::dynamics::{scene_dynamics, Dynamics};
 use crate::dynamics_spec::DynamicsSpec;
 use crate::error::{Error, Result};
 use crate::events::Events;
@@ -146,12 +146,7 @@ pub fn train_strength(
     events: &Events,
     scene: &Scene,
 ) -> Result<(Dynamics, Strength)> {
-    let d = dynamics(
-        kin,
-        events,
-        &scene.dynamics,
-        scene.gear.teeth.pressure_angle_deg,
-    )?;
+    let d = scene_dynamics(kin, events, scene)?;
     let pairs = cut_train(kin, scene)?;
     let s = strength(&d, &pairs, &scene.dynamics)?;
     Ok((d, s))
