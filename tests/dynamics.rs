@@ -144,6 +144,38 @@ fn the_forces_pass_through_the_pitch_curves_contacts() {
 }
 
 #[test]
+fn each_contact_s_curve_parameter_turns_with_its_gear() {
+    // The teeth in mesh are read off the contact's own-frame parameter ψ: in the ground
+    // frame the contact lies at the gear's angle plus ψ, so `angle(towards) − gear angle
+    // − ψ` stays put over the cycle (the sun does not turn; the paper's planet turns by θ3,
+    // layer B with the intermediate by θ2).
+    for scene in [paper(), two_pairs()] {
+        let kin = scene.kinematics(&scene.resolution).unwrap();
+        let offsets: Vec<[f64; 2]> = (0..kin.len())
+            .step_by(5)
+            .map(|j| {
+                let (st, [a, b]) = kin.state_and_contacts(kin.theta(j) + 0.013);
+                let turn = if kin.second_pair().is_some() {
+                    st.theta2
+                } else {
+                    st.theta3
+                };
+                let angle = |c: &noncirc_core::PitchContact| c.towards.y.atan2(c.towards.x);
+                [angle(&a) - a.psi, angle(&b) - turn - b.psi]
+            })
+            .collect();
+        for m in 0..2 {
+            for o in &offsets {
+                let d = (o[m] - offsets[0][m] + std::f64::consts::PI)
+                    .rem_euclid(std::f64::consts::TAU)
+                    - std::f64::consts::PI;
+                assert!(d.abs() < 1e-9, "mesh {m}: {d:e}");
+            }
+        }
+    }
+}
+
+#[test]
 fn the_joint_rates_are_the_derivatives_of_the_joint_angles() {
     // θ2', θ2'', θ3', θ3'' (which the bodies' accelerations rest on) against central
     // differences of the angles themselves, on both trains. The angles interpolate the
