@@ -49,8 +49,10 @@ def evaluate_batch(
     the objectives (`noncirc.measures()` lists them): by default those read from the
     evaluation at no cost (carrier angles, picking window, tip speed, branch gaps,
     heights); `"all"` adds the trajectory's sections and loop, which double a design's
-    time, and the gearbox's overlap `gear_overlap_mm`, which costs several designs' time;
-    a list names them; `[]` returns none. `progress(info)` is called after every piece
+    time, the gearbox's overlap `gear_overlap_mm`, which costs several designs' time, and
+    the dynamics at working speed (`input_torque_peak_nm` …, docs/dynamics.md), about ten
+    designs' time; the teeth's safety factors (`bending_safety`, `contact_safety`) only by
+    name, as they cut the teeth (tenths of a second a design); a list names them; `[]` returns none. `progress(info)` is called after every piece
     (info: `evaluations` done so far, `total`)."""
     names = measures if measures is None or isinstance(measures, str) else list(measures)
     raw = _noncirc.evaluate_batch(

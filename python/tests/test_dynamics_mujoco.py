@@ -193,3 +193,20 @@ def test_a_material_without_a_name_or_an_allowable_stress_is_refused():
         noncirc.Scene.builtin("paper").with_set("dynamics.bending_limit_mpa", 0)
     done = subprocess.run([str(BIN), "dynamics", "--set", "dynamics.contact_limit_mpa=-1"], capture_output=True, text=True)
     assert done.returncode == 2 and "dynamics.contact_limit_mpa" in done.stderr, done.stderr
+
+
+def test_a_batch_s_dynamics_measures_are_the_dynamics_report_s():
+    import noncirc
+
+    scene = noncirc.Scene.builtin("two-arm").with_set("gear.teeth.cutter", {"kind": "shaper", "teeth": 100})
+    x = np.array([list(scene.free_values().values())])
+    names = ["input_torque_peak_nm", "sun_shaft_peak_n", "bending_safety"]
+    b = noncirc.evaluate_batch(scene, x, measures=names)
+    assert b.measure_names == names and b.measure_units == ["N·m", "N", ""]
+    d = noncirc.dynamics(scene)
+    assert b.measures[0, 0] == d.summary["torque_peak_nm"]
+    assert b.measures[0, 1] == d.summary["sun_shaft_peak_n"]
+    assert b.measures[0, 2] == d.strength.bending_safety_min
+    # "all" brings the dynamics' measures, not the safety factors (they cut the teeth).
+    every = noncirc.evaluate_batch(scene, x, measures="all").measure_names
+    assert "input_torque_rms_nm" in every and "bending_safety" not in every

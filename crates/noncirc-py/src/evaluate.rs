@@ -186,7 +186,8 @@ pub(crate) fn evaluate_batch<'py>(
     // The measures to return besides the objectives. By default those read from the
     // evaluation at no cost (the events' carrier angles, picking window, tip speed, branch
     // gaps, heights); "all" adds the trajectory's sections and loop (about double a
-    // design's time) and the gearbox's overlap (several times it); a list names them; an
+    // design's time), the gearbox's overlap (several times it) and the dynamics (about ten
+    // times); a list names them (the teeth's safety factors, objectives, only so); an
     // empty list returns none.
     let besides_objectives =
         || (Measure::all().into_iter()).filter(|m| !matches!(m, Measure::Objective(_)));
