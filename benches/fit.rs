@@ -10,11 +10,15 @@
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use noncirc::core::{invert, target_of, CurveSpec, Evaluator, InverseSpec, Resolution};
+use noncirc::core::{invert, target_of, Evaluator, InverseSpec, Resolution};
 use noncirc::fit::{read_target, with_target};
 use noncirc::scene_file::load_scene;
 use std::hint::black_box;
 use std::path::Path;
+
+/// The designs the integration tests share (the round trip's two-pair design).
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 fn fit(c: &mut Criterion) {
     let plain = load_scene(Some("paper-search")).unwrap();
@@ -34,19 +38,9 @@ fn fit(c: &mut Criterion) {
 }
 
 fn inverse(c: &mut Criterion) {
-    let paper = load_scene(Some("paper")).unwrap();
+    let paper = common::paper();
     // The round trip of tests/inverse.rs: an ellipse sun, a Fourier layer B.
-    let mut design = paper.clone();
-    design.gear.curve = CurveSpec::Ellipse {
-        semi_major_mm: 32.0,
-        eccentricity: 0.12,
-    };
-    design.gear.second_curve = Some(CurveSpec::Fourier {
-        c0_mm: 28.0,
-        cos_mm: vec![1.5, -0.8],
-        sin_mm: vec![-2.0, 0.4],
-    });
-    design.resolution = design.resolution.with_samples(720);
+    let design = common::two_pair_design();
     let eval = Evaluator::new().evaluate(&design).unwrap();
     let mut two_pair = target_of(
         eval.kinematics.as_ref().unwrap(),

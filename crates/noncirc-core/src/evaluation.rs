@@ -314,7 +314,7 @@ impl Evaluator {
         if let (true, Some(ev)) = (scene.objectives.iter().any(|o| o.needs_strength()), &ev) {
             self.counts.strength += 1;
             match train_strength(&kin, ev, scene) {
-                Ok((_, s)) => out.strength = Some(s),
+                Ok(s) => out.strength = Some(s),
                 Err(e) => out.strength_unavailable = Some(e.to_string()),
             }
         }

@@ -313,11 +313,14 @@ impl SolvedPair {
 
     /// As [`SolvedPair::ratio_at`], with the driver curve's value there.
     fn ratio_and_curve_at(&self, u: f64) -> (f64, f64, Polar) {
-        let (a, grid) = (self.pair.centre_distance(), self.pair.grid());
-        let sense = grid.sense.sign();
-        let p = self.pair.curve().eval(grid.start + sense * u);
+        let a = self.pair.centre_distance();
+        let p = self.pair.curve().eval(self.parameter(u));
         let gap = a - p.rho;
-        (p.rho / gap, sense * a * p.d1 / (gap * gap), p)
+        (
+            p.rho / gap,
+            self.pair.grid().sense.sign() * a * p.d1 / (gap * gap),
+            p,
+        )
     }
 }
 

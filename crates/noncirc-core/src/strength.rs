@@ -139,17 +139,11 @@ pub fn cut_train(kin: &Kinematics, scene: &Scene) -> Result<Vec<ToothedPair>> {
     Ok(pairs)
 }
 
-/// The dynamics of `scene`'s train `kin` (with its `events`) at its working speed and the
-/// strength of its teeth as [`cut_train`] cuts them.
-pub fn train_strength(
-    kin: &Kinematics,
-    events: &Events,
-    scene: &Scene,
-) -> Result<(Dynamics, Strength)> {
+/// The strength of the teeth of `scene`'s train `kin` (with its `events`) at its working
+/// speed, cut as [`cut_train`] cuts them.
+pub fn train_strength(kin: &Kinematics, events: &Events, scene: &Scene) -> Result<Strength> {
     let d = scene_dynamics(kin, events, scene)?;
-    let pairs = cut_train(kin, scene)?;
-    let s = strength(&d, &pairs, &scene.dynamics)?;
-    Ok((d, s))
+    strength(&d, &cut_train(kin, scene)?, &scene.dynamics)
 }
 
 /// The strength of the train whose dynamics is `dynamics`, its gears cut as `pairs` (the

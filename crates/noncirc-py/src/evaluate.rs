@@ -5,7 +5,8 @@ use crate::convert::{json_to_py, points, pool, resolution};
 use crate::errors::{internal, invalid, parameter, Result};
 use crate::scene::Scene;
 use noncirc::batch::BatchRows;
-use noncirc::core::{Evaluator, Measure, MeasureCost, Measured, Scalar, SceneProblem};
+use noncirc::core::{Evaluator, Measure, Measured, Scalar, SceneProblem};
+use noncirc::report::measure_rows;
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
@@ -89,18 +90,13 @@ pub(crate) fn evaluate<'py>(
         out.set_item("sections", sections)?;
     }
     let measures = PyDict::new(py);
-    let on = Measured::with_anatomy(&eval, &s, anatomy);
-    // The teeth's strength only where the objectives computed it (as `noncirc evaluate`).
-    for m in Measure::all() {
-        if m.cost() == MeasureCost::Strength && eval.strength.is_none() {
-            continue;
-        }
-        if let Some(v) = m.value(&on) {
-            let d = PyDict::new(py);
-            d.set_item("value", v)?;
-            d.set_item("unit", m.unit())?;
-            measures.set_item(m.name(), d)?;
-        }
+    // The measures `noncirc evaluate` reports (the teeth's strength only where the
+    // objectives computed it).
+    for row in measure_rows(&Measured::with_anatomy(&eval, &s, anatomy)) {
+        let d = PyDict::new(py);
+        d.set_item("value", row.value)?;
+        d.set_item("unit", row.unit)?;
+        measures.set_item(row.name, d)?;
     }
     out.set_item("measures", measures)?;
     if let Some(kin) = &eval.kinematics {
