@@ -1,5 +1,6 @@
 //! The dynamics at working speed beyond the kinematics: the paper's design, all three arm
-//! sets, at 120 carrier angles (the default resolution's nodes) and at the default 720.
+//! sets, at 120 carrier angles (the default resolution's nodes) and at the default 720;
+//! the carrier's speed with a constant drive torque and the flywheel needed beyond that.
 //! The teeth's strength beyond the dynamics: the two-arm scene's design cut by a shaper
 //! (the paper's cannot be cut), the cut and the stresses on the cut teeth apart.
 
@@ -25,6 +26,15 @@ fn bench(c: &mut Criterion) {
             b.iter(|| dynamics(black_box(&kin), &ev, spec, 20.0).unwrap())
         });
     }
+    // The speed with a constant drive torque, and the flywheel for δ = 0.02, beyond the
+    // dynamics at the default 720 angles.
+    let d = dynamics(&kin, &ev, &scene.dynamics, 20.0).unwrap();
+    group.bench_function("speed_with_flywheel", |b| {
+        b.iter(|| black_box(&d).speed_with(0.0))
+    });
+    group.bench_function("flywheel_needed", |b| {
+        b.iter(|| black_box(&d).flywheel_needed_kg_m2(0.02))
+    });
     group.finish();
 
     let mut scene: Scene = load_scene(Some("two-arm")).unwrap();

@@ -5,7 +5,7 @@
 use crate::{Error, Result};
 use noncirc_core::{
     cut_train, scene_dynamics, strength, Dynamics, Evaluation, Evaluator, Scene, SceneKind,
-    Strength,
+    SpeedFluctuation, Strength,
 };
 use serde::Serialize;
 use std::fmt::Write;
@@ -16,6 +16,12 @@ use std::fmt::Write;
 pub struct DynamicsReport {
     #[serde(flatten)]
     pub dynamics: Dynamics,
+    /// The carrier's speed over the turn with a constant drive torque and the scene's
+    /// flywheel; the least flywheel on the carrier's axis that holds its fluctuation to
+    /// `dynamics.speed_fluctuation_allowed` (kg·m²), and that coefficient.
+    pub speed: SpeedFluctuation,
+    pub flywheel_needed_kg_m2: f64,
+    pub speed_fluctuation_allowed: f64,
     /// The teeth's stresses and safety factors; `None` when the scene's teeth cannot be
     /// cut (`strength_unavailable` says why).
     pub strength: Option<Strength>,
@@ -38,7 +44,11 @@ pub fn report_of(scene: &Scene) -> Result<DynamicsReport> {
         Ok(s) => (Some(s), None),
         Err(e) => (None, Some(format!("the teeth cannot be cut: {e}"))),
     };
+    let allowed = scene.dynamics.speed_fluctuation_allowed;
     Ok(DynamicsReport {
+        speed: d.speed_with(scene.dynamics.flywheel_inertia_kg_m2),
+        flywheel_needed_kg_m2: d.flywheel_needed_kg_m2(allowed),
+        speed_fluctuation_allowed: allowed,
         dynamics: d,
         strength,
         strength_unavailable,
@@ -86,6 +96,36 @@ pub fn by_arm_count(scene: &Scene) -> Vec<(usize, Dynamics)> {
 /// The dynamics' table and the strength's, for a person.
 pub fn report_table(r: &DynamicsReport) -> String {
     let mut t = table(&r.dynamics);
+    let v = &r.speed;
+    let _ = writeln!(
+        t,
+        "\nwith a constant drive torque of {:.4} N·m (carrier Jc = {} kg·m², flywheel Jf = {} kg·m²):",
+        v.drive_torque_nm, v.carrier_inertia_kg_m2, v.flywheel_inertia_kg_m2
+    );
+    let (lo, hi) = (v.carrier_speed_rad_s.iter())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &w| {
+            (l.min(w), h.max(w))
+        });
+    let rpm = 60.0 / std::f64::consts::TAU;
+    for (name, value) in [
+        (
+            "carrier speed, least and largest (r/min)".to_string(),
+            format!("{:.2} … {:.2}", lo * rpm, hi * rpm),
+        ),
+        (
+            "speed fluctuation (ω_max − ω_min)/ω_mean".to_string(),
+            format!("{:.4}", v.coefficient),
+        ),
+        (
+            format!(
+                "flywheel needed for δ ≤ {} (kg·m²)",
+                r.speed_fluctuation_allowed
+            ),
+            format!("{:.4}", r.flywheel_needed_kg_m2),
+        ),
+    ] {
+        let _ = writeln!(t, "{name:<58} {value}");
+    }
     t.push('\n');
     match (&r.strength, &r.strength_unavailable) {
         (Some(s), _) => t.push_str(&strength_table(s)),
@@ -231,18 +271,19 @@ pub fn table(d: &Dynamics) -> String {
 }
 
 /// The torque, the mesh forces, the axle loads over the cycle and as polar plots (the
-/// force's tip in the plane), the shaking force, and the input torque with each arm count
-/// of `arm_counts` ([`by_arm_count`]), into `dir`.
+/// force's tip in the plane), the shaking force, the carrier's speed with a constant drive
+/// torque, the teeth's stresses, and the input torque with each arm count of `arm_counts`
+/// ([`by_arm_count`]), into `dir`.
 #[cfg(feature = "figures")]
 pub fn figures(
-    d: &Dynamics,
-    strength: Option<&Strength>,
+    r: &DynamicsReport,
     arm_counts: &[(usize, Dynamics)],
     dir: &std::path::Path,
     options: &crate::figures::FigureOptions,
 ) -> Result<Vec<std::path::PathBuf>> {
     use crate::figures::{save, LinesFigure};
     crate::files::create_dir(dir)?;
+    let (d, strength) = (&r.dynamics, r.strength.as_ref());
     let theta = &d.carrier_deg;
     let over_cycle = |v: &[f64]| theta.iter().copied().zip(v.iter().copied()).collect();
     let magnitude = |v: &[[f64; 2]]| v.iter().map(|f| f[0].hypot(f[1])).collect::<Vec<_>>();
@@ -338,6 +379,32 @@ pub fn figures(
                 )],
             ),
             "shaking_force",
+        ),
+        (
+            line(
+                format!("Carrier speed, constant drive torque ({speed})"),
+                "carrier speed (r/min)",
+                [
+                    (r.speed.flywheel_inertia_kg_m2, &r.speed),
+                    (
+                        r.flywheel_needed_kg_m2,
+                        &d.speed_with(r.flywheel_needed_kg_m2),
+                    ),
+                ]
+                .into_iter()
+                .map(|(flywheel, v)| {
+                    let rpm: Vec<f64> = (v.carrier_speed_rad_s.iter())
+                        .map(|w| w * 60.0 / std::f64::consts::TAU)
+                        .collect();
+                    let label = format!(
+                        "Td = {:.2} N·m, flywheel {flywheel:.3} kg·m²: δ = {:.3}",
+                        v.drive_torque_nm, v.coefficient
+                    );
+                    (label, over_cycle(&rpm))
+                })
+                .collect(),
+            ),
+            "carrier_speed",
         ),
     ];
     for (figure, name) in figures {

@@ -310,6 +310,10 @@ fn the_strength_objectives_measures_and_goals_read_the_dynamics_report() {
     assert_eq!(value("input_torque_peak_nm"), s.torque_peak_nm);
     assert_eq!(value("input_torque_rms_nm"), s.torque_rms_nm);
     assert_eq!(value("sun_shaft_peak_n"), s.sun_shaft_peak_n);
+    assert_eq!(value("carrier_speed_fluctuation"), report.speed.coefficient);
+    assert_eq!(value("flywheel_needed_kg_m2"), report.flywheel_needed_kg_m2);
+    let goal = Goal::parse("min:flywheel_needed_kg_m2").unwrap();
+    assert_eq!(goal.quantity(&scene.bounds).unit, "kg·m²");
     assert_eq!(
         value("mesh_force_peak_n"),
         s.mesh_force_peak_n[0].max(s.mesh_force_peak_n[1])
@@ -337,4 +341,181 @@ fn a_design_whose_teeth_cannot_be_cut_fails_the_strength_objective_and_says_why(
     );
     assert!(eval.strength.is_none());
     assert!(eval.strength_unavailable.unwrap().contains("rack"));
+}
+
+/// The design of `a_point_mass_at_the_planet…`: equal circles (the planet translates), a
+/// point mass `mass` (kg) at the planet's centre, nothing else moving, one arm set.
+fn point_mass_train(mass: f64) -> Scene {
+    let mut scene = paper();
+    scene.gear.curve = CurveSpec::Ellipse {
+        semi_major_mm: 30.0,
+        eccentricity: 0.0,
+    };
+    scene.train.arms = 1;
+    scene.train.carrier_speed_rpm = 60.0;
+    let dy = &mut scene.dynamics;
+    (
+        dy.gear_density_kg_m3,
+        dy.arm_mass_kg,
+        dy.arm_com_mm,
+        dy.arm_inertia_kg_m2,
+    ) = (0.0, mass, 0.0, 0.0);
+    dy.picking_force_n = 0.0;
+    scene
+}
+
+/// `∫₀^φj f dφ` at each node of a periodic grid, by the trapezoid rule.
+fn running_integral(f: &[f64]) -> Vec<f64> {
+    let step = std::f64::consts::TAU / f.len() as f64;
+    let mut sum = 0.0;
+    (0..f.len())
+        .map(|j| {
+            let here = sum;
+            sum += step * 0.5 * (f[j] + f[(j + 1) % f.len()]);
+            here
+        })
+        .collect()
+}
+
+#[test]
+fn with_a_constant_drive_torque_a_mass_under_gravity_swaps_height_for_speed_as_the_closed_form_says(
+) {
+    // One point mass m on a circle of radius R at 60 r/min with a flywheel: the drive's
+    // torque is gravity's mean, zero, so ½·I·ω² + m·g·y is constant (I = m·R² + Jc + Jf),
+    // and the turn's mean speed is the working speed. The closed form: ω(ψ) =
+    // √(2(E0 − m·g·R·sin ψ)/I), E0 set by the mean speed (found here by bisection on a fine
+    // quadrature of the turn's duration, independently of noncirc's Newton).
+    let (mass, flywheel) = (1.5, 0.2);
+    let scene = point_mass_train(mass);
+    let kin = scene.kinematics(&scene.resolution).unwrap();
+    let radius = kin.planet_radius() * 1e-3;
+    let inertia = mass * radius * radius + scene.dynamics.carrier_inertia_kg_m2 + flywheel;
+    let omega0 = std::f64::consts::TAU;
+    let g = scene.dynamics.gravity_m_s2;
+    let energy_error = |samples: usize| {
+        let mut scene = scene.clone();
+        scene.dynamics.samples_per_turn = samples;
+        let d = run(&scene);
+        let speed = d.speed_with(flywheel);
+        assert!(speed.drive_torque_nm.abs() < 1e-12);
+        let w = &speed.carrier_speed_rad_s;
+        // The mean over time is the working speed.
+        let mean = w.len() as f64 / w.iter().map(|x| 1.0 / x).sum::<f64>();
+        assert!((mean - omega0).abs() < 1e-12 * omega0, "{mean}");
+        for (j, i) in d.reduced_inertia_kg_m2.iter().enumerate() {
+            let expected = mass * radius * radius;
+            assert!((i - expected).abs() < 1e-12 * expected, "node {j}: {i}");
+        }
+        let energy: Vec<f64> = (0..w.len())
+            .map(|j| {
+                let y = kin.state_at(d.carrier_deg[j].to_radians()).o3.y * 1e-3;
+                0.5 * inertia * w[j] * w[j] + mass * g * y
+            })
+            .collect();
+        let spread = energy
+            .iter()
+            .fold(0.0f64, |m, e| m.max((e - energy[0]).abs()));
+        (spread / energy[0].abs(), speed.coefficient)
+    };
+    let (e720, delta) = energy_error(720);
+    let (e1440, _) = energy_error(1440);
+    assert!(e720 < 1e-5, "{e720}");
+    // The trapezoid rule's running integral: second order.
+    let order = (e720 / e1440).log2();
+    assert!((order - 2.0).abs() < 0.1, "order {order}");
+    // The closed form's coefficient.
+    let a = mass * g * radius;
+    let duration = |e0: f64| {
+        let m = 200_000;
+        (0..m)
+            .map(|k| {
+                let psi = std::f64::consts::TAU * (k as f64 + 0.5) / m as f64;
+                1.0 / (2.0 * (e0 - a * psi.sin()) / inertia).sqrt()
+            })
+            .sum::<f64>()
+            * std::f64::consts::TAU
+            / m as f64
+    };
+    let (mut lo, mut hi) = (a * (1.0 + 1e-9), a + inertia * omega0 * omega0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if duration(mid) > std::f64::consts::TAU / omega0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let e0 = 0.5 * (lo + hi);
+    let w = |e: f64| (2.0 * e / inertia).sqrt();
+    let expected = (w(e0 + a) - w(e0 - a)) / omega0;
+    assert!(expected > 0.1, "{expected}");
+    // The nodes straddle the extremes: a relative error of the order of (π/720)².
+    assert!(
+        (delta - expected).abs() < 1e-4 * expected,
+        "{delta} vs {expected}"
+    );
+}
+
+#[test]
+fn a_large_flywheel_gives_the_textbook_fluctuation_and_the_one_needed_holds_the_allowed() {
+    // δ·I·ω² → ΔE (the largest swing of the energy the constant-speed torque puts in) as
+    // the flywheel grows; δ falls as it grows; the flywheel reported as needed gives the
+    // allowed coefficient.
+    let base = run(&two_pairs());
+    let n = base.input_torque_nm.len() as f64;
+    let mean = base.input_torque_nm.iter().sum::<f64>() / n;
+    let swing: Vec<f64> = base.input_torque_nm.iter().map(|t| t - mean).collect();
+    let energy = running_integral(&swing);
+    let (lo, hi) = energy
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &e| {
+            (l.min(e), h.max(e))
+        });
+    let omega = base.carrier_speed_rad_s;
+    let mean_inertia = base.reduced_inertia_kg_m2.iter().sum::<f64>() / n;
+    let mut previous = f64::INFINITY;
+    for flywheel in [0.0, 0.01, 0.1, 1.0, 10.0, 100.0] {
+        let delta = base.speed_with(flywheel).coefficient;
+        assert!(delta < previous, "{flywheel}: {delta} after {previous}");
+        previous = delta;
+        let inertia = flywheel + base.carrier_inertia_kg_m2 + mean_inertia;
+        let textbook = (hi - lo) / (inertia * omega * omega);
+        if flywheel >= 10.0 {
+            assert!(
+                (delta - textbook).abs() < 3.0 * textbook * textbook + 1e-3 * textbook,
+                "{flywheel}: {delta} vs {textbook}"
+            );
+        }
+    }
+    let needed = base.flywheel_needed_kg_m2(0.02);
+    assert!(needed > 0.0 && base.speed_with(0.0).coefficient > 0.02);
+    let delta = base.speed_with(needed).coefficient;
+    assert!((delta - 0.02).abs() < 1e-9, "{delta}");
+    // One that meets it already needs none.
+    assert_eq!(base.flywheel_needed_kg_m2(0.9), 0.0);
+}
+
+#[test]
+fn the_input_torque_is_the_reduced_inertia_s_rate_and_the_loads_torque() {
+    // T = ½·dIm/dφ·ω² + Q at constant speed (the Eksergian form the flywheel integrates),
+    // dIm/dφ by central differences on the periodic grid: second order.
+    let error = |samples: usize| {
+        let mut scene = two_pairs();
+        scene.dynamics.samples_per_turn = samples;
+        let d = run(&scene);
+        let (i, n) = (&d.reduced_inertia_kg_m2, d.reduced_inertia_kg_m2.len());
+        let step = std::f64::consts::TAU / n as f64;
+        let w2 = d.carrier_speed_rad_s * d.carrier_speed_rad_s;
+        (0..n)
+            .map(|j| {
+                let rate = (i[(j + 1) % n] - i[(j + n - 1) % n]) / (2.0 * step);
+                (0.5 * rate * w2 + d.load_torque_nm[j] - d.input_torque_nm[j]).abs()
+            })
+            .fold(0.0f64, f64::max)
+            / d.summary.torque_peak_nm
+    };
+    let (coarse, fine) = (error(720), error(1440));
+    assert!(coarse < 1e-3, "{coarse}");
+    let order = (coarse / fine).log2();
+    assert!((order - 2.0).abs() < 0.2, "order {order}");
 }

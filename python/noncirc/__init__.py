@@ -51,6 +51,7 @@ from .results import (
     Quantity,
     RepairResult,
     SearchResult,
+    SpeedFluctuation,
     Strength,
 )
 
@@ -81,6 +82,7 @@ __all__ = [
     "Scene",
     "SceneError",
     "SearchResult",
+    "SpeedFluctuation",
     "Strength",
     "UnknownNameError",
     "dynamics",

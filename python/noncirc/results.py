@@ -808,6 +808,34 @@ class Strength:
 
 
 @dataclass(frozen=True)
+class SpeedFluctuation:
+    """The carrier's speed over the turn when the drive's torque is constant (its mean)
+    and a flywheel sits on the carrier's axis (docs/dynamics.md, "Speed fluctuation and
+    the flywheel")."""
+
+    #: The constant drive torque (N·m).
+    drive_torque_nm: float
+    #: The carrier's own moment of inertia and the flywheel's (kg·m²).
+    carrier_inertia_kg_m2: float
+    flywheel_inertia_kg_m2: float
+    #: The carrier's speed at each of `Dynamics.carrier_deg` (rad/s); its mean over time is
+    #: the working speed.
+    carrier_speed_rad_s: np.ndarray
+    #: (ω_max − ω_min)/ω_mean.
+    coefficient: float
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any]) -> SpeedFluctuation:
+        return SpeedFluctuation(
+            drive_torque_nm=raw["drive_torque_nm"],
+            carrier_inertia_kg_m2=raw["carrier_inertia_kg_m2"],
+            flywheel_inertia_kg_m2=raw["flywheel_inertia_kg_m2"],
+            carrier_speed_rad_s=np.asarray(raw["carrier_speed_rad_s"], dtype=float),
+            coefficient=raw["coefficient"],
+        )
+
+
+@dataclass(frozen=True)
 class Dynamics:
     """The train at its working speed over one carrier turn (`noncirc dynamics`,
     docs/dynamics.md). Arrays run over `carrier_deg`; vectors are (angles, 2) arrays of
@@ -840,6 +868,15 @@ class Dynamics:
     #: All arm sets: the shaking force (N) and moment about the carrier axis (N·m).
     shaking_force_n: np.ndarray
     shaking_moment_nm: np.ndarray
+    #: All arm sets: the moving bodies' kinetic energy over ½ω² (kg·m²), and the torque
+    #: gravity and the tip's loads need whatever the speed (N·m).
+    reduced_inertia_kg_m2: np.ndarray
+    load_torque_nm: np.ndarray
+    #: The carrier's speed with a constant drive torque and the scene's flywheel; the least
+    #: flywheel (kg·m²) that holds its fluctuation to `speed_fluctuation_allowed`.
+    speed: SpeedFluctuation
+    flywheel_needed_kg_m2: float
+    speed_fluctuation_allowed: float
     #: The cycle's extremes, as `noncirc dynamics` prints them (units in the names).
     summary: dict[str, Any]
     #: The teeth's stresses and safety factors; None when the teeth cannot be cut
@@ -873,6 +910,11 @@ class Dynamics:
             carrier_bearing_n=a("carrier_bearing_n"),
             shaking_force_n=a("shaking_force_n"),
             shaking_moment_nm=a("shaking_moment_nm"),
+            reduced_inertia_kg_m2=a("reduced_inertia_kg_m2"),
+            load_torque_nm=a("load_torque_nm"),
+            speed=SpeedFluctuation._from_raw(raw["speed"]),
+            flywheel_needed_kg_m2=raw["flywheel_needed_kg_m2"],
+            speed_fluctuation_allowed=raw["speed_fluctuation_allowed"],
             summary=raw["summary"],
             strength=None if raw["strength"] is None else Strength._from_raw(raw["strength"]),
             strength_unavailable=raw.get("strength_unavailable"),
@@ -884,7 +926,8 @@ class Dynamics:
         return {f.name: _plain(getattr(self, f.name)) for f in dataclasses.fields(self) if f.name != "report"}
 
     def to_pandas(self) -> pandas.DataFrame:
-        """One row per carrier angle; a vector's components as `<name>_x_n` and `<name>_y_n`."""
+        """One row per carrier angle; a vector's components as `<name>_x_n` and `<name>_y_n`;
+        the carrier's speed with a constant drive torque as `carrier_speed_constant_drive_rad_s`."""
         columns: dict[str, Any] = {"carrier_deg": self.carrier_deg}
         for f in dataclasses.fields(self):
             value = getattr(self, f.name)
@@ -896,4 +939,5 @@ class Dynamics:
                 columns[f"{stem}_y_n"] = value[:, 1]
             else:
                 columns[f.name] = value
+        columns["carrier_speed_constant_drive_rad_s"] = self.speed.carrier_speed_rad_s
         return _pandas().DataFrame(columns)

@@ -210,3 +210,23 @@ def test_a_batch_s_dynamics_measures_are_the_dynamics_report_s():
     # "all" brings the dynamics' measures, not the safety factors (they cut the teeth).
     every = noncirc.evaluate_batch(scene, x, measures="all").measure_names
     assert "input_torque_rms_nm" in every and "bending_safety" not in every
+
+
+def test_the_speed_with_a_flywheel_is_typed_and_the_flywheel_needed_holds_the_allowed():
+    import noncirc
+
+    scene = noncirc.Scene.builtin("paper")
+    d = noncirc.dynamics(scene)
+    v = d.speed
+    assert isinstance(v, noncirc.SpeedFluctuation)
+    # The turn's mean speed over time is the working speed; the drive torque the mean torque.
+    w = v.carrier_speed_rad_s
+    assert len(w) / np.sum(1.0 / w) == pytest.approx(d.carrier_speed_rad_s, rel=1e-12)
+    assert v.coefficient == pytest.approx((w.max() - w.min()) * np.mean(1.0 / w), rel=1e-12)
+    assert v.drive_torque_nm == pytest.approx(np.mean(d.load_torque_nm), rel=1e-12)
+    # With the flywheel reported as needed, the coefficient is the allowed one.
+    fitted = noncirc.dynamics(scene.with_set("dynamics.flywheel_inertia_kg_m2", d.flywheel_needed_kg_m2))
+    assert fitted.speed.coefficient == pytest.approx(d.speed_fluctuation_allowed, rel=1e-6)
+    assert "carrier_speed_constant_drive_rad_s" in d.to_pandas().columns
+    with pytest.raises(noncirc.NoncircError, match="dynamics.speed_fluctuation_allowed"):
+        scene.with_set("dynamics.speed_fluctuation_allowed", 0)

@@ -182,13 +182,7 @@ pub(crate) fn dynamics(args: SceneArgs) -> Result<(), Box<dyn Error>> {
     let r = noncirc::dynamics::report_of(&scene)?;
     if let Some(dir) = &args.plot {
         let arm_counts = noncirc::dynamics::by_arm_count(&scene);
-        for f in noncirc::dynamics::figures(
-            &r.dynamics,
-            r.strength.as_ref(),
-            &arm_counts,
-            dir,
-            &args.figures()?,
-        )? {
+        for f in noncirc::dynamics::figures(&r, &arm_counts, dir, &args.figures()?)? {
             eprintln!("wrote {}", f.display());
         }
     }
@@ -336,7 +330,7 @@ pub(crate) fn sensitivity(args: SensitivityArgs) -> Result<(), Box<dyn Error>> {
 pub(crate) fn measures() -> Result<(), Box<dyn Error>> {
     let lines: String = Measure::all()
         .iter()
-        .map(|m| format!("{:<32} {:<4} {}\n", m.name(), m.unit(), m.description()))
+        .map(|m| format!("{:<32} {:<5} {}\n", m.name(), m.unit(), m.description()))
         .collect();
     out(&lines)?;
     Ok(())

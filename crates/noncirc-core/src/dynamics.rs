@@ -21,6 +21,7 @@ use crate::curve::TAU;
 use crate::dynamics_spec::DynamicsSpec;
 use crate::error::{Error, Result};
 use crate::events::Events;
+use crate::flywheel::{Cycle, SpeedFluctuation};
 use crate::planetary::{ArmState, Kinematics, PitchContact};
 use crate::scene::Scene;
 use crate::vec2::Vec2;
@@ -80,6 +81,14 @@ pub struct Dynamics {
     /// bodies put on the frame, `−Σ m·a_G` and `−Σ (J·α + r_G × m·a_G)` (N, N·m).
     pub shaking_force_n: Vec<[f64; 2]>,
     pub shaking_moment_nm: Vec<f64>,
+    /// All arm sets: the moving bodies' kinetic energy over `½ω²` (kg·m²), the carrier's
+    /// own inertia and the flywheel's left out; and the torque gravity and the tip's loads
+    /// need whatever the speed (N·m). The input torque is `½·dIm/dφ·ω² + Q`.
+    pub reduced_inertia_kg_m2: Vec<f64>,
+    pub load_torque_nm: Vec<f64>,
+    /// The carrier's own moment of inertia about its axis (kg·m²): with a flywheel's, what
+    /// holds its speed when the drive's torque is constant ([`Dynamics::speed_with`]).
+    pub carrier_inertia_kg_m2: f64,
     /// Arm set I's joints for an independent multibody check: the carrier's angle `φH`
     /// and the intermediate's and planet's angles relative to the carrier (rad), and
     /// their first and second derivatives per carrier radian.
@@ -114,6 +123,30 @@ pub struct DynamicsSummary {
     pub shaking_moment_peak_nm: f64,
     /// Largest difference between the two formulations' torques, over the peak torque.
     pub formulations_rel_diff: f64,
+}
+
+/// The carrier's speed when the drive's torque is constant: computed on request, not with
+/// every dynamics (a solve of the turn, a few for the flywheel needed).
+impl Dynamics {
+    fn cycle(&self) -> Cycle<'_> {
+        Cycle {
+            reduced_inertia_kg_m2: &self.reduced_inertia_kg_m2,
+            load_torque_nm: &self.load_torque_nm,
+            omega: self.carrier_speed_rad_s,
+            carrier_inertia_kg_m2: self.carrier_inertia_kg_m2,
+        }
+    }
+
+    /// The carrier's speed over the turn with a flywheel of `flywheel_kg_m2` on its axis.
+    pub fn speed_with(&self, flywheel_kg_m2: f64) -> SpeedFluctuation {
+        self.cycle().fluctuation(flywheel_kg_m2)
+    }
+
+    /// The least flywheel on the carrier's axis (kg·m², 0 when none is needed) that holds
+    /// the coefficient of speed fluctuation to `allowed`.
+    pub fn flywheel_needed_kg_m2(&self, allowed: f64) -> f64 {
+        self.cycle().flywheel_for(allowed)
+    }
 }
 
 /// A body's motion at one node: its centre of mass and, per carrier radian, its first
@@ -156,6 +189,17 @@ impl Moving {
     /// The moment about the axle the body needs beyond its weight (N·m).
     fn moment(&self, omega: f64, gravity: Vec2) -> f64 {
         self.spin(omega) + ((self.g - self.axle) * M).cross(self.force(omega, gravity))
+    }
+
+    /// Its kinetic energy over `½ω²` (kg·m²): `m·|v_G/ω|² + J·θ'²`.
+    fn kinetic(&self) -> f64 {
+        let v = self.g_d1 * M;
+        self.body.mass_kg * v.dot(v) + self.body.inertia_kg_m2 * self.angle_d[0] * self.angle_d[0]
+    }
+
+    /// The power its weight takes per unit carrier speed (N·m): `−m·g·v_G/ω`.
+    fn weight_power(&self, gravity: Vec2) -> f64 {
+        -(gravity * self.body.mass_kg).dot(self.g_d1 * M)
     }
 
     /// The power it takes per unit carrier speed (N·m): `m(a_G − g)·v_G/ω + Jαθ'`.
@@ -212,6 +256,8 @@ struct Node {
     sun_load: Vec2,
     inertial_force: Vec2,
     inertial_moment: f64,
+    kinetic: f64,
+    load_torque: f64,
     joint: [[f64; 3]; 3],
 }
 
@@ -331,6 +377,9 @@ pub fn dynamics(
             sun_load: -f1v,
             inertial_force: -(inertial(&inter) + inertial(&plan)),
             inertial_moment: -(inertial_moment(&inter) + inertial_moment(&plan)),
+            kinetic: inter.kinetic() + plan.kinetic(),
+            load_torque: inter.weight_power(gravity) + plan.weight_power(gravity)
+                - load.dot(st.tip_d1 * M),
             joint: [
                 [phi_h, st.theta2 - phi_h, st.theta3 - phi_h],
                 [sigma, w2, w3],
@@ -362,6 +411,8 @@ pub fn dynamics(
     let shaking_moment_nm: Vec<f64> = (0..n)
         .map(|j| all_scalar(j, &|x| x.inertial_moment))
         .collect();
+    let reduced_inertia_kg_m2: Vec<f64> = (0..n).map(|j| all_scalar(j, &|x| x.kinetic)).collect();
+    let load_torque_nm: Vec<f64> = (0..n).map(|j| all_scalar(j, &|x| x.load_torque)).collect();
     let o3_rel = states[0]
         .0
         .o3
@@ -426,6 +477,9 @@ pub fn dynamics(
         carrier_bearing_n: carrier_bearing.into_iter().map(xy).collect(),
         shaking_force_n: shaking.into_iter().map(xy).collect(),
         shaking_moment_nm,
+        reduced_inertia_kg_m2,
+        load_torque_nm,
+        carrier_inertia_kg_m2: spec.carrier_inertia_kg_m2,
         joint_rad: nodes.iter().map(|x| x.joint[0]).collect(),
         joint_d1: nodes.iter().map(|x| x.joint[1]).collect(),
         joint_d2: nodes.iter().map(|x| x.joint[2]).collect(),

@@ -22,6 +22,14 @@ pub struct DynamicsSpec {
     pub arm_inertia_kg_m2: f64,
     /// Mass `mc` of the carrier (kg), its centre of mass on its axis.
     pub carrier_mass_kg: f64,
+    /// Moment of inertia `Jc` of the carrier about its axis (kg·m²).
+    pub carrier_inertia_kg_m2: f64,
+    /// Moment of inertia `Jf` of a flywheel on the carrier's axis, or of the drive line
+    /// reduced to it (kg·m²); 0: none.
+    pub flywheel_inertia_kg_m2: f64,
+    /// Coefficient of speed fluctuation `δa` the drive allows, `(ω_max − ω_min)/ω_mean`,
+    /// for which the least flywheel is reported.
+    pub speed_fluctuation_allowed: f64,
     /// Gravity `g` (m/s²), along −y.
     pub gravity_m_s2: f64,
     /// Seedling separation force `Fp` at the tip while it is in the tray (N), against the
@@ -66,6 +74,9 @@ impl Default for DynamicsSpec {
             arm_com_mm: 60.0,
             arm_inertia_kg_m2: 1.2e-3,
             carrier_mass_kg: 2.5,
+            carrier_inertia_kg_m2: 0.0125,
+            flywheel_inertia_kg_m2: 0.0,
+            speed_fluctuation_allowed: 0.02,
             gravity_m_s2: 9.81,
             picking_force_n: 5.0,
             planting_force_n: 0.0,

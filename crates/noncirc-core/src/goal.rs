@@ -51,9 +51,14 @@ fn with_unit(name: &str, unit: &str) -> String {
     }
 }
 
-/// A unit as names end in it: `m/s` → `m_s`, `N·m` → `nm`, `N` → `n`.
+/// A unit as names end in it: `m/s` → `m_s`, `N·m` → `nm`, `kg·m²` → `kg_m2`, `N` → `n`.
 pub(crate) fn unit_token(unit: &str) -> String {
-    unit.replace('/', "_").replace('·', "").to_lowercase()
+    unit.replace('/', "_")
+        .replace("kg·m", "kg_m")
+        .replace('·', "")
+        .replace('²', "2")
+        .replace('³', "3")
+        .to_lowercase()
 }
 
 /// A goal to minimise once the constraints are met.

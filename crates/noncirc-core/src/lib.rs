@@ -53,6 +53,7 @@ mod dynamics;
 mod evaluation;
 mod events;
 mod fit;
+mod flywheel;
 mod inverse;
 mod measure_value;
 mod objectives;
@@ -92,6 +93,7 @@ pub use anatomy::{anatomy, Anatomy, SectionMeasures};
 pub use angle::unit;
 pub use dynamics::{dynamics, scene_dynamics, Dynamics, DynamicsSummary};
 pub use events::{attitude_deg, events, Event, Events, PickingCheck};
+pub use flywheel::{Cycle, SpeedFluctuation};
 pub use gear::{
     solve_closure, Closure, GearPair, ModuleReading, ModuleReport, ModuleRule, Rotation, SampleGrid,
 };

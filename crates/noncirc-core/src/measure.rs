@@ -185,10 +185,12 @@ pub enum DynamicsQuantity {
     CarrierBearingPeak,
     ShakingForcePeak,
     ShakingMomentPeak,
+    SpeedFluctuation,
+    FlywheelNeeded,
 }
 
 impl DynamicsQuantity {
-    const ALL: [DynamicsQuantity; 10] = [
+    const ALL: [DynamicsQuantity; 12] = [
         DynamicsQuantity::TorquePeak,
         DynamicsQuantity::TorqueRms,
         DynamicsQuantity::TorqueFluctuation,
@@ -199,6 +201,8 @@ impl DynamicsQuantity {
         DynamicsQuantity::CarrierBearingPeak,
         DynamicsQuantity::ShakingForcePeak,
         DynamicsQuantity::ShakingMomentPeak,
+        DynamicsQuantity::SpeedFluctuation,
+        DynamicsQuantity::FlywheelNeeded,
     ];
 
     /// Name (with its unit), unit and description.
@@ -253,6 +257,16 @@ impl DynamicsQuantity {
                 "shaking_moment_peak_nm",
                 "N·m",
                 "largest inertial moment the gearbox puts on the frame",
+            ),
+            DynamicsQuantity::SpeedFluctuation => (
+                "carrier_speed_fluctuation",
+                "",
+                "(largest − least carrier speed) / mean with a constant drive torque and the scene's flywheel",
+            ),
+            DynamicsQuantity::FlywheelNeeded => (
+                "flywheel_needed_kg_m2",
+                "kg·m²",
+                "least flywheel on the carrier's axis that holds the speed fluctuation to dynamics.speed_fluctuation_allowed",
             ),
         }
     }

@@ -99,7 +99,8 @@ impl Measure {
                 }
             }),
             Measure::Dynamics(q) => {
-                let s = &on.dynamics()?.summary;
+                let d = on.dynamics()?;
+                let s = &d.summary;
                 match q {
                     DynamicsQuantity::TorquePeak => Some(s.torque_peak_nm),
                     DynamicsQuantity::TorqueRms => Some(s.torque_rms_nm),
@@ -113,6 +114,13 @@ impl Measure {
                     DynamicsQuantity::CarrierBearingPeak => Some(s.carrier_bearing_peak_n),
                     DynamicsQuantity::ShakingForcePeak => Some(s.shaking_force_peak_n),
                     DynamicsQuantity::ShakingMomentPeak => Some(s.shaking_moment_peak_nm),
+                    DynamicsQuantity::SpeedFluctuation => Some(
+                        d.speed_with(on.scene.dynamics.flywheel_inertia_kg_m2)
+                            .coefficient,
+                    ),
+                    DynamicsQuantity::FlywheelNeeded => {
+                        Some(d.flywheel_needed_kg_m2(on.scene.dynamics.speed_fluctuation_allowed))
+                    }
                 }
             }
             Measure::Scalar(s) => match s {

@@ -58,6 +58,37 @@ pub(super) const FIELDS: &[Field] = &[
         number: Some(real!(dynamics.carrier_mass_kg)),
     },
     Field {
+        key: "dynamics.carrier_inertia_kg_m2",
+        symbol: "Jc",
+        unit: "kg·m²",
+        range: Range::from_to(0.0, 1e5),
+        meaning: "Moment of inertia of the carrier about its axis (the 2.5 kg case as a disc of \
+                  100 mm radius: 0.0125); only the speed fluctuation uses it.",
+        refused: &["dynamics.carrier_inertia_kg_m2=-0.01"],
+        number: Some(real!(dynamics.carrier_inertia_kg_m2)),
+    },
+    Field {
+        key: "dynamics.flywheel_inertia_kg_m2",
+        symbol: "Jf",
+        unit: "kg·m²",
+        range: Range::from_to(0.0, 1e5),
+        meaning: "Moment of inertia of a flywheel on the carrier's axis, or of the drive line \
+                  reduced to it (0: none), for the carrier's speed fluctuation.",
+        refused: &["dynamics.flywheel_inertia_kg_m2=-1"],
+        number: Some(real!(dynamics.flywheel_inertia_kg_m2)),
+    },
+    Field {
+        key: "dynamics.speed_fluctuation_allowed",
+        symbol: "δa",
+        unit: "",
+        range: Range::above_at_most(0.0, 1.0),
+        meaning: "Coefficient of speed fluctuation (ω_max − ω_min)/ω_mean the drive allows, for \
+                  the least flywheel reported (gear transmissions: 0.02, Shigley's table of \
+                  coefficients of speed fluctuation).",
+        refused: &["dynamics.speed_fluctuation_allowed=0", "dynamics.speed_fluctuation_allowed=2"],
+        number: Some(real!(dynamics.speed_fluctuation_allowed)),
+    },
+    Field {
         key: "dynamics.gravity_m_s2",
         symbol: "g",
         unit: "m/s²",
