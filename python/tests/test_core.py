@@ -21,6 +21,19 @@ def test_scenes_load_from_builtin_string_file_and_json(tmp_path):
     assert pickle.loads(pickle.dumps(paper)).to_json() == paper.to_json()
 
 
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+def test_a_seed_anywhere_in_u64_survives_the_search_and_the_scene_files():
+    for seed in [0, 2**63 - 1, 2**63, 2**64 - 1]:
+        result = optimise(Scene.builtin("paper-search"), seed=seed, budget=200, threads=1, progress=False)
+        assert result.seed == seed
+        text = result.best_scene.to_toml()
+        again = Scene.from_string(text)
+        assert again.to_json() == result.best_scene.to_json()
+        assert Scene.builtin("paper").with_set("tolerances.seed", seed).to_toml()
+    with pytest.raises(NoncircError, match="whole number"):
+        Scene.builtin("paper").with_set("search.seed", 2**64)
+
+
 def test_bad_scenes_raise_value_errors_naming_the_place():
     assert issubclass(NoncircError, ValueError)
     with pytest.raises(NoncircError, match=r"bad\.toml.*line 2.*samples_per_turn"):

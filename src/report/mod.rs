@@ -8,6 +8,7 @@ use noncirc_core::{Events, PickingCheck};
 use noncirc_core::{Measure, MeasureCost, Measured};
 use serde::Serialize;
 
+mod finite;
 mod tables;
 pub use tables::{
     box_table, natural_cmp, objective_table, scene_order, summary_table, sweep_table, table,
@@ -498,32 +499,7 @@ impl EvaluationReport {
 /// bug (an input check missed it), refused rather than printed. Absent values (`None`)
 /// are not numbers and pass. Returns the first bad number's path.
 pub fn check_finite(report: &impl Serialize) -> crate::Result<()> {
-    fn walk(v: &toml::Value, path: &str) -> Option<(String, f64)> {
-        match v {
-            toml::Value::Float(x) if !x.is_finite() => Some((path.to_string(), *x)),
-            toml::Value::Array(a) => a
-                .iter()
-                .enumerate()
-                .find_map(|(i, x)| walk(x, &format!("{path}[{i}]"))),
-            toml::Value::Table(t) => t.iter().find_map(|(k, x)| {
-                walk(
-                    x,
-                    &if path.is_empty() {
-                        k.clone()
-                    } else {
-                        format!("{path}.{k}")
-                    },
-                )
-            }),
-            _ => None,
-        }
-    }
-    // TOML leaves `None` out and keeps NaN and infinity as numbers, unlike JSON's null.
-    let tree = toml::Value::try_from(report).map_err(|e| crate::Error::Serialise {
-        what: "a report",
-        message: e.to_string(),
-    })?;
-    match walk(&tree, "") {
+    match finite::first_non_finite(report) {
         None => Ok(()),
         Some((path, x)) => Err(noncirc_core::Error::NonFinite {
             name: format!("output '{path}' (a bug: please report the scene)"),
@@ -565,7 +541,15 @@ mod tests {
             e.contains("output 'inner.speeds[1]'") && e.contains("inf"),
             "{e}"
         );
+        // A u64 beyond TOML's integers is a number like any other.
+        let big = (u64::MAX, r.inner.speeds.clone());
+        assert!(super::finite::first_non_finite(&big).is_some());
         r.inner.speeds[1] = 0.0;
+        check_finite(&(u64::MAX, &r)).unwrap();
+        let mut map = std::collections::BTreeMap::new();
+        map.insert("r1".to_string(), f64::NEG_INFINITY);
+        let e = check_finite(&Some(map)).unwrap_err().to_string();
+        assert!(e.contains("output 'r1'"), "{e}");
         r.value = f64::NAN;
         assert!(check_finite(&r)
             .unwrap_err()

@@ -632,3 +632,83 @@ fn repair_writes_the_repaired_scene_and_refuses_bad_input_with_exit_2() {
         assert_refused("repair", args, says, &dir.join("bad"));
     }
 }
+
+#[test]
+fn seeds_and_budgets_over_the_whole_u64_range_travel_through_every_file() {
+    // TOML's integers stop at 2^63 − 1: above, the scene writes a decimal string and reads
+    // either back; the search's outputs and its checkpoint keep the number.
+    let dir = temp("u64");
+    for seed in [
+        "0",
+        "9223372036854775807",
+        "9223372036854775808",
+        "18446744073709551615",
+    ] {
+        let out = dir.join(format!("out-{seed}"));
+        let ck = dir.join(format!("ck-{seed}.json"));
+        let run = noncirc()
+            .args([
+                "optimise",
+                "--seed",
+                seed,
+                "--budget",
+                "300",
+                "--checkpoint",
+            ])
+            .arg(&ck)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(0), "{seed}: {stderr}");
+        let best = std::fs::read_to_string(out.join("best.toml")).unwrap();
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(summary["seed"].to_string(), seed);
+        // The written scene reads back with its seed, as a scene and through --set.
+        let again = noncirc()
+            .args(["optimise", "--budget", "100", "--format", "json"])
+            .arg(out.join("best.toml"))
+            .output()
+            .unwrap();
+        assert_eq!(again.status.code(), Some(0), "{seed}: {best}");
+        let again: serde_json::Value = serde_json::from_slice(&again.stdout).unwrap();
+        assert_eq!(again["seed"].to_string(), seed, "{best}");
+        let set = noncirc()
+            .args(["evaluate", "--set", &format!("tolerances.seed={seed}")])
+            .args(["--set", &format!("search.budget=\"{seed}\"")])
+            .output()
+            .unwrap();
+        assert_eq!(
+            set.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&set.stderr)
+        );
+        // The checkpoint resumes to the same result.
+        let resumed = noncirc()
+            .args(["optimise", "--format", "json", "--resume"])
+            .arg(&ck)
+            .output()
+            .unwrap();
+        assert_eq!(resumed.status.code(), Some(0), "{seed}");
+        let resumed: serde_json::Value = serde_json::from_slice(&resumed.stdout).unwrap();
+        assert_eq!(resumed["seed"].to_string(), seed);
+        assert_eq!(resumed["best"], summary["best"], "{seed}");
+    }
+    // One past the range, or not a number, is refused by name.
+    for bad in ["18446744073709551616", "\"12a\"", "-1", "1.5"] {
+        let run = noncirc()
+            .args(["evaluate", "--set", &format!("search.seed={bad}")])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{bad}: {stderr}");
+        assert!(
+            stderr.contains("search.seed") && stderr.contains("whole number"),
+            "{stderr}"
+        );
+    }
+}

@@ -45,6 +45,7 @@ mod reference;
 mod scene;
 mod target;
 mod tolerance;
+mod whole_number;
 
 // Evaluate: a scene's evaluation, its events, objectives, sections and measures.
 mod accuracy;

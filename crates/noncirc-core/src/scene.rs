@@ -110,10 +110,12 @@ pub struct SearchSpec {
     /// The algorithm (by name in scene files: see `noncirc optimise --help`).
     pub algorithm: Algorithm,
     /// Evaluation budget.
+    #[serde(with = "crate::whole_number")]
     pub budget: u64,
     /// Population size of population-based algorithms.
     pub population: usize,
     /// Random seed.
+    #[serde(with = "crate::whole_number")]
     pub seed: u64,
     /// Resolution used for screening; every reported design is re-evaluated at the scene's.
     pub screening: Resolution,

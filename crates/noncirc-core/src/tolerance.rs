@@ -92,6 +92,7 @@ pub struct Tolerances {
     pub assemblies_per_part_set: usize,
     /// Seed of the scrambled Sobol points: every design of a robust search meets the same
     /// deviations (common random numbers).
+    #[serde(with = "crate::whole_number")]
     pub seed: u64,
 }
 

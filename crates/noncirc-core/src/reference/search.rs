@@ -2,6 +2,10 @@
 
 use super::{Field, Range};
 
+/// The range of a `u64` field, and how TOML holds its upper half.
+pub(super) const WHOLE_NUMBER: &str =
+    "0 to 2^64 − 1 (from 2^63 on, a string in TOML: \"18446744073709551615\")";
+
 pub(super) const FIELDS: &[Field] = &[
     Field {
         key: "search.free",
@@ -56,7 +60,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.budget",
         symbol: "",
         unit: "evaluations",
-        range: Range::at_least(0.0),
+        range: Range::Rule(WHOLE_NUMBER),
         meaning: "Evaluation budget.",
         refused: &["search.budget=-1"],
         number: Some(integer!(u64, search.budget)),
@@ -74,7 +78,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "search.seed",
         symbol: "",
         unit: "",
-        range: Range::at_least(0.0),
+        range: Range::Rule(WHOLE_NUMBER),
         meaning: "Random seed: the same seed gives the same run, whatever the thread count.",
         refused: &["search.seed=-1"],
         number: Some(integer!(u64, search.seed)),

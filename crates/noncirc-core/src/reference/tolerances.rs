@@ -193,7 +193,7 @@ pub(super) const FIELDS: &[Field] = &[
         key: "tolerances.seed",
         symbol: "",
         unit: "",
-        range: Range::Rule("0 to 2^64 − 1"),
+        range: Range::Rule(super::search::WHOLE_NUMBER),
         meaning: "Seed of the scrambled Sobol points: every design meets the same \
                   deviations (common random numbers).",
         refused: &["tolerances.seed=-1"],
