@@ -83,6 +83,7 @@ fn robust_search(c: &mut Criterion) {
             resume_budget: None,
             stop: std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false)),
             max_generations: None,
+            on_checkpoint_failure: |_| {},
         };
         group.bench_function(format!("de_probability/{threads}_threads"), |b| {
             b.iter(|| noncirc::search::run(&scene, &options, &mut []).unwrap())

@@ -210,6 +210,9 @@ pub struct RunOptions {
     pub stop: Arc<AtomicBool>,
     /// Stop after this many generations (for tests of interrupted runs).
     pub max_generations: Option<u64>,
+    /// Told at once of a checkpoint write that failed, once while it fails the same way
+    /// (the search goes on; every failure is also in the outcome): a front end prints it.
+    pub on_checkpoint_failure: fn(&str),
 }
 
 /// A thread count given or, for `None`, one per core; checked as [`check_threads`] does.
@@ -233,6 +236,7 @@ impl RunOptions {
             resume_budget: None,
             stop: Arc::new(AtomicBool::new(false)),
             max_generations: None,
+            on_checkpoint_failure: |_| {},
         })
     }
 }
@@ -407,6 +411,17 @@ pub fn run(
         }
     };
     let problem = SceneProblem::new(&scene)?;
+    if let Some(path) = &opts.checkpoint {
+        // Written before the first evaluation: a path that cannot be written is said now,
+        // not after the run, and a killed run leaves a state to resume.
+        save_checkpoint(path, &problem, budget, &state).map_err(|e| {
+            Error::Input(format!(
+                "--checkpoint {}: cannot be written ({e}); choose a path in a directory \
+                 that exists and can be written",
+                path.display()
+            ))
+        })?;
+    }
     let mut evaluator = ParallelEvaluator::new(&problem, opts.threads)?;
     let start = Instant::now();
     let mut seconds_to_first = None;
@@ -432,7 +447,7 @@ pub fn run(
             if last_checkpoint.elapsed() >= opts.checkpoint_every {
                 last_checkpoint = Instant::now();
                 if let Err(e) = save_checkpoint(path, &problem, budget, state) {
-                    failures.push(e.to_string());
+                    tell_once(&mut failures, e.to_string(), opts.on_checkpoint_failure);
                 }
             }
         }
@@ -449,7 +464,7 @@ pub fn run(
     drop(all);
     if let Some(path) = &opts.checkpoint {
         if let Err(e) = save_checkpoint(path, &problem, budget, &state) {
-            failures.push(e.to_string());
+            tell_once(&mut failures, e.to_string(), opts.on_checkpoint_failure);
         }
     }
     let confirmed = Confirmed::new(&problem, &state);
@@ -464,6 +479,15 @@ pub fn run(
         checkpoint_failures: failures,
         confirmed,
     })
+}
+
+/// Keeps a failed checkpoint write in `failures` and tells `tell` of it unless the one
+/// before failed the same way (a lost directory fails at every generation).
+fn tell_once(failures: &mut Vec<String>, failure: String, tell: fn(&str)) {
+    if failures.last() != Some(&failure) {
+        tell(&failure);
+    }
+    failures.push(failure);
 }
 
 fn save_checkpoint(

@@ -285,6 +285,7 @@ fn search_figures_for_one_goal_and_for_two() {
         resume_budget: None,
         stop: Arc::new(AtomicBool::new(false)),
         max_generations: None,
+        on_checkpoint_failure: |_| {},
     };
     let one = noncirc::scene_file::apply_overrides(
         load_scene(Some("paper-search")).unwrap(),

@@ -186,6 +186,7 @@ fn options(
         resume_budget: None,
         stop: Arc::new(AtomicBool::new(false)),
         max_generations,
+        on_checkpoint_failure: |_| {},
     }
 }
 

@@ -53,9 +53,6 @@ pub(crate) fn fit(args: FitArgs) -> Result<Finished, Box<dyn std::error::Error>>
     if let Some(bar) = progress.bar {
         bar.finish_and_clear();
     }
-    for failure in &outcome.search.checkpoint_failures {
-        eprintln!("warning: {failure} (the search went on)");
-    }
     if let Some(dir) = &args.search.out {
         outcome.write(dir)?;
     }

@@ -112,6 +112,7 @@ pub(crate) fn prepare_search(
         resume: args.resume.clone(),
         resume_budget: args.budget,
         stop: stop.clone(),
+        on_checkpoint_failure: |failure| eprintln!("warning: {failure} (the search goes on)"),
         ..RunOptions::new(args.threads)?
     };
     let progress = ProgressBar {
@@ -138,9 +139,6 @@ pub(crate) fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::erro
     let outcome = noncirc::search::run(&scene, &opts, &mut [&mut progress])?;
     if let Some(bar) = progress.bar {
         bar.finish_and_clear();
-    }
-    for failure in &outcome.checkpoint_failures {
-        eprintln!("warning: {failure} (the search went on)");
     }
     if let Some(dir) = &args.out {
         outcome.write(dir)?;

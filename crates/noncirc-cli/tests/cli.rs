@@ -712,3 +712,83 @@ fn seeds_and_budgets_over_the_whole_u64_range_travel_through_every_file() {
         );
     }
 }
+
+#[test]
+fn a_checkpoint_path_is_checked_before_the_search_and_a_failed_write_is_said_at_once() {
+    // A path that cannot be written: refused before any evaluation (exit 2, the path).
+    let run = noncirc()
+        .args(["optimise", "--checkpoint", "/nonexistent/dir/ck.json"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("/nonexistent/dir/ck.json"), "{stderr}");
+    assert!(run.stdout.is_empty());
+    // A state is written before the first evaluation: `kill -9` leaves one to resume, and
+    // a periodic write that fails later is said while the search goes on.
+    let dir = temp("ckpt-early");
+    let sub = dir.join("sub");
+    std::fs::create_dir_all(&sub).unwrap();
+    let cp = sub.join("run.json");
+    let mut child = noncirc()
+        .args(["optimise", "--budget", "100000000", "--quiet"])
+        .args(["--checkpoint-every", "0", "--checkpoint"])
+        .arg(&cp)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let wait_for = |what: &dyn Fn() -> bool| {
+        // A guard against a hang, not a timing claim.
+        for _ in 0..600 {
+            if what() {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(100));
+        }
+        panic!("waited 60 s");
+    };
+    wait_for(&|| cp.exists());
+    let kept = dir.join("kept.json");
+    std::fs::copy(&cp, &kept).unwrap();
+    std::fs::remove_dir_all(&sub).unwrap();
+    let stderr = child.stderr.take().unwrap();
+    let (tell, told) = std::sync::mpsc::channel();
+    // Reads on to the end: a closed pipe would end the search.
+    let reader = std::thread::spawn(move || {
+        use std::io::BufRead;
+        let lines = std::io::BufReader::new(stderr)
+            .lines()
+            .map_while(|l| l.ok());
+        let warnings: Vec<String> = lines
+            .filter(|l| l.contains("warning") && l.contains("checkpoint"))
+            .inspect(|l| tell.send(l.clone()).unwrap_or(()))
+            .collect();
+        warnings
+    });
+    // A guard against a hang, not a timing claim.
+    let line = told
+        .recv_timeout(Duration::from_secs(60))
+        .expect("a warning");
+    // Said while the search still runs.
+    assert!(child.try_wait().unwrap().is_none());
+    assert!(
+        line.contains("run.json") && line.contains("goes on"),
+        "{line}"
+    );
+    std::thread::sleep(Duration::from_millis(500));
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert_eq!(child.wait().unwrap().code(), Some(130));
+    // Said once, not at every generation that fails the same way.
+    assert_eq!(reader.join().unwrap().len(), 1);
+    let resumed = noncirc()
+        .args(["optimise", "--quiet", "--budget", "200", "--resume"])
+        .arg(&kept)
+        .output()
+        .unwrap();
+    assert_eq!(resumed.status.code(), Some(0), "{resumed:?}");
+    std::fs::remove_dir_all(dir).ok();
+}

@@ -150,6 +150,18 @@ pub(crate) fn optimise<'py>(
     let outcome = observed(py, progress, |observer| {
         noncirc::search::run(&s, &opts, &mut [observer])
     })?;
+    let mut failures = outcome.checkpoint_failures.clone();
+    failures.dedup();
+    for failure in &failures {
+        let message = format!("noncirc.optimise: {failure} (the search went on)");
+        let message = std::ffi::CString::new(message).map_err(internal)?;
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
+            &message,
+            2,
+        )?;
+    }
     let summary = outcome.summary();
     if !summary.feasible {
         // Said, not only flagged: a run that found nothing must not pass for a result.
