@@ -381,6 +381,59 @@ fn check_checkpoint_target(path: &Path) -> Result<()> {
     }
 }
 
+/// The files a search writes into `--out` (a fit adds `fit.json`).
+pub const OUTPUT_FILES: [&str; 6] = [
+    "best.toml",
+    "pareto.csv",
+    "pareto.json",
+    "history.csv",
+    "summary.json",
+    "fit.json",
+];
+
+/// Refuses an `--out` directory that holds files of [`OUTPUT_FILES`]' names which are not
+/// noncirc's own outputs of the scene `scene` (any scene's on a resume, `None`): beside them
+/// a `summary.json` of noncirc's for that scene. Checked before the search, so that
+/// nothing is lost; `force` writes over them anyway.
+pub fn check_out_dir(dir: &Path, scene: Option<&str>, force: bool) -> Result<()> {
+    if force || !dir.exists() {
+        return Ok(());
+    }
+    let refuse = |why: String| {
+        Err(Error::Input(format!(
+            "--out {}: {why}; refusing to overwrite it (choose another directory, or --force)",
+            dir.display()
+        )))
+    };
+    if !dir.is_dir() {
+        return refuse("the path exists and is not a directory".into());
+    }
+    let present: Vec<&str> = (OUTPUT_FILES.iter().copied())
+        .filter(|name| dir.join(name).exists())
+        .collect();
+    if present.is_empty() {
+        return Ok(());
+    }
+    let summary = crate::files::read_limited(&dir.join("summary.json"), 1 << 26)
+        .ok()
+        .and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok())
+        .filter(|v| v.get("algorithm").is_some() && v.get("evaluations").is_some());
+    let written_for = summary
+        .as_ref()
+        .and_then(|v| v.get("scene"))
+        .and_then(|v| v.as_str());
+    match (written_for, scene) {
+        (None, _) => refuse(format!(
+            "it holds {} without a noncirc summary.json beside them",
+            present.join(", ")
+        )),
+        (Some(theirs), Some(ours)) if theirs != ours => refuse(format!(
+            "it holds the outputs of a search of scene '{theirs}', not '{ours}'"
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// Runs (or resumes) a search on `scene` with the core's executor: the stop flag, the
 /// generation limit, the timed checkpoints and the caller's `observers` (a progress bar, a
 /// signal check) are its observers.

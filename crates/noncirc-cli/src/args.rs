@@ -129,6 +129,10 @@ pub(crate) struct OptimiseArgs {
     /// Write best.toml, pareto.csv/json, history.csv and summary.json here.
     #[arg(long, value_name = "DIR")]
     pub(crate) out: Option<std::path::PathBuf>,
+    /// optimise and fit: write --out over files of those names that are not noncirc's
+    /// outputs of this scene.
+    #[arg(long)]
+    pub(crate) force: bool,
     /// No progress bar.
     #[arg(long)]
     pub(crate) quiet: bool,

@@ -45,6 +45,10 @@ pub(crate) fn fit(args: FitArgs) -> Result<Finished, Box<dyn std::error::Error>>
         std::sync::Arc::make_mut(target).tolerance_mm = tolerance;
         target.validate()?;
     }
+    if let Some(dir) = &args.search.out {
+        let name = args.search.resume.is_none().then_some(scene.name.as_str());
+        noncirc::search::check_out_dir(dir, name, args.search.force)?;
+    }
     let options = FitOptions {
         run: opts,
         local: LocalSettings::default(),

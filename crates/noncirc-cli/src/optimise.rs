@@ -136,6 +136,10 @@ pub(crate) fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::erro
         stop,
         mut progress,
     } = prepare_search(&args, "paper-search")?;
+    if let Some(dir) = &args.out {
+        let name = args.resume.is_none().then_some(scene.name.as_str());
+        noncirc::search::check_out_dir(dir, name, args.force)?;
+    }
     let outcome = noncirc::search::run(&scene, &opts, &mut [&mut progress])?;
     if let Some(bar) = progress.bar {
         bar.finish_and_clear();

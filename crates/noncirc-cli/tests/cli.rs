@@ -792,3 +792,47 @@ fn a_checkpoint_path_is_checked_before_the_search_and_a_failed_write_is_said_at_
     assert_eq!(resumed.status.code(), Some(0), "{resumed:?}");
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn out_refuses_files_it_did_not_write_for_the_scene_unless_forced() {
+    // The rule of --checkpoint for --out: a user's own best.toml, or another scene's
+    // results, are refused before the search (exit 2, nothing written); a re-run of the
+    // same scene replaces its own outputs; --force writes anyway.
+    let dir = temp("out-rule");
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("best.toml"), "my notes").unwrap();
+    let run = |extra: &[&str]| {
+        noncirc()
+            .args(["optimise", "--budget", "100", "--out"])
+            .arg(&out)
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let refused = run(&[]);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("best.toml") && stderr.contains("--force"),
+        "{stderr}"
+    );
+    assert!(refused.stdout.is_empty(), "no search ran");
+    assert_eq!(
+        std::fs::read_to_string(out.join("best.toml")).unwrap(),
+        "my notes"
+    );
+    assert!(!out.join("summary.json").exists());
+    std::fs::remove_file(out.join("best.toml")).unwrap();
+    assert_eq!(run(&[]).status.code(), Some(0));
+    assert_eq!(run(&[]).status.code(), Some(0), "its own outputs");
+    let other = run(&["two-arm"]);
+    let stderr = String::from_utf8_lossy(&other.stderr);
+    assert_eq!(other.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("'paper-search', not 'two-arm'"), "{stderr}");
+    assert_eq!(run(&["two-arm", "--force"]).status.code(), Some(0));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["scene"], "two-arm");
+    std::fs::remove_dir_all(dir).ok();
+}
