@@ -244,6 +244,16 @@ pub fn compare(
     progress: &mut dyn FnMut(&SearchRow),
 ) -> Result<Comparison> {
     validate(options)?;
+    for scene in [search_scene, paper] {
+        if !matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
+            return Err(Error::Input(format!(
+                "compare runs arm counts of a mechanism: scene '{}' is {}, not a three_arm or \
+                 transplanter scene",
+                scene.name,
+                scene.kind.name()
+            )));
+        }
+    }
     let rate = options.picks_per_minute;
     let measure = options.measure;
     // Every arm count's scene is checked before the first search runs.

@@ -162,12 +162,49 @@ pub fn parse_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
     checked(read_scene(text, origin)?, origin, Some(text))
 }
 
+/// The first place where `tree` has a list (or a value) where a scene has a table:
+/// serde reads a list into a table position by position (`gear = []` took every default,
+/// `train = [10, -29, …]` set the fields in order), so a table must be written as one.
+fn table_written_as_list(tree: &serde_json::Value) -> Option<String> {
+    fn walk(user: &serde_json::Value, reference: &serde_json::Value, path: &str) -> Option<String> {
+        let serde_json::Value::Object(fields) = reference else {
+            return None;
+        };
+        match user {
+            serde_json::Value::Object(given) => given.iter().find_map(|(key, value)| {
+                let inner = if path.is_empty() {
+                    key.clone()
+                } else {
+                    format!("{path}.{key}")
+                };
+                fields.get(key).and_then(|r| walk(value, r, &inner))
+            }),
+            serde_json::Value::Array(_) => Some(format!(
+                "key '{path}': a table is written as one (`[{path}]` or `{path} = {{ … }}`), \
+                 not as a list (a list would be read position by position)"
+            )),
+            _ => None,
+        }
+    }
+    walk(tree, &scene_tree(&Scene::default()), "")
+}
+
 /// Parses scene text without checking its values (they may still be set by `--set`).
 fn read_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
     let parse_err = |message: String| SceneError::Parse {
         origin: origin.to_string(),
         message,
     };
+    let tree: Option<serde_json::Value> = if text.trim_start().starts_with('{') {
+        serde_json::from_str(text).ok()
+    } else {
+        toml::from_str::<toml::Table>(text)
+            .ok()
+            .and_then(|t| serde_json::to_value(t).ok())
+    };
+    if let Some(message) = tree.as_ref().and_then(table_written_as_list) {
+        return Err(parse_err(message));
+    }
     if text.trim_start().starts_with('{') {
         let mut de = serde_json::Deserializer::from_str(text);
         let scene: Scene = serde_path_to_error::deserialize(&mut de).map_err(|e| {
@@ -206,7 +243,8 @@ fn read_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
     }
 }
 
-/// Loads and checks a scene from a path, or a built-in by name when no such file exists.
+/// Loads and checks a built-in scene by its bare name, or a scene file by its path (a file
+/// named like a built-in as `./paper`).
 pub fn load_scene(spec: Option<&str>) -> Result<Scene, SceneError> {
     load_scene_with(spec, &[])
 }
@@ -216,10 +254,10 @@ pub fn load_scene(spec: Option<&str>) -> Result<Scene, SceneError> {
 pub fn load_scene_with(spec: Option<&str>, assignments: &[String]) -> Result<Scene, SceneError> {
     let name = spec.unwrap_or(DEFAULT_SCENE);
     let builtin = BUILTIN.iter().find(|(n, _)| *n == name);
+    // A built-in's bare name always means the built-in: a file or directory of that name in
+    // the working directory is read as `./paper`, never in its place unseen.
     let (text, origin) = match builtin {
-        Some((_, text)) if !Path::new(name).exists() => {
-            (text.to_string(), format!("built-in scene '{name}'"))
-        }
+        Some((_, text)) => (text.to_string(), format!("built-in scene '{name}'")),
         _ => {
             let path = Path::new(name);
             if !path.exists() && path.extension().is_none() {
@@ -503,6 +541,9 @@ fn set_values(scene: Scene, assignments: &[String]) -> Result<Scene, SceneError>
             Err(_) => serde_json::Value::String(raw.to_string()),
         };
         *slot(&mut tree, key, assignment)? = value;
+        if let Some(message) = table_written_as_list(&tree) {
+            return Err(err(message));
+        }
         // A table set whole (`target={…}`) gains its defaults, so that a later assignment
         // can set one of them by key; a tree that does not read yet (a curve's kind
         // changed before its fields) is kept as it is.

@@ -161,3 +161,40 @@ fn a_subnormal_gear_is_refused() {
     let e = refused("ellipse-gear", &["gear.curve.semi_major_mm=5e-324"]);
     assert!(e.contains("semi_major_mm = 5e-324"), "{e}");
 }
+
+#[test]
+fn a_table_written_as_a_list_is_refused_not_read_position_by_position() {
+    // `gear = []` took every default (the paper's spline in an ellipse scene), and
+    // `train = [10, -29, …]` set the fields in order: a table must be written as one.
+    let ellipse = noncirc::scene_file::BUILTIN
+        .iter()
+        .find(|(n, _)| *n == "ellipse-gear")
+        .unwrap()
+        .1;
+    // The scene's keys before its first table, and `gear` as a list.
+    let listed = format!("gear = []\n{}", ellipse.split_once("\n[").unwrap().0);
+    let e = parse_scene(&listed, "g.toml").unwrap_err().to_string();
+    assert!(e.contains("key 'gear'") && e.contains("table"), "{e}");
+    let e = parse_scene(r#"{"train": [10, -29, 145, 65, -53]}"#, "t.json")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("key 'train'"), "{e}");
+    // Nested tables too, and through --set.
+    let e = parse_scene("[gear]\nteeth = [1, 2]\n", "n.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("key 'gear.teeth'"), "{e}");
+    for (set, key) in [
+        ("bounds=[5, [100, 200]]", "'bounds'"),
+        ("gear=[]", "'gear'"),
+    ] {
+        let e = refused("paper", &[set]);
+        assert!(e.contains(key) && e.contains("table"), "{set}: {e}");
+    }
+    // A list where the scene has a list stays a list.
+    apply_overrides(
+        load_scene(None).unwrap(),
+        &["bounds.picking_angle_deg=[40, 60]".into()],
+    )
+    .unwrap();
+}

@@ -836,3 +836,35 @@ fn out_refuses_files_it_did_not_write_for_the_scene_unless_forced() {
     assert_eq!(summary["scene"], "two-arm");
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn a_built_in_s_name_means_the_built_in_and_compare_refuses_a_gear_scene() {
+    // A file (or directory) named `paper` in the working directory no longer takes the
+    // built-in's place unseen: `paper` is the built-in, `./paper` the file.
+    let dir = temp("shadow");
+    std::fs::write(dir.join("paper"), "not a scene").unwrap();
+    let run = |scene: &str| {
+        noncirc()
+            .current_dir(&dir)
+            .args(["evaluate", scene, "--format", "json"])
+            .output()
+            .unwrap()
+    };
+    let builtin = run("paper");
+    assert_eq!(builtin.status.code(), Some(0));
+    let file = run("./paper");
+    let stderr = String::from_utf8_lossy(&file.stderr);
+    assert_eq!(file.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("./paper"), "{stderr}");
+    let compare = noncirc()
+        .args(["compare", "ellipse-gear", "--budget", "100"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&compare.stderr);
+    assert_eq!(compare.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("'ellipse-gear'") && stderr.contains("three_arm"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(dir).ok();
+}
