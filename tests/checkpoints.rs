@@ -71,6 +71,54 @@ fn old_foreign_and_future_files_are_refused_by_name() {
 }
 
 #[test]
+fn a_damage_the_parts_cannot_show_is_refused_by_the_state_s_hash() {
+    // A flipped digit in a coordinate: a valid state, another search.
+    let mut v = checkpoint(Algorithm::De);
+    let u = &mut v["state"]["solver"]["De"]["population"][1]["u"][2];
+    let x = u.as_f64().unwrap();
+    *u = json!(if x < 0.5 { x + 0.1 } else { x - 0.1 });
+    assert!(Checkpoint::from_json_unhashed(&serde_json::to_vec(&v).unwrap()).is_ok());
+    let e = read(&v).unwrap_err();
+    assert!(
+        e.contains("the state's hash") && e.contains("damaged"),
+        "{e}"
+    );
+    // The budget is covered too.
+    let mut v = checkpoint(Algorithm::Nsga2);
+    v["budget"] = json!(20_000);
+    assert!(read(&v).unwrap_err().contains("the state's hash"));
+}
+
+#[test]
+fn a_huge_population_or_a_count_near_the_end_of_u64_neither_allocates_nor_hangs() {
+    // DE and NSGA sizes beyond what a scene may ask (1e12 once tried to allocate 24 TB).
+    for (algorithm, key) in [(Algorithm::De, "De"), (Algorithm::Nsga3, "Nsga3")] {
+        let mut v = checkpoint(algorithm);
+        v["state"]["solver"][key]["size"] = json!(1_000_000_000_000u64);
+        v["state"]["solver"][key]["population"] = json!([]);
+        let e = Checkpoint::from_json_unhashed(&serde_json::to_vec(&v).unwrap())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("population size 1000000000000"), "{e}");
+    }
+    // 2^64 − 3 evaluations against a budget of 2^64 − 1: a generation of 8 saturates the
+    // count and the run ends at the budget instead of wrapping round to zero.
+    let mut v = checkpoint(Algorithm::De);
+    v["state"]["evaluations"] = json!(u64::MAX - 3);
+    let mut cp = Checkpoint::from_json_unhashed(&serde_json::to_vec(&v).unwrap()).unwrap();
+    let problem = SceneProblem::new(&cp.scene).unwrap();
+    let generation = cp.state.generation;
+    execute(
+        &mut cp.state,
+        &mut ParallelEvaluator::new(&problem, 1).unwrap(),
+        u64::MAX - 1,
+        &mut [&mut stop_after_generations(1000)],
+    );
+    assert_eq!(cp.state.evaluations, u64::MAX);
+    assert_eq!(cp.state.generation, generation + 1);
+}
+
+#[test]
 fn a_state_that_does_not_fit_its_scene_is_refused() {
     // One coordinate short (once a panic in DE's mutation).
     let mut v = checkpoint(Algorithm::De);
@@ -140,8 +188,10 @@ fn slot<'a>(v: &'a mut Value, path: &[String]) -> &'a mut Value {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(400))]
 
-    /// Damaged checkpoints: one number replaced or one array cut short, anywhere. Reading
-    /// refuses it, or the state it accepts runs two more generations without a panic.
+    /// Damaged checkpoints: one number replaced or one array cut short, anywhere. The
+    /// state's hash refuses every one; without it (as the fuzz target reads), the checks of
+    /// the parts refuse it, or the state they accept runs two more generations without a
+    /// panic.
     #[test]
     fn damaged_checkpoints_are_refused_or_run(
         which in 0usize..5,
@@ -153,6 +203,7 @@ proptest! {
         ],
     ) {
         let mut v = checkpoint(ALL[which]);
+        let original = read(&v).unwrap().to_json();
         let mut all = Vec::new();
         slots(&v, Vec::new(), &mut all);
         let path = &all[pick.index(all.len())];
@@ -161,7 +212,11 @@ proptest! {
             Value::Array(a) if !a.is_empty() => { a.pop(); }
             _ => *target = value,
         }
-        if let Ok(mut cp) = read(&v) {
+        let bytes = serde_json::to_vec(&v).unwrap();
+        // Refused, unless the change means nothing (`0` for `0.0`: the same checkpoint).
+        let same = Checkpoint::from_json_unhashed(&bytes).ok().map(|cp| cp.to_json());
+        prop_assert!(same == Some(original) || read(&v).is_err());
+        if let Ok(mut cp) = Checkpoint::from_json_unhashed(&bytes) {
             let problem = SceneProblem::new(&cp.scene).unwrap();
             let generations = cp.state.generation + 2;
             execute(&mut cp.state, &mut ParallelEvaluator::new(&problem, 1).unwrap(), u64::MAX,

@@ -2,9 +2,10 @@
 //!
 //! A checkpoint is JSON: a format name and version, the scene (so a resume needs nothing
 //! else) and a hash of it, the algorithm and the problem's dimensions, the budget, and the
-//! executor's [`SearchState`]. Reading one checks every part against the others, so a
-//! damaged or hand-edited file is refused with what is wrong instead of panicking, looping
-//! or running a state against another problem.
+//! executor's [`SearchState`] with a hash of it. Reading one checks every part against the
+//! others, so a damaged or hand-edited file is refused with what is wrong instead of
+//! panicking, looping or running a state against another problem; a damage the parts
+//! cannot show (a flipped digit in a coordinate) is caught by the state's hash.
 
 use crate::error::{Error, Result};
 use crate::problem::SceneProblem;
@@ -15,7 +16,8 @@ use serde::{Deserialize, Serialize};
 /// The `format` field of every checkpoint.
 pub const FORMAT: &str = "noncirc-checkpoint";
 /// The version this build writes and reads; raised whenever the state's layout changes.
-pub(crate) const VERSION: u32 = 1;
+/// 2: the state's hash (`state_hash`).
+pub(crate) const VERSION: u32 = 2;
 
 /// Members of one island's population on their way to another island of the same
 /// problem, with the problem they belong to.
@@ -43,6 +45,8 @@ pub struct Checkpoint {
     pub budget: u64,
     pub scene: Scene,
     pub state: SearchState,
+    /// FNV-1a hash of the state's JSON and the budget, in hex: a damaged state is refused.
+    pub state_hash: String,
 }
 
 impl Checkpoint {
@@ -60,6 +64,7 @@ impl Checkpoint {
             budget,
             scene: scene.clone(),
             state: state.clone(),
+            state_hash: state_hash(state, budget),
         }
     }
 
@@ -95,8 +100,25 @@ impl Checkpoint {
     }
 
     /// Reads and checks a checkpoint: format and version first (so an old or foreign file
-    /// says so), then the whole state against its scene.
+    /// says so), then the whole state against its scene, then the state's hash.
     pub fn from_json(bytes: &[u8]) -> Result<Self> {
+        let cp = Self::from_json_unhashed(bytes)?;
+        let hash = state_hash(&cp.state, cp.budget);
+        if hash != cp.state_hash {
+            return Err(state_error(format!(
+                "the state's hash is {hash}, the checkpoint says {}: the state or the budget \
+                 was damaged or edited (resume from an earlier checkpoint or start again)",
+                cp.state_hash
+            )));
+        }
+        Ok(cp)
+    }
+
+    /// [`Checkpoint::from_json`] but for the state's hash: every check of the parts against
+    /// each other. For the fuzz target, whose mutated states would otherwise never pass the
+    /// hash and reach a resumed search.
+    #[doc(hidden)]
+    pub fn from_json_unhashed(bytes: &[u8]) -> Result<Self> {
         let tree: serde_json::Value =
             serde_json::from_slice(bytes).map_err(|e| state_error(format!("not JSON: {e}")))?;
         match (tree.get("format"), tree.get("version")) {
@@ -149,9 +171,6 @@ impl Checkpoint {
     }
 }
 
-/// FNV-1a (64 bits) of the scene's JSON, in hex. Written here (a few lines) because it
-/// must never change between versions, unlike `std`'s hashers; it detects edits, it does
-/// not defend against tampering.
 /// The hash of a scene's search problem: the scene but for how it is searched (the
 /// algorithm, population, seed and budget), which islands of one island model may differ
 /// in.
@@ -165,8 +184,20 @@ pub(crate) fn problem_hash(scene: &Scene) -> String {
     scene_hash(&problem)
 }
 
+/// FNV-1a (64 bits) of the scene's JSON, in hex.
 pub(crate) fn scene_hash(scene: &Scene) -> String {
-    let bytes = serde_json::to_vec(scene).expect("a scene always serialises");
+    fnv1a(&serde_json::to_vec(scene).expect("a scene always serialises"))
+}
+
+/// FNV-1a (64 bits) of the state's JSON and the budget, in hex.
+fn state_hash(state: &SearchState, budget: u64) -> String {
+    fnv1a(&serde_json::to_vec(&(state, budget)).expect("a state always serialises"))
+}
+
+/// FNV-1a (64 bits) in hex. Written here (a few lines) because it must never change between
+/// versions, unlike `std`'s hashers; it detects damage and edits, it does not defend
+/// against tampering.
+fn fnv1a(bytes: &[u8]) -> String {
     let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
         (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
     });

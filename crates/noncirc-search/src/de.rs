@@ -3,7 +3,7 @@
 use crate::check::{check_candidate, check_len, state_error};
 use crate::fitness::{evaluate_all, BatchEvaluator, Candidate};
 use crate::rng::Rng;
-use crate::solver::SolverState;
+use crate::solver::{SolverState, MAX_POPULATION};
 use serde::{Deserialize, Serialize};
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -28,12 +28,13 @@ impl DifferentialEvolution {
 }
 
 impl SolverState for DifferentialEvolution {
-    /// Checks a resumed state: mutation needs four distinct members, so at least 5.
+    /// Checks a resumed state: mutation needs four distinct members, so at least 5; at
+    /// most what a scene may ask (a damaged size would allocate without end).
     fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
         check_len("de: dimension", self.dim, dim)?;
-        if self.size < 5 {
+        if !(5..=MAX_POPULATION).contains(&self.size) {
             return Err(state_error(format!(
-                "de: population size {} (at least 5)",
+                "de: population size {} (from 5 to {MAX_POPULATION})",
                 self.size
             )));
         }

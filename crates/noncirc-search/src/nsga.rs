@@ -9,7 +9,7 @@
 use crate::check::{check_candidate, check_len, state_error};
 use crate::fitness::{evaluate_all, BatchEvaluator, Candidate};
 use crate::rng::Rng;
-use crate::solver::SolverState;
+use crate::solver::{SolverState, MAX_POPULATION};
 use serde::{Deserialize, Serialize};
 
 /// How the last front that fits into the next population is cut.
@@ -155,9 +155,9 @@ impl SolverState for Nsga {
     /// member, reference directions with one coordinate per goal.
     fn check(&self, dim: usize, goals: usize) -> crate::Result<()> {
         check_len("nsga: dimension", self.dim, dim)?;
-        if self.size < 4 || self.size % 2 == 1 {
+        if !(4..=MAX_POPULATION).contains(&self.size) || self.size % 2 == 1 {
             return Err(state_error(format!(
-                "nsga: population size {} (even, at least 4)",
+                "nsga: population size {} (even, from 4 to {MAX_POPULATION})",
                 self.size
             )));
         }

@@ -141,8 +141,10 @@ impl SearchState {
     /// Runs one generation, tracks the best, and confirms new feasible bests.
     pub fn step(&mut self, eval: &mut dyn BatchEvaluator) {
         let batch = self.solver.step(eval);
-        self.generation += 1;
-        self.evaluations += batch.len() as u64;
+        // Saturating: a resumed count near 2^64 ends the run at its budget, not wrapping
+        // round to zero and running for ever.
+        self.generation = self.generation.saturating_add(1);
+        self.evaluations = self.evaluations.saturating_add(batch.len() as u64);
         let mut improved = false;
         for c in &batch {
             if self
