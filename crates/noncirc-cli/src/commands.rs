@@ -19,7 +19,7 @@ pub(crate) fn gear(args: GearArgs) -> Result<(), Box<dyn Error>> {
     noncirc::report::check_finite(&report)?;
     for dir in [&args.export, &args.scene.plot].into_iter().flatten() {
         for f in noncirc::export::export_gears(&pair, None, dir)? {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     match args.scene.format {
@@ -67,7 +67,7 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
                 }))?)?,
                 Format::Table => {
                     if let Some(advice) = &advice {
-                        eprintln!("advice: {}", advice.line());
+                        say!("advice: {}", advice.line());
                     }
                 }
             }
@@ -83,15 +83,15 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
     if let Some(dir) = &args.export {
         if failures == 0 || args.force {
             for f in run.export(dir, args.tolerance_mm)? {
-                eprintln!("wrote {}", f.display());
+                say!("wrote {}", f.display());
             }
         } else {
-            eprintln!("not exported: the teeth fail {checks} (--force exports them anyway)");
+            say!("not exported: the teeth fail {checks} (--force exports them anyway)");
         }
     }
     if let Some(dir) = &args.scene.plot {
         for f in noncirc::figures::teeth_figures(&run, dir, &args.scene.figures()?)? {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     let mut summary = run.summary();
@@ -127,7 +127,7 @@ pub(crate) fn animate(args: AnimateArgs) -> Result<(), Box<dyn Error>> {
         None
     };
     noncirc::figures::animate(&kin, teeth.as_ref(), &args.out, args.frames)?;
-    eprintln!("wrote {}", args.out.display());
+    say!("wrote {}", args.out.display());
     Ok(())
 }
 
@@ -166,7 +166,7 @@ pub(crate) fn moving_box(args: SceneArgs) -> Result<(), Box<dyn Error>> {
             report: &b,
         };
         for f in noncirc::figures::save(&fig, &dir.join("moving_box"), &args.figures()?)? {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     match args.format {
@@ -183,7 +183,7 @@ pub(crate) fn dynamics(args: SceneArgs) -> Result<(), Box<dyn Error>> {
     if let Some(dir) = &args.plot {
         let arm_counts = noncirc::dynamics::by_arm_count(&scene);
         for f in noncirc::dynamics::figures(&r, &arm_counts, dir, &args.figures()?)? {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     match args.format {
@@ -222,7 +222,7 @@ pub(crate) fn sweep(args: SweepArgs) -> Result<(), Box<dyn Error>> {
         for f in
             noncirc::plots::sweep_figures(&scene, &args.param, &rows, dir, &args.scene.figures()?)?
         {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     match args.scene.format {
@@ -246,7 +246,7 @@ pub(crate) fn compare(args: CompareArgs) -> Result<(), Box<dyn Error>> {
         threads: noncirc::search::threads_or_all(args.threads)?,
     };
     let c = noncirc::compare::compare(&scene, &paper, &options, &mut |r| {
-        eprintln!(
+        say!(
             "{} arms, seed {}: {} in {:.1} s",
             r.arms,
             r.seed,
@@ -268,7 +268,7 @@ pub(crate) fn compare(args: CompareArgs) -> Result<(), Box<dyn Error>> {
         let files =
             noncirc::plots::comparison_outputs(&designs, c.picks_per_minute, dir, &figures)?;
         for f in files {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     match args.scene.format {
@@ -292,7 +292,7 @@ pub(crate) fn robustness(args: RobustnessArgs) -> Result<(), Box<dyn Error>> {
     if let Some(dir) = &args.scene.plot {
         let options = args.scene.figures()?;
         for f in noncirc::plots::robustness_figures(&analysis, dir, &options)? {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     match args.scene.format {
@@ -316,7 +316,7 @@ pub(crate) fn sensitivity(args: SensitivityArgs) -> Result<(), Box<dyn Error>> {
     if let Some(dir) = &args.scene.plot {
         let options = args.scene.figures()?;
         for f in noncirc::plots::sensitivity_figures(&s, dir, &options)? {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     match args.scene.format {
@@ -364,7 +364,7 @@ fn plot_evaluation(
     options: &noncirc::figures::FigureOptions,
 ) -> Result<(), Box<dyn Error>> {
     for f in noncirc::plots::evaluation_outputs(scene, eval, dir, options)? {
-        eprintln!("wrote {}", f.display());
+        say!("wrote {}", f.display());
     }
     Ok(())
 }

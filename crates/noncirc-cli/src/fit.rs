@@ -6,7 +6,7 @@
 use crate::args::{BranchArg, FitArgs, Format, InverseArgs, RepairArgs, TargetArgs};
 use crate::commands::VerdictFailed;
 use crate::optimise::{prepare_search, PreparedSearch};
-use crate::output::{json, out};
+use crate::output::{json, out, out_interrupted};
 use crate::Finished;
 use noncirc::core::LocalSettings;
 use noncirc::fit::{fit_scene, read_target, with_target, FitOptions};
@@ -62,7 +62,7 @@ pub(crate) fn fit(args: FitArgs) -> Result<Finished, Box<dyn std::error::Error>>
     }
     if let Some(dir) = &args.search.scene.plot {
         for f in noncirc::plots::fit_figures(&outcome, dir, &args.search.scene.figures()?)? {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     let summary = outcome.summary();
@@ -87,14 +87,16 @@ fn conclude(
     failures: Option<String>,
 ) -> Result<Finished, Box<dyn std::error::Error>> {
     noncirc::report::check_finite(summary)?;
-    match format {
-        Format::Json => out(&json(summary)?)?,
-        Format::Table => out(&table)?,
-    }
+    let text = match format {
+        Format::Json => json(summary)?,
+        Format::Table => table,
+    };
     if let Some(saved) = interrupted {
-        eprintln!("interrupted: the results so far are above ({saved})");
+        out_interrupted(&text)?;
+        say!("interrupted: the results so far are above ({saved})");
         return Ok(Finished::Interrupted);
     }
+    out(&text)?;
     match failures {
         Some(failures) => Err(VerdictFailed(failures).into()),
         None => Ok(Finished::Completed),
@@ -133,7 +135,7 @@ pub(crate) fn repair(args: RepairArgs) -> Result<Finished, Box<dyn std::error::E
     }
     if let Some(dir) = &args.search.scene.plot {
         for f in noncirc::plots::repair_figures(&outcome, dir, &args.search.scene.figures()?)? {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     let summary = outcome.summary();
@@ -217,7 +219,7 @@ pub(crate) fn inverse(args: InverseArgs) -> Result<Finished, Box<dyn std::error:
     }
     if let Some(dir) = &args.scene.plot {
         for f in noncirc::plots::inverse_figures(&outcome, &target, dir, &args.scene.figures()?)? {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     let summary = noncirc::inverse::summary(&outcome, split);

@@ -1,5 +1,14 @@
 //! The `noncirc` command line.
 
+/// `eprintln!` that never panics: a message to a standard error that is closed or full
+/// (`2>/dev/full`) is lost, not a crash (exit 101) that hides the exit code.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 mod args;
 mod commands;
 mod fit;
@@ -38,11 +47,11 @@ fn main() -> ExitCode {
         // A reader that went away (`| head`) is not an error of ours.
         Err(e) if is_broken_pipe(e.as_ref()) => ExitCode::SUCCESS,
         Err(e) if e.is::<commands::VerdictFailed>() => {
-            eprintln!("fails: {e}");
+            say!("fails: {e}");
             ExitCode::from(EXIT_VERDICT)
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            say!("error: {e}");
             let input = e.downcast_ref::<noncirc::Error>().map_or(
                 e.is::<noncirc::scene_file::SceneError>() || e.is::<noncirc::core::Error>(),
                 noncirc::Error::is_input,

@@ -1,7 +1,7 @@
 //! `noncirc optimise`: the search with its progress bar, signals, checkpoints and outputs.
 
 use crate::args::{Format, OptimiseArgs};
-use crate::output::{json, out};
+use crate::output::{json, out, out_interrupted};
 use crate::Finished;
 use noncirc::core::{Control, Observer, Scene, SearchState};
 use noncirc::scene_file::load_scene_with;
@@ -112,7 +112,7 @@ pub(crate) fn prepare_search(
         resume: args.resume.clone(),
         resume_budget: args.budget,
         stop: stop.clone(),
-        on_checkpoint_failure: |failure| eprintln!("warning: {failure} (the search goes on)"),
+        on_checkpoint_failure: |failure| say!("warning: {failure} (the search goes on)"),
         ..RunOptions::new(args.threads)?
     };
     let progress = ProgressBar {
@@ -149,18 +149,20 @@ pub(crate) fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::erro
     }
     if let Some(dir) = &args.scene.plot {
         for f in noncirc::plots::search_figures(&outcome, dir, &args.scene.figures()?)? {
-            eprintln!("wrote {}", f.display());
+            say!("wrote {}", f.display());
         }
     }
     let summary = outcome.summary();
     noncirc::report::check_finite(&summary)?;
-    match args.scene.format {
-        Format::Json => out(&json(&summary)?)?,
-        Format::Table => out(&noncirc::report::summary_table(&summary))?,
-    }
+    let text = match args.scene.format {
+        Format::Json => json(&summary)?,
+        Format::Table => noncirc::report::summary_table(&summary),
+    };
     if stop.load(Ordering::SeqCst) {
-        eprintln!("interrupted: the results so far are above (and in the checkpoint and --out)");
+        out_interrupted(&text)?;
+        say!("interrupted: the results so far are above (and in the checkpoint and --out)");
         return Ok(Finished::Interrupted);
     }
+    out(&text)?;
     Ok(Finished::Completed)
 }

@@ -22,6 +22,15 @@ pub(crate) fn out(text: &str) -> Result<(), Box<dyn std::error::Error>> {
         })
 }
 
+/// [`out`] for a run that was interrupted: a reader that went away is not an error and
+/// does not hide the interruption (the exit code stays 130).
+pub(crate) fn out_interrupted(text: &str) -> Result<(), Box<dyn std::error::Error>> {
+    match out(text) {
+        Err(e) if is_broken_pipe(e.as_ref()) => Ok(()),
+        done => done,
+    }
+}
+
 /// Pretty JSON with a final newline.
 pub(crate) fn json(value: &impl serde::Serialize) -> Result<String, Box<dyn std::error::Error>> {
     Ok(serde_json::to_string_pretty(value)? + "\n")

@@ -155,7 +155,50 @@ fn a_closed_pipe_ends_quietly_and_a_full_disk_says_so() {
             stderr.contains("cannot write to standard output"),
             "{stderr}"
         );
+        // A standard error that cannot be written loses the message, not the exit code
+        // (a panic gave 101).
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let output = noncirc()
+            .args(["evaluate", "--set", "train.phi0_deg=nan"])
+            .stderr(full)
+            .output()
+            .unwrap();
+        assert_eq!(output.status.code(), Some(2));
     }
+    // An interrupted search whose reader went away still says it was interrupted (130).
+    let dir = temp("gone-reader");
+    let cp = dir.join("run.json");
+    let mut child = noncirc()
+        .args([
+            "optimise",
+            "--budget",
+            "100000000",
+            "--quiet",
+            "--checkpoint",
+        ])
+        .arg(&cp)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    // The first checkpoint comes after the signal handler: wait for it (a hang guard).
+    for _ in 0..600 {
+        if cp.exists() {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    assert!(cp.exists());
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert_eq!(child.wait().unwrap().code(), Some(130));
+    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]
