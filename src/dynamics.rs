@@ -384,25 +384,25 @@ pub fn figures(
             line(
                 format!("Carrier speed, constant drive torque ({speed})"),
                 "carrier speed (r/min)",
-                [
-                    (r.speed.flywheel_inertia_kg_m2, &r.speed),
-                    (
-                        r.flywheel_needed_kg_m2,
-                        &d.speed_with(r.flywheel_needed_kg_m2),
-                    ),
-                ]
-                .into_iter()
-                .map(|(flywheel, v)| {
-                    let rpm: Vec<f64> = (v.carrier_speed_rad_s.iter())
-                        .map(|w| w * 60.0 / std::f64::consts::TAU)
-                        .collect();
-                    let label = format!(
-                        "Td = {:.2} N·m, flywheel {flywheel:.3} kg·m²: δ = {:.3}",
-                        v.drive_torque_nm, v.coefficient
-                    );
-                    (label, over_cycle(&rpm))
-                })
-                .collect(),
+                // With the scene's flywheel, and with the one needed where that differs.
+                std::iter::once((r.speed.flywheel_inertia_kg_m2, r.speed.clone()))
+                    .chain(
+                        (r.flywheel_needed_kg_m2 != r.speed.flywheel_inertia_kg_m2).then(|| {
+                            let needed = r.flywheel_needed_kg_m2;
+                            (needed, d.speed_with(needed))
+                        }),
+                    )
+                    .map(|(flywheel, v)| {
+                        let rpm: Vec<f64> = (v.carrier_speed_rad_s.iter())
+                            .map(|w| w * 60.0 / std::f64::consts::TAU)
+                            .collect();
+                        let label = format!(
+                            "Td = {:.2} N·m, flywheel {flywheel:.3} kg·m²: δ = {:.3}",
+                            v.drive_torque_nm, v.coefficient
+                        );
+                        (label, over_cycle(&rpm))
+                    })
+                    .collect(),
             ),
             "carrier_speed",
         ),

@@ -93,17 +93,9 @@ fn circular_gears_at_constant_speed_need_no_torque() {
 
 #[test]
 fn a_point_mass_at_the_planet_shakes_the_frame_with_m_r_omega_squared() {
-    let mut scene = paper();
-    scene.train.arms = 1;
+    let mut scene = point_mass_at_the_planet(paper(), 1.5);
     scene.train.carrier_speed_rpm = 200.0;
-    let dy = &mut scene.dynamics;
-    (
-        dy.gear_density_kg_m3,
-        dy.arm_mass_kg,
-        dy.arm_com_mm,
-        dy.arm_inertia_kg_m2,
-    ) = (0.0, 1.5, 0.0, 0.0);
-    (dy.gravity_m_s2, dy.picking_force_n) = (0.0, 0.0);
+    scene.dynamics.gravity_m_s2 = 0.0;
     let d = run(&scene);
     let kin = scene.kinematics(&scene.resolution).unwrap();
     let omega = 200.0 * std::f64::consts::TAU / 60.0;
@@ -343,16 +335,10 @@ fn a_design_whose_teeth_cannot_be_cut_fails_the_strength_objective_and_says_why(
     assert!(eval.strength_unavailable.unwrap().contains("rack"));
 }
 
-/// The design of `a_point_mass_at_the_planet…`: equal circles (the planet translates), a
-/// point mass `mass` (kg) at the planet's centre, nothing else moving, one arm set.
-fn point_mass_train(mass: f64) -> Scene {
-    let mut scene = paper();
-    scene.gear.curve = CurveSpec::Ellipse {
-        semi_major_mm: 30.0,
-        eccentricity: 0.0,
-    };
+/// `scene`'s train with one arm set whose only moving mass is `mass` (kg), a point at the
+/// planet's centre, and no tip load.
+fn point_mass_at_the_planet(mut scene: Scene, mass: f64) -> Scene {
     scene.train.arms = 1;
-    scene.train.carrier_speed_rpm = 60.0;
     let dy = &mut scene.dynamics;
     (
         dy.gear_density_kg_m3,
@@ -386,7 +372,13 @@ fn with_a_constant_drive_torque_a_mass_under_gravity_swaps_height_for_speed_as_t
     // √(2(E0 − m·g·R·sin ψ)/I), E0 set by the mean speed (found here by bisection on a fine
     // quadrature of the turn's duration, independently of noncirc's Newton).
     let (mass, flywheel) = (1.5, 0.2);
-    let scene = point_mass_train(mass);
+    // Equal circles: the planet's centre runs round a circle at the carrier's speed.
+    let mut scene = point_mass_at_the_planet(paper(), mass);
+    scene.gear.curve = CurveSpec::Ellipse {
+        semi_major_mm: 30.0,
+        eccentricity: 0.0,
+    };
+    scene.train.carrier_speed_rpm = 60.0;
     let kin = scene.kinematics(&scene.resolution).unwrap();
     let radius = kin.planet_radius() * 1e-3;
     let inertia = mass * radius * radius + scene.dynamics.carrier_inertia_kg_m2 + flywheel;

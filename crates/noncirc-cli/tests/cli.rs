@@ -106,13 +106,18 @@ fn sigterm_stops_a_search_with_its_results_and_exit_130() {
         "{summary}"
     );
     // The checkpoint resumes.
+    assert_resumes(&cp, "1");
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// Resumes the checkpoint `cp` with a budget of `budget` and asserts that it succeeds.
+fn assert_resumes(cp: &std::path::Path, budget: &str) {
     let resumed = noncirc()
-        .args(["optimise", "--quiet", "--budget", "1", "--resume"])
-        .arg(&cp)
+        .args(["optimise", "--quiet", "--budget", budget, "--resume"])
+        .arg(cp)
         .output()
         .unwrap();
     assert_eq!(resumed.status.code(), Some(0), "{resumed:?}");
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]
@@ -827,12 +832,7 @@ fn a_checkpoint_path_is_checked_before_the_search_and_a_failed_write_is_said_at_
     assert_eq!(child.wait().unwrap().code(), Some(130));
     // Said once, not at every generation that fails the same way.
     assert_eq!(reader.join().unwrap().len(), 1);
-    let resumed = noncirc()
-        .args(["optimise", "--quiet", "--budget", "200", "--resume"])
-        .arg(&kept)
-        .output()
-        .unwrap();
-    assert_eq!(resumed.status.code(), Some(0), "{resumed:?}");
+    assert_resumes(&kept, "200");
     std::fs::remove_dir_all(dir).ok();
 }
 

@@ -45,7 +45,8 @@ pub struct Checkpoint {
     pub budget: u64,
     pub scene: Scene,
     pub state: SearchState,
-    /// FNV-1a hash of the state's JSON and the budget, in hex: a damaged state is refused.
+    /// FNV-1a hash of the state's JSON and the budget, in hex, as read or made (`to_json`
+    /// writes the state's own): a damaged state is refused.
     pub state_hash: String,
 }
 
@@ -94,9 +95,19 @@ impl Checkpoint {
             .map_err(Error::from)
     }
 
-    /// The checkpoint as JSON (non-finite numbers of the state are written as strings).
+    /// The checkpoint as JSON (non-finite numbers of the state are written as strings),
+    /// with the hash of its state as it is now (migrants may have changed it).
     pub fn to_json(&self) -> Vec<u8> {
-        serde_json::to_vec(self).expect("a checkpoint always serialises")
+        let hash = state_hash(&self.state, self.budget);
+        let written = if hash == self.state_hash {
+            serde_json::to_vec(self)
+        } else {
+            serde_json::to_vec(&Checkpoint {
+                state_hash: hash,
+                ..self.clone()
+            })
+        };
+        written.expect("a checkpoint always serialises")
     }
 
     /// Reads and checks a checkpoint: format and version first (so an old or foreign file

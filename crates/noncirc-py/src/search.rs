@@ -70,6 +70,17 @@ fn observed<T: Send>(
 }
 
 /// The search settings a call's keywords give (the algorithm by name).
+/// A `RuntimeWarning` at the user's call of `noncirc.optimise`, past the package's wrapper.
+fn warn(py: Python<'_>, message: String) -> PyResult<()> {
+    let message = std::ffi::CString::new(message).map_err(internal)?;
+    PyErr::warn(
+        py,
+        &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
+        &message,
+        2,
+    )
+}
+
 fn search_settings(
     algorithm: Option<&str>,
     budget: Option<u64>,
@@ -153,13 +164,9 @@ pub(crate) fn optimise<'py>(
     let mut failures = outcome.checkpoint_failures.clone();
     failures.dedup();
     for failure in &failures {
-        let message = format!("noncirc.optimise: {failure} (the search went on)");
-        let message = std::ffi::CString::new(message).map_err(internal)?;
-        PyErr::warn(
+        warn(
             py,
-            &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
-            &message,
-            2,
+            format!("noncirc.optimise: {failure} (the search went on)"),
         )?;
     }
     let summary = outcome.summary();
@@ -175,14 +182,7 @@ pub(crate) fn optimise<'py>(
                 missed.join(", ")
             }
         );
-        let message = std::ffi::CString::new(message).map_err(internal)?;
-        PyErr::warn(
-            py,
-            &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
-            &message,
-            // The user's call of `noncirc.optimise`, past the package's wrapper.
-            2,
-        )?;
+        warn(py, message)?;
     }
     let out = summary_dict(py, &summary)?;
     let names = outcome.problem.names();
