@@ -16,6 +16,41 @@ fn temp(name: &str) -> PathBuf {
     dir
 }
 
+/// A search that runs until it is stopped, checkpointing to `checkpoint`.
+fn long_search(checkpoint: &std::path::Path) -> Command {
+    let mut search = noncirc();
+    search
+        .args([
+            "optimise",
+            "--budget",
+            "100000000",
+            "--quiet",
+            "--checkpoint",
+        ])
+        .arg(checkpoint);
+    search
+}
+
+/// Waits until `what` holds: a guard against a hang (60 s), not a timing claim.
+fn wait_until(what: impl Fn() -> bool) {
+    for _ in 0..600 {
+        if what() {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    panic!("waited 60 s");
+}
+
+/// Sends SIGINT to `child`, as Ctrl-C does.
+fn interrupt(child: &std::process::Child) {
+    assert!(Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap()
+        .success());
+}
+
 /// Runs `noncirc COMMAND ARGS --out OUT` and asserts that it is refused as bad input:
 /// exit 2, `says` in its message, nothing written at `out`.
 fn assert_refused<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(
@@ -71,15 +106,7 @@ fn exit_codes_tell_bad_input_from_runtime_failure() {
 fn sigterm_stops_a_search_with_its_results_and_exit_130() {
     let dir = temp("sigterm");
     let (cp, out) = (dir.join("run.ckpt"), dir.join("out"));
-    let child = noncirc()
-        .args([
-            "optimise",
-            "--budget",
-            "100000000",
-            "--quiet",
-            "--checkpoint",
-        ])
-        .arg(&cp)
+    let child = long_search(&cp)
         .arg("--out")
         .arg(&out)
         .stdout(Stdio::piped())
@@ -176,32 +203,15 @@ fn a_closed_pipe_ends_quietly_and_a_full_disk_says_so() {
     // An interrupted search whose reader went away still says it was interrupted (130).
     let dir = temp("gone-reader");
     let cp = dir.join("run.json");
-    let mut child = noncirc()
-        .args([
-            "optimise",
-            "--budget",
-            "100000000",
-            "--quiet",
-            "--checkpoint",
-        ])
-        .arg(&cp)
+    let mut child = long_search(&cp)
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
     drop(child.stdout.take());
-    // The first checkpoint comes after the signal handler: wait for it (a hang guard).
-    for _ in 0..600 {
-        if cp.exists() {
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    }
-    assert!(cp.exists());
-    Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
+    // The first checkpoint comes after the signal handler.
+    wait_until(|| cp.exists());
+    interrupt(&child);
     assert_eq!(child.wait().unwrap().code(), Some(130));
     std::fs::remove_dir_all(dir).ok();
 }
@@ -778,28 +788,17 @@ fn a_checkpoint_path_is_checked_before_the_search_and_a_failed_write_is_said_at_
     let sub = dir.join("sub");
     std::fs::create_dir_all(&sub).unwrap();
     let cp = sub.join("run.json");
-    let mut child = noncirc()
-        .args(["optimise", "--budget", "100000000", "--quiet"])
-        .args(["--checkpoint-every", "0", "--checkpoint"])
-        .arg(&cp)
+    let mut child = long_search(&cp)
+        .args(["--checkpoint-every", "0"])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let wait_for = |what: &dyn Fn() -> bool| {
-        // A guard against a hang, not a timing claim.
-        for _ in 0..600 {
-            if what() {
-                return;
-            }
-            std::thread::sleep(Duration::from_millis(100));
-        }
-        panic!("waited 60 s");
-    };
-    wait_for(&|| cp.exists());
+    wait_until(|| cp.exists());
     let kept = dir.join("kept.json");
     std::fs::copy(&cp, &kept).unwrap();
-    std::fs::remove_dir_all(&sub).unwrap();
+    // The search writes into it at every generation: removing it may race with a write.
+    wait_until(|| std::fs::remove_dir_all(&sub).is_ok());
     let stderr = child.stderr.take().unwrap();
     let (tell, told) = std::sync::mpsc::channel();
     // Reads on to the end: a closed pipe would end the search.
@@ -825,10 +824,7 @@ fn a_checkpoint_path_is_checked_before_the_search_and_a_failed_write_is_said_at_
         "{line}"
     );
     std::thread::sleep(Duration::from_millis(500));
-    Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
+    interrupt(&child);
     assert_eq!(child.wait().unwrap().code(), Some(130));
     // Said once, not at every generation that fails the same way.
     assert_eq!(reader.join().unwrap().len(), 1);
