@@ -23,7 +23,7 @@ pub struct DynamicsReport {
     pub flywheel_needed_kg_m2: f64,
     pub speed_fluctuation_allowed: f64,
     /// The teeth's stresses and safety factors; `None` when the scene's teeth cannot be
-    /// cut (`strength_unavailable` says why).
+    /// cut (`strength_unavailable` says why) or were not asked for ([`report_from`]).
     pub strength: Option<Strength>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub strength_unavailable: Option<String>,
@@ -33,16 +33,25 @@ pub struct DynamicsReport {
 /// cuts them (the scene's tooth count, or its module rule's), as the objectives
 /// `bending_safety` and `contact_safety` compute it ([`noncirc_core::train_strength`]).
 pub fn report_of(scene: &Scene) -> Result<DynamicsReport> {
-    let (eval, d) = evaluated_dynamics(scene)?;
-    let cut = eval
-        .kinematics
-        .as_ref()
-        .ok_or_else(|| noncirc_core::Error::Infeasible("no train to cut".into()))
-        .and_then(|kin| cut_train(kin, scene))
-        .and_then(|pairs| strength(&d, &pairs, &scene.dynamics));
-    let (strength, strength_unavailable) = match cut {
-        Ok(s) => (Some(s), None),
-        Err(e) => (None, Some(format!("the teeth cannot be cut: {e}"))),
+    let eval = evaluated(scene)?;
+    report_from(scene, &eval, true)
+}
+
+/// [`report_of`] for `eval`, `scene`'s evaluation; the teeth cut and checked for strength
+/// only `with_strength` (half a second for a design, against a millisecond for the rest).
+pub fn report_from(
+    scene: &Scene,
+    eval: &Evaluation,
+    with_strength: bool,
+) -> Result<DynamicsReport> {
+    let d = dynamics_from(scene, eval)?;
+    let (strength, strength_unavailable) = if with_strength {
+        match strength_from(scene, eval, &d) {
+            Ok(s) => (Some(s), None),
+            Err(e) => (None, Some(format!("the teeth cannot be cut: {e}"))),
+        }
+    } else {
+        (None, None)
     };
     let allowed = scene.dynamics.speed_fluctuation_allowed;
     Ok(DynamicsReport {
@@ -55,27 +64,47 @@ pub fn report_of(scene: &Scene) -> Result<DynamicsReport> {
     })
 }
 
-/// The dynamics of `scene`'s design at its resolution and working speed.
-pub fn dynamics_of(scene: &Scene) -> Result<Dynamics> {
-    Ok(evaluated_dynamics(scene)?.1)
+/// The strength of the teeth of `eval`'s train (`scene`'s evaluation), cut as `noncirc
+/// teeth` cuts them, under the loads of `d`, its dynamics; an error says why they cannot be
+/// cut.
+pub fn strength_from(scene: &Scene, eval: &Evaluation, d: &Dynamics) -> Result<Strength> {
+    let kin = (eval.kinematics.as_ref())
+        .ok_or_else(|| noncirc_core::Error::Infeasible("no train to cut".into()))?;
+    let pairs = cut_train(kin, scene)?;
+    Ok(strength(d, &pairs, &scene.dynamics)?)
 }
 
-/// `scene`'s evaluation (which has a motion) and its dynamics.
-fn evaluated_dynamics(scene: &Scene) -> Result<(Evaluation, Dynamics)> {
-    if !matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
-        return Err(Error::Input(format!(
-            "dynamics needs a three_arm or transplanter scene, not {}",
-            scene.kind.name()
-        )));
+/// The dynamics of `scene`'s design at its resolution and working speed.
+pub fn dynamics_of(scene: &Scene) -> Result<Dynamics> {
+    dynamics_from(scene, &evaluated(scene)?)
+}
+
+/// `scene`'s evaluation, for a scene with a train to move.
+fn evaluated(scene: &Scene) -> Result<Evaluation> {
+    check_kind(scene)?;
+    Ok(Evaluator::planned(&scene.resolution).evaluate(scene)?)
+}
+
+/// An error unless `scene` has a train to move.
+fn check_kind(scene: &Scene) -> Result<()> {
+    if matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
+        return Ok(());
     }
-    let eval = Evaluator::planned(&scene.resolution).evaluate(scene)?;
+    Err(Error::Input(format!(
+        "dynamics needs a three_arm or transplanter scene, not {}",
+        scene.kind.name()
+    )))
+}
+
+/// The dynamics of `eval`, `scene`'s evaluation, which must have a motion.
+pub fn dynamics_from(scene: &Scene, eval: &Evaluation) -> Result<Dynamics> {
+    check_kind(scene)?;
     let (Some(kin), Some(events)) = (&eval.kinematics, &eval.events) else {
         return Err(Error::Input(
             "the design has no motion to move the bodies".into(),
         ));
     };
-    let d = scene_dynamics(kin, events, scene)?;
-    Ok((eval, d))
+    Ok(scene_dynamics(kin, events, scene)?)
 }
 
 /// The same design with two, three and four arm sets at the scene's picking rate (the

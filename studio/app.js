@@ -2,7 +2,7 @@
 // search in a worker, export. All numbers come from the noncirc core compiled to
 // WebAssembly (pkg/, built by studio/build.sh): the page draws, it computes nothing.
 
-import init, { Design, builtinScene, builtinScenes } from './pkg/noncirc_wasm.js';
+import init, { Design, builtinScene, builtinScenes, dynamicsQuantities } from './pkg/noncirc_wasm.js';
 import * as P from './plots.js';
 
 const $ = (id) => document.getElementById(id);
@@ -30,6 +30,26 @@ const AGRONOMY = [
   ['agronomy.housing_margin_mm', 'housing margin', 'mm'],
 ];
 const RESOLUTION = [['resolution.samples_per_turn', 'samples per turn', '1/turn']];
+/** The dynamics' inputs beside the picking rate (the scene's `[dynamics]`; the rest keep
+ *  their values from the file): path, label, unit. */
+const DYNAMICS = [
+  ['dynamics.face_width_mm', 'face width', 'mm'],
+  ['dynamics.arm_mass_kg', 'arm mass', 'kg'],
+  ['dynamics.picking_force_n', 'picking force', 'N'],
+  ['dynamics.planting_force_n', 'planting force', 'N'],
+  ['dynamics.flywheel_inertia_kg_m2', 'flywheel Jf', 'kg·m²'],
+  ['dynamics.speed_fluctuation_allowed', 'allowed δ', ''],
+  ['dynamics.samples_per_turn', 'samples per turn', '1/turn'],
+];
+/** The stresses over the cycle, plotted once the teeth's strength is computed: name →
+ *  [label, unit, the field of each gear's strength]. */
+const STRESSES = {
+  root_stress: ['root stress σF, tooth in mesh', 'MPa', 'bending_mpa'],
+  contact_stress: ['contact stress σH, flank in mesh', 'MPa', 'contact_mpa'],
+};
+/** How long the design rests before the dynamics panel follows it (ms): its update costs
+ *  about half a drag step's, so a drag shows it when the pointer pauses. */
+const DYNAMICS_DELAY_MS = 120;
 /** Most samples per turn at which the guide and the sweep follow every change. */
 const LIVE_SAMPLES = 1440;
 /** Measures shown in the table (the report has every measure). */
@@ -64,6 +84,15 @@ const state = {
   /** Whether the worker's job is a fit or a repair, and its last result. */
   fitJob: null,
   fitResult: null,
+  /** The dynamics panel's numbers and curves (the wasm `dynamics` view), the teeth's
+   *  strength once asked for (dropped on every change), the plot's kept bounds. */
+  dynamics: null,
+  strength: null,
+  dynamicsBounds: null,
+  /** The timer of the panel's next update while the design changes (null: up to date). */
+  dynamicsTimer: null,
+  /** Milliseconds of each panel update (wasm, draw, style and layout), for the browser test. */
+  dynamicsTimings: [],
 };
 window.studio = {
   state,
@@ -202,6 +231,8 @@ function buildFields() {
   for (const [path, label, unit] of AGRONOMY) numberRow(agro, path, label, unit);
   const res = $('resolution'); res.replaceChildren();
   for (const [path, label, unit] of RESOLUTION) numberRow(res, path, label, unit);
+  const dyn = $('dynamics-fields'); dyn.replaceChildren();
+  for (const [path, label, unit] of DYNAMICS) numberRow(dyn, path, label, unit);
   const body = $('points').tBodies[0]; body.replaceChildren();
   const radii = pointValues('radii_mm');
   radii.forEach((_, i) => {
@@ -276,6 +307,9 @@ function show(out, except) {
   drawTrajectory(out.view, out.report);
   drawMechanism();
   drawMeasures(out.report);
+  state.strength = null;
+  drawStrength();
+  scheduleDynamics();
   // The guide and the sweep evaluate about 80 neighbours: live at the usual resolutions,
   // on request above LIVE_SAMPLES (at 786 432 samples a turn they would take seconds).
   const live = out.report.samples_per_turn <= LIVE_SAMPLES;
@@ -612,6 +646,7 @@ function drawMechanism() {
     P.dot(plot, arm.arm[1], sx, sy, { fill: colour, r: 4 });
   });
   $('carrier-out').textContent = `${Math.round(state.carrier)}°`;
+  moveDynamicsMarker();
 }
 
 /** The measures' table: rows built once per set of measures, values updated in place. */
@@ -631,6 +666,174 @@ function drawMeasures(report) {
     table.dataset.names = names;
   }
   shown.forEach((m, k) => { table.rows[k].cells[1].textContent = P.fmt(+m.value.toPrecision(5)); });
+}
+
+// ---------------------------------------------------------------- dynamics
+
+/** Updates the dynamics panel once the design has rested [`DYNAMICS_DELAY_MS`]; until then
+ *  it is greyed, showing the previous design's. */
+function scheduleDynamics() {
+  clearTimeout(state.dynamicsTimer);
+  $('dynamics-panel').classList.add('stale');
+  state.dynamicsTimer = setTimeout(drawDynamics, DYNAMICS_DELAY_MS);
+}
+
+/** The dynamics panel: its numbers and the chosen quantity's curves, or why there are none. */
+function drawDynamics() {
+  const t0 = performance.now();
+  clearTimeout(state.dynamicsTimer);
+  state.dynamicsTimer = null;
+  $('dynamics-panel').classList.remove('stale');
+  // A stress is plotted from the strength, over the dynamics' carrier angles.
+  const select = $('dynamics-quantity');
+  const quantity = STRESSES[select.value] ? 'input_torque' : select.value;
+  try {
+    state.dynamics = JSON.parse(state.design.dynamics(quantity));
+  } catch (e) {
+    state.dynamics = null;
+    P.clear($('dynamics-plot'));
+    $('dynamics-table').replaceChildren();
+    $('dynamics-table').dataset.keys = '';
+    $('dynamics-msg').textContent = e.message;
+    return;
+  }
+  $('dynamics-msg').textContent = '';
+  drawDynamicsTable(state.dynamics);
+  drawDynamicsPlot();
+  void document.body.offsetHeight;
+  state.dynamicsTimings.push(performance.now() - t0);
+}
+
+/** The quantity's curves: the view's, or each gear's stress from the strength. */
+function dynamicsCurves() {
+  const stress = STRESSES[$('dynamics-quantity').value];
+  if (!stress || !state.strength) return state.dynamics.quantity;
+  const [label, unit, field] = stress;
+  return { label, unit, curves: state.strength.gears.map((g) => [g.name, g[field]]) };
+}
+
+function drawDynamicsPlot() {
+  const svg = $('dynamics-plot');
+  const v = state.dynamics;
+  const { label, unit, curves } = dynamicsCurves();
+  const lists = curves.map(([, ys]) => ys.map((y, i) => [v.carrier_deg[i], y]));
+  const key = $('dynamics-quantity').value;
+  const next = [[0, 360], P.bounds(lists, 0.02)[1]];
+  const kept = state.dynamicsBounds?.key === key ? state.dynamicsBounds.bounds : null;
+  const bounds = P.stableBounds(kept, next);
+  state.dynamicsBounds = { key, bounds };
+  const { sx, sy, plot, overlay, box } = P.axes(svg, { x: [0, 360], y: bounds[1], xlabel: 'carrier angle θ (°)', ylabel: `${label} (${unit})`, margin: [52, 14, 10, 36] });
+  if (bounds[1][0] < 0 && bounds[1][1] > 0) P.line(plot, [[0, 0], [360, 0]], sx, sy, { stroke: '#9aa3ad', 'stroke-width': 1 });
+  lists.forEach((pts, k) => P.line(plot, pts, sx, sy, { stroke: P.COLOURS[k], 'stroke-width': 1.5 }));
+  P.el('line', { 'data-marker': 'carrier', y1: box[1], y2: box[1] + box[3], stroke: '#9aa3ad', 'stroke-width': 1.5 }, overlay);
+  P.legend(overlay, box, curves.map(([name], k) => [name, P.COLOURS[k]]));
+  moveDynamicsMarker();
+}
+
+/** The plot's line at the mechanism's carrier angle. */
+function moveDynamicsMarker() {
+  const svg = $('dynamics-plot');
+  const marker = svg.querySelector('[data-marker=carrier]');
+  if (!marker || !svg.axesCache) return;
+  const x = svg.axesCache.sx(state.carrier);
+  marker.setAttribute('x1', x); marker.setAttribute('x2', x);
+}
+
+/** The cycle's extremes and the speed with a constant drive torque, as `noncirc dynamics`
+ *  prints them: rows built once, values updated in place; `data-value` holds each number. */
+function drawDynamicsTable(v) {
+  const s = v.summary;
+  const rows = [
+    ['carrier_rpm', `carrier speed (${v.arms} arm sets, ${P.fmt(+(v.carrier_rpm * v.arms).toPrecision(6))} picks/min)`, v.carrier_rpm, 'r/min'],
+    ['torque_peak_nm', 'input torque, largest |T|', s.torque_peak_nm, 'N·m'],
+    ['torque_rms_nm', 'input torque, RMS', s.torque_rms_nm, 'N·m'],
+    ['torque_mean_nm', 'input torque, mean', s.torque_mean_nm, 'N·m'],
+    ['torque_min_nm', 'input torque, least', s.torque_min_nm, 'N·m'],
+    ['torque_max_nm', 'input torque, largest', s.torque_max_nm, 'N·m'],
+    ['torque_fluctuation', 'torque fluctuation (T_max − T_min)/T_mean', s.torque_fluctuation, ''],
+    ['mesh_force_peak_n.0', 'mesh force sun–intermediate, peak', s.mesh_force_peak_n[0], 'N'],
+    ['mesh_force_peak_n.1', 'mesh force intermediate–planet, peak', s.mesh_force_peak_n[1], 'N'],
+    ['sun_shaft_peak_n', 'sun shaft, peak', s.sun_shaft_peak_n, 'N'],
+    ['carrier_bearing_peak_n', 'carrier bearing, peak', s.carrier_bearing_peak_n, 'N'],
+    ['intermediate_axle_peak_n', 'intermediate axle, peak', s.intermediate_axle_peak_n, 'N'],
+    ['planet_axle_peak_n', 'planet axle, peak', s.planet_axle_peak_n, 'N'],
+    ['shaking_force_peak_n', 'shaking force, peak', s.shaking_force_peak_n, 'N'],
+    ['shaking_moment_peak_nm', 'shaking moment, peak', s.shaking_moment_peak_nm, 'N·m'],
+    ['drive_torque_nm', 'constant drive torque (the mean)', v.drive_torque_nm, 'N·m'],
+    ['carrier_rpm_least', 'with it, carrier speed least', v.carrier_rpm_range[0], 'r/min'],
+    ['carrier_rpm_largest', 'with it, carrier speed largest', v.carrier_rpm_range[1], 'r/min'],
+    ['speed_fluctuation', `speed fluctuation δ with Jf = ${v.flywheel_inertia_kg_m2} kg·m²`, v.speed_fluctuation, ''],
+    ['flywheel_needed_kg_m2', `flywheel needed for δ ≤ ${v.speed_fluctuation_allowed}`, v.flywheel_needed_kg_m2, 'kg·m²'],
+    ['formulations_rel_diff', 'Newton–Euler vs energy torque, largest difference / peak', s.formulations_rel_diff, ''],
+  ];
+  const table = $('dynamics-table');
+  const keys = rows.map((r) => r[0]).join();
+  if (table.dataset.keys !== keys) {
+    table.replaceChildren();
+    for (const [k] of rows) {
+      const tr = table.insertRow();
+      tr.dataset.key = k;
+      tr.insertCell(); tr.insertCell().className = 'num'; tr.insertCell().className = 'unit';
+    }
+    table.dataset.keys = keys;
+  }
+  rows.forEach(([, label, value, unit], i) => {
+    const [name, num, u] = table.rows[i].cells;
+    name.textContent = label;
+    num.dataset.value = value ?? '';
+    // No fluctuation coefficient when the mean torque is below 1 % of the RMS.
+    num.textContent = value === null ? '— (mean ≈ 0)' : P.fmt(+value.toPrecision(5));
+    u.textContent = unit;
+  });
+}
+
+/** The teeth's strength per gear (after "Tooth strength"), or nothing; the stresses' plots
+ *  only with it. */
+function drawStrength() {
+  const s = state.strength;
+  const select = $('dynamics-quantity');
+  for (const o of select.options) if (STRESSES[o.value]) o.disabled = !s;
+  if (STRESSES[select.value] && !s) { select.value = 'input_torque'; scheduleDynamics(); }
+  const table = $('strength-table');
+  // Nothing to clear (a drag's every step comes here): the page's layout stays valid.
+  if (!s && !table.rows.length && !$('strength-status').textContent) return;
+  table.replaceChildren();
+  if (!s) { $('strength-status').textContent = ''; return; }
+  const head = table.createTHead().insertRow();
+  for (const h of ['gear', 'teeth', 'm (mm)', 'σF peak (MPa)', 'tooth', 'at θ (°)', 'SF', 'σH peak (MPa)', 'tooth', 'at θ (°)', 'SH']) {
+    head.appendChild(document.createElement('th')).textContent = h;
+  }
+  const body = table.createTBody();
+  for (const g of s.gears) {
+    const tr = body.insertRow();
+    tr.dataset.gear = g.name;
+    const cells = [g.name, g.teeth, g.module_mm.toFixed(3), g.bending_peak_mpa.toFixed(1), g.bending_worst_tooth, g.bending_peak_carrier_deg.toFixed(1),
+      g.bending_safety.toFixed(2), g.contact_peak_mpa.toFixed(1), g.contact_worst_tooth, g.contact_peak_carrier_deg.toFixed(1), g.contact_safety.toFixed(2)];
+    cells.forEach((c, k) => { const td = tr.insertCell(); td.textContent = c; if (k) td.className = 'num'; });
+  }
+  $('strength-status').textContent = `least safety factor: bending ${s.bending_safety_min.toFixed(2)}, contact ${s.contact_safety_min.toFixed(2)} ` +
+    `(ISO 6336-3 method B on the cut teeth, Hertz at the pitch point; ${s.material}, b = ${s.face_width_mm} mm, KA = ${s.application_factor})`;
+}
+
+/** Cuts the teeth and checks their strength (a second or so: the status says so first). */
+function startStrength() {
+  const status = $('strength-status');
+  status.className = '';
+  status.textContent = 'cutting the teeth and checking them over the cycle…';
+  $('strength-start').disabled = true;
+  // Let the status paint before the work blocks the page.
+  setTimeout(() => {
+    try {
+      state.strength = JSON.parse(state.design.strength());
+      drawStrength();
+    } catch (e) {
+      state.strength = null;
+      drawStrength();
+      status.className = 'msg';
+      status.textContent = e.message;
+    }
+    $('strength-start').disabled = false;
+  }, 30);
 }
 
 /** The guide's advice for one parameter: which way, and how much the worst margin moves. */
@@ -917,6 +1120,11 @@ function wire() {
     });
   }
   $('sweep-param').addEventListener('change', drawSweep);
+  const quantities = $('dynamics-quantity');
+  for (const [name, label] of JSON.parse(dynamicsQuantities())) quantities.add(new Option(label, name));
+  for (const [name, [label]] of Object.entries(STRESSES)) quantities.add(new Option(label, name));
+  quantities.addEventListener('change', () => { if (state.design) drawDynamics(); });
+  $('strength-start').addEventListener('click', startStrength);
   $('update-response').addEventListener('click', () => { drawGuide(); drawSweep(); });
   $('search-start').addEventListener('click', () => startSearch());
   $('search-resume').addEventListener('change', async (ev) => {

@@ -56,12 +56,12 @@ function sceneFile(name, text) {
 
 /**
  * Asserts that two JSON values agree: the same keys and strings, numbers within `rel` of
- * each other (relative to the larger, with an absolute floor of 1e-300 for zeros).
- * Returns the largest relative difference seen.
+ * each other (relative to the larger, or to `floor` where both are smaller: a quantity
+ * crossing zero). Returns the largest relative difference seen.
  */
-function assertClose(a, b, rel, path = '') {
+function assertClose(a, b, rel, path = '', floor = 1e-300) {
   if (typeof a === 'number' && typeof b === 'number') {
-    const d = Math.abs(a - b) / Math.max(Math.abs(a), Math.abs(b), 1e-300);
+    const d = Math.abs(a - b) / Math.max(Math.abs(a), Math.abs(b), floor);
     assert.ok(a === b || d <= rel, `${path}: ${a} against ${b} (relative ${d})`);
     return a === b ? 0 : d;
   }
@@ -70,7 +70,7 @@ function assertClose(a, b, rel, path = '') {
     return 0;
   }
   assert.deepEqual(Object.keys(a).sort(), Object.keys(b).sort(), `${path}: keys`);
-  return Math.max(0, ...Object.keys(a).map((k) => assertClose(a[k], b[k], rel, `${path}.${k}`)));
+  return Math.max(0, ...Object.keys(a).map((k) => assertClose(a[k], b[k], rel, `${path}.${k}`, floor)));
 }
 
 /** Median, least, 90th percentile and largest of a list. */
@@ -489,6 +489,120 @@ test('the two-arm scene draws two arm sets half a turn apart, as the CLI reports
   const three = await page.evaluate(() => JSON.parse(window.studio.state.design.frame(0)));
   assert.equal(three.arms.length, 3);
   assert.ok(!(await page.locator('input[data-path="train.carrier_speed_rpm"]').isDisabled()));
+});
+
+/** The dynamics panel's table once it follows the design (it waits for the design to rest):
+ *  key → the number it shows (full precision; null for none). */
+async function dynamicsTable() {
+  await page.waitForFunction(() => window.studio.state.dynamicsTimer === null);
+  assert.equal(await page.locator('#dynamics-panel.stale').count(), 0, 'the panel is greyed though up to date');
+  return page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#dynamics-table tr')]
+    .map((tr) => [tr.dataset.key, tr.cells[1].dataset.value === '' ? null : Number(tr.cells[1].dataset.value)])));
+}
+
+/** Asserts that the dynamics panel shows `noncirc dynamics`'s numbers for the page's
+ *  scene; returns the CLI's report. */
+async function assertDynamicsAreTheCli(name) {
+  const cli = cliJson('dynamics', sceneFile(name, await pageScene()));
+  const rpm = 60 / (2 * Math.PI);
+  const speeds = cli.speed.carrier_speed_rad_s;
+  const { mesh_force_peak_n: mesh, formulations_rel_diff: rounding, ...summary } = cli.summary;
+  const expected = {
+    carrier_rpm: cli.carrier_speed_rad_s * rpm, ...summary,
+    'mesh_force_peak_n.0': mesh[0], 'mesh_force_peak_n.1': mesh[1],
+    drive_torque_nm: cli.speed.drive_torque_nm,
+    carrier_rpm_least: Math.min(...speeds) * rpm, carrier_rpm_largest: Math.max(...speeds) * rpm,
+    speed_fluctuation: cli.speed.coefficient, flywheel_needed_kg_m2: cli.flywheel_needed_kg_m2,
+  };
+  const { formulations_rel_diff: shownRounding, ...shown } = await dynamicsTable();
+  assertClose(shown, expected, 1e-12);
+  // The two formulations' torques differ by rounding, in the browser as natively.
+  assert.ok(shownRounding < 1e-12 && rounding < 1e-12, `${shownRounding}, ${rounding}`);
+  return cli;
+}
+
+test('the dynamics panel shows noncirc dynamics\' numbers, follows the picking rate, and plots every quantity', async () => {
+  const scene = await pageScene();
+  const at180 = await assertDynamicsAreTheCli('dynamics-180.toml');
+  await page.locator('#f-train-picks-per-minute').fill('300');
+  await page.waitForFunction(() => Math.abs(Number(document.querySelector('#dynamics-table tr[data-key=carrier_rpm] td.num').dataset.value) - 100) < 1e-9);
+  const at300 = await assertDynamicsAreTheCli('dynamics-300.toml');
+  // The inertia's share of the torque grows with the speed squared: the peak grows, the
+  // loads' share (gravity and the tip's forces) does not.
+  assert.ok(at300.summary.torque_peak_nm > 2 * at180.summary.torque_peak_nm, `${at300.summary.torque_peak_nm} against ${at180.summary.torque_peak_nm}`);
+  const curveCount = { input_torque: 2, mesh_forces: 2, axle_forces: 4, shaking_force: 1, shaking_moment: 1, carrier_speed: 2 };
+  for (const [quantity, n] of Object.entries(curveCount)) {
+    await page.selectOption('#dynamics-quantity', quantity);
+    const drawn = await page.evaluate(() => document.querySelectorAll('#dynamics-plot g[clip-path] path[stroke-width="1.5"]').length);
+    assert.equal(drawn, n, `${quantity}: ${drawn} curves drawn`);
+  }
+  // Each update of the panel (the quantities above, the two designs), timed.
+  speed.dynamics_update_ms = spread(await page.evaluate(() => window.studio.state.dynamicsTimings));
+  // The plotted torque is the CLI's, point by point.
+  await page.selectOption('#dynamics-quantity', 'input_torque');
+  const plotted = await page.evaluate(() => window.studio.state.dynamics.quantity.curves[0][1]);
+  assertClose(plotted, at300.input_torque_nm, 1e-12);
+  // The stresses wait for the strength.
+  assert.ok(await page.locator('#dynamics-quantity option[value=root_stress]').isDisabled());
+  // The marker follows the mechanism's carrier angle.
+  await page.evaluate(() => { const c = document.getElementById('carrier'); c.value = '90'; c.dispatchEvent(new Event('input')); });
+  const markerX = await page.evaluate(() => Number(document.querySelector('#dynamics-plot [data-marker=carrier]').getAttribute('x1')));
+  assert.ok(Math.abs(markerX - await page.evaluate(() => document.getElementById('dynamics-plot').axesCache.sx(90))) < 1e-9);
+  await page.locator('#dynamics-plot').screenshot({ path: join(results, 'dynamics_panel.png') });
+  await page.setInputFiles('#open', { name: 'restored.toml', mimeType: 'text/plain', buffer: Buffer.from(scene) });
+  await page.waitForFunction((s) => window.studio.state.design.toToml() === s, scene);
+});
+
+test('a bad flywheel is reported beside its field and changes nothing; a good one lowers the speed fluctuation as the CLI computes it', async () => {
+  const field = page.locator('#f-dynamics-flywheel-inertia-kg-m2');
+  const before = await dynamicsTable();
+  await field.fill('-1');
+  assert.match(await field.locator('xpath=..').locator('.msg').textContent(), /dynamics\.flywheel_inertia_kg_m2/);
+  assert.equal(await field.inputValue(), '-1');
+  assert.deepEqual(await dynamicsTable(), before);
+  await field.fill('0.5');
+  await page.waitForFunction(() => document.querySelector('#dynamics-table tr[data-key=speed_fluctuation] td').textContent.includes('0.5'));
+  const after = await dynamicsTable();
+  assert.ok(after.speed_fluctuation < before.speed_fluctuation, `δ ${after.speed_fluctuation} against ${before.speed_fluctuation} without a flywheel`);
+  assert.equal(after.flywheel_needed_kg_m2, before.flywheel_needed_kg_m2);
+  await assertDynamicsAreTheCli('dynamics-flywheel.toml');
+  await field.fill('0');
+  await page.waitForFunction(() => document.querySelector('#dynamics-table tr[data-key=speed_fluctuation] td').textContent.includes('Jf = 0 '));
+});
+
+test('Tooth strength gives noncirc dynamics\' safety factors, or says why the teeth cannot be cut', async () => {
+  const scene = await pageScene();
+  await page.click('#strength-start');
+  await page.waitForFunction(() => !document.getElementById('strength-start').disabled);
+  const cliPaper = cliJson('dynamics', sceneFile('strength-paper.toml', scene));
+  assert.equal(await page.locator('#strength-status').textContent(), cliPaper.strength_unavailable);
+  // The two-arm design cut by a shaper of 100 teeth (docs/dynamics.md's example).
+  const twoArm = `${readFileSync(join(repo, 'scenes/two-arm.toml'), 'utf8')}\n[gear.teeth]\ncutter = { kind = "shaper", teeth = 100 }\n`;
+  await page.setInputFiles('#open', { name: 'two-arm-shaper.toml', mimeType: 'text/plain', buffer: Buffer.from(twoArm) });
+  await page.waitForFunction(() => window.studio.state.out.report.events?.arms.length === 2);
+  await page.click('#strength-start');
+  await page.waitForFunction(() => !document.getElementById('strength-start').disabled, null, { timeout: 60000 });
+  const cli = cliJson('dynamics', sceneFile('strength-two-arm.toml', await pageScene()));
+  const shown = await page.evaluate(() => window.studio.state.strength);
+  // Stresses near zero (a tooth leaving the mesh) are compared against 1 MPa.
+  // The teeth are cut by iterative solves, whose last digits follow the platform's libm.
+  assertClose(shown, cli.strength, 1e-10, 'strength', 1);
+  for (const g of cli.strength.gears) {
+    const row = page.locator(`#strength-table tr[data-gear="${g.name}"] td`);
+    assert.equal(await row.nth(6).textContent(), g.bending_safety.toFixed(2));
+    assert.equal(await row.nth(10).textContent(), g.contact_safety.toFixed(2));
+  }
+  assert.match(await page.locator('#strength-status').textContent(), new RegExp(`bending ${cli.strength.bending_safety_min.toFixed(2)}, contact ${cli.strength.contact_safety_min.toFixed(2)}`));
+  // Each gear's stresses over the cycle, and a change drops them.
+  await page.selectOption('#dynamics-quantity', 'contact_stress');
+  assert.equal(await page.evaluate(() => document.querySelectorAll('#dynamics-plot g[clip-path] path[stroke-width="1.5"]').length), cli.strength.gears.length);
+  await page.locator('#dynamics-plot').screenshot({ path: join(results, 'dynamics_contact_stress.png') });
+  await page.locator('#f-dynamics-face-width-mm').fill('15');
+  await page.waitForFunction(() => window.studio.state.strength === null);
+  assert.equal(await page.locator('#dynamics-quantity').inputValue(), 'input_torque');
+  assert.equal(await page.locator('#strength-table tr').count(), 0);
+  await page.setInputFiles('#open', { name: 'restored.toml', mimeType: 'text/plain', buffer: Buffer.from(scene) });
+  await page.waitForFunction((s) => window.studio.state.design.toToml() === s, scene);
 });
 
 test('a screenshot of the page is saved, and nothing went wrong in the console', async () => {

@@ -2,6 +2,7 @@
 //! parameter guide, the live sweep and the exports the studio shows.
 
 use noncirc::core::{scale, Evaluation, Evaluator, ObjectiveValue, Param, Scene, SceneProblem};
+use noncirc::dynamics::{dynamics_from, report_from, strength_from};
 use noncirc::fit::{fit_measure_rows, parse_target, target_toml};
 use noncirc::report::{check_finite, EvaluationReport};
 use noncirc::scene_file::{apply_overrides, parse_scene, BUILTIN};
@@ -10,6 +11,7 @@ use serde::Serialize;
 use std::sync::Arc;
 use wasm_bindgen::prelude::*;
 
+use crate::dynamics::{DynamicsView, QUANTITIES};
 use crate::{js_error, to_json};
 
 /// A design: a checked scene and its last evaluation.
@@ -65,6 +67,12 @@ const MOVED: f64 = 5e-4;
 struct File {
     name: String,
     text: String,
+}
+
+/// The quantities the dynamics panel plots, as JSON `[[name, label, unit]]`.
+#[wasm_bindgen(js_name = dynamicsQuantities)]
+pub fn dynamics_quantities() -> String {
+    serde_json::to_string(&QUANTITIES).unwrap_or_default()
 }
 
 /// Names of the built-in scenes, as JSON.
@@ -363,6 +371,42 @@ impl Design {
                 text: noncirc::export::svg(&outlines),
             },
         ])
+    }
+
+    /// The train at its working speed as `noncirc dynamics` computes it (after
+    /// [`Design::evaluate`]): the cycle's summary, the carrier's speed with a constant
+    /// drive torque, the flywheel needed, and the curves of `quantity` (one of
+    /// `dynamicsQuantities`) over the carrier turn, as JSON. An error names a scene without
+    /// a train or an unknown quantity.
+    pub fn dynamics(&self, quantity: &str) -> Result<String, JsError> {
+        let eval = self.evaluated()?;
+        let report = report_from(&self.scene, eval, false).map_err(js_error)?;
+        let view = DynamicsView::new(&report, quantity).ok_or_else(|| {
+            let names: Vec<&str> = QUANTITIES.iter().map(|(n, ..)| *n).collect();
+            js_error(format!(
+                "unknown dynamics quantity '{quantity}' (one of {})",
+                names.join(", ")
+            ))
+        })?;
+        check_finite(&view).map_err(js_error)?;
+        to_json(&view)
+    }
+
+    /// The teeth's strength as `noncirc dynamics` reports it (cut as `noncirc teeth` cuts
+    /// them, stressed by the dynamics' mesh forces), as JSON; an error says why the teeth
+    /// cannot be cut. Half a second natively for a design: the page asks for it.
+    pub fn strength(&self) -> Result<String, JsError> {
+        let eval = self.evaluated()?;
+        let d = dynamics_from(&self.scene, eval).map_err(js_error)?;
+        let s = strength_from(&self.scene, eval, &d)
+            .map_err(|e| js_error(format!("the teeth cannot be cut: {e}")))?;
+        check_finite(&s).map_err(js_error)?;
+        to_json(&s)
+    }
+
+    /// The last evaluation, or an error before the first.
+    fn evaluated(&self) -> Result<&Evaluation, JsError> {
+        (self.evaluation.as_ref()).ok_or_else(|| js_error("the design is not evaluated yet"))
     }
 
     /// Cuts the design's teeth as `noncirc teeth` does (the frames then draw them) and

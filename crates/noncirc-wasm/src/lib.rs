@@ -6,6 +6,7 @@
 //! errors as `Error` objects carrying the core's message.
 
 mod design;
+mod dynamics;
 mod fit;
 mod search;
 mod view;
