@@ -399,6 +399,84 @@ fn the_train_pair_has_the_conjugate_on_every_grid() {
     }
 }
 
+/// The state and contacts read from the nodes (what the dynamics at the kinematics' nodes
+/// uses) are those computed at the node's carrier angle, to rounding: every field, for
+/// both trains, both senses, and a reassembled train.
+#[test]
+fn node_states_are_the_states_at_the_nodes() {
+    let sun = CurveSpec::paper().build().unwrap();
+    let seconds: Vec<Option<PitchCurve>> = std::iter::once(None)
+        .chain(
+            second_curves()
+                .into_iter()
+                .map(|(_, s)| Some(s.build().unwrap())),
+        )
+        .collect();
+    for second in &seconds {
+        for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
+            let train = TrainSpec {
+                rotation,
+                ..TrainSpec::default()
+            };
+            let kin =
+                Kinematics::solve(&sun, second.as_ref(), &train, &Resolution::DEFAULT).unwrap();
+            let moved = TrainSpec {
+                beta0_deg: train.beta0_deg + 7.0,
+                phi0_deg: train.phi0_deg - 4.0,
+                ..train
+            };
+            let variants = [
+                Some(kin.clone()),
+                (train.sun_frame != SunFrame::Ground)
+                    .then(|| kin.reassembled(&moved, 0.05).unwrap()),
+            ];
+            for kin in variants.into_iter().flatten() {
+                for j in 0..kin.len() {
+                    let (node, [na, nb]) = kin.node_state_and_contacts(j);
+                    let (at, [a, b]) = kin.state_and_contacts(kin.theta(j));
+                    let label = format!("two pairs {} {rotation:?} node {j}", second.is_some());
+                    let close = |x: f64, y: f64, scale: f64, what: &str| {
+                        assert!((x - y).abs() <= 1e-11 * scale, "{label} {what}: {x} vs {y}");
+                    };
+                    let close2 = |x: Vec2, y: Vec2, scale: f64, what: &str| {
+                        close(x.x, y.x, scale, what);
+                        close(x.y, y.y, scale, what);
+                    };
+                    let mm = node.tip.hypot();
+                    close2(node.o2, at.o2, mm, "O2");
+                    close2(node.o3, at.o3, mm, "O3");
+                    close2(node.tip, at.tip, mm, "tip");
+                    close2(node.tip_d1, at.tip_d1, at.tip_d1.hypot(), "tip'");
+                    close2(node.tip_d2, at.tip_d2, at.tip_d2.hypot(), "tip''");
+                    close(node.theta2, at.theta2, 1.0, "θ2");
+                    close(node.theta3, at.theta3, 1.0, "θ3");
+                    for k in 0..2 {
+                        close(
+                            node.theta2_d[k],
+                            at.theta2_d[k],
+                            at.theta2_d[k].abs().max(1.0),
+                            "θ2 rates",
+                        );
+                        close(
+                            node.theta3_d[k],
+                            at.theta3_d[k],
+                            at.theta3_d[k].abs().max(1.0),
+                            "θ3 rates",
+                        );
+                    }
+                    for (x, y) in [(na, a), (nb, b)] {
+                        close2(x.centre, y.centre, mm, "contact centre");
+                        close2(x.towards, y.towards, 1.0, "contact direction");
+                        close(x.psi, y.psi, 1.0, "contact ψ");
+                        close(x.rho, y.rho, mm, "contact ρ");
+                        close(x.rho_d1, y.rho_d1, mm, "contact ρ'");
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// The tip speeds at the nodes (what the trajectory's sections integrate) are the full
 /// state's `|dD/dθ|` there, to rounding: for both trains, both senses, and a reassembled
 /// train (another β0, Φ0 and a bore error).

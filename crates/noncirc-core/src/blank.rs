@@ -39,7 +39,7 @@ impl Blank {
         for (r, chi, w) in samples {
             let r2 = r * r;
             area += 0.5 * r2 * w;
-            first += Vec2::new(chi.cos(), chi.sin()) * (r2 * r * w / 3.0);
+            first += crate::angle::unit(chi) * (r2 * r * w / 3.0);
             polar += 0.25 * r2 * r2 * w;
         }
         // mm² × mm × kg/m³ → kg: 1e-9; mm⁴ × mm × kg/m³ → kg·m²: 1e-15.

@@ -16,6 +16,7 @@
 //! Arm k is arm I a k-th of a turn later (the same sun, the same place in the ground
 //! frame), so the whole train's quantities at node j sum arm I's at nodes `j − k·n/arms`.
 
+use crate::angle::unit;
 use crate::blank::Blank;
 use crate::curve::TAU;
 use crate::dynamics_spec::DynamicsSpec;
@@ -162,9 +163,9 @@ struct Moving {
 
 impl Moving {
     /// `body` on an axle at `axle` (mm, turning with the carrier: `O' = σO⊥`, `O'' = −O`)
-    /// at angle `angle` (rad) with derivatives `angle_d`.
-    fn new(body: Blank, axle: Vec2, sigma: f64, angle: f64, angle_d: [f64; 2]) -> Self {
-        let c = body.centroid_mm.rotated(crate::angle::unit(angle));
+    /// at the angle of unit vector `direction` with derivatives `angle_d`.
+    fn new(body: Blank, axle: Vec2, sigma: f64, direction: Vec2, angle_d: [f64; 2]) -> Self {
+        let c = body.centroid_mm.rotated(direction);
         let [w, dw] = angle_d;
         Self {
             body,
@@ -291,13 +292,14 @@ pub fn dynamics(
     let train = kin.spec();
     let sigma = train.rotation.sign();
     let omega = kin.carrier_speed();
-    let alpha = crate::angle::unit(pressure_angle_deg.to_radians());
+    let alpha = unit(pressure_angle_deg.to_radians());
     let gravity = Vec2::new(0.0, -spec.gravity_m_s2);
     let [intermediate, planet] = kin.blanks(spec.face_width_mm, spec.gear_density_kg_m3);
     let (phi0, beta0) = (train.phi0_deg.to_radians(), train.beta0_deg.to_radians());
+    let less_beta0 = unit(-beta0);
     let arm = Blank::body(
         spec.arm_mass_kg,
-        crate::angle::unit(beta0) * spec.arm_com_mm,
+        unit(beta0) * spec.arm_com_mm,
         spec.arm_inertia_kg_m2,
     );
     let planet_with_arm = planet.with(arm);
@@ -321,7 +323,7 @@ pub fn dynamics(
         }
     };
     let two_pairs = kin.second_pair().is_some();
-    let span = |a: f64, b: f64| (b - a).rem_euclid(TAU);
+    let span = |a: f64, b: f64| crate::angle::wrap_turn(b - a);
     let [pick_from, pick_to] = events.picking_window_rad;
     let tip_load = |theta: f64, velocity: Vec2| {
         let picking = span(pick_from, theta) <= pick_to - pick_from;
@@ -337,8 +339,16 @@ pub fn dynamics(
         }
     };
     let node = |(st, [contact_a, contact_b]): &(ArmState, [PitchContact; 2])| -> Node {
-        let inter = Moving::new(intermediate, st.o2, sigma, st.theta2, st.theta2_d);
-        let plan = Moving::new(planet_with_arm, st.o3, sigma, st.theta3, st.theta3_d);
+        let inter = Moving::new(intermediate, st.o2, sigma, unit(st.theta2), st.theta2_d);
+        // The planet's direction from the arm's (at β0 to it): no trigonometry.
+        let arm_dir = (st.tip - st.o3) * (1.0 / train.arm_length_mm);
+        let plan = Moving::new(
+            planet_with_arm,
+            st.o3,
+            sigma,
+            arm_dir.rotated(less_beta0),
+            st.theta3_d,
+        );
         let load = tip_load(st.theta, st.tip_d1);
         // Rates relative to the carrier: the sun's −σ, the intermediate's, the planet's.
         let (w2, w3) = (st.theta2_d[0] - sigma, st.theta3_d[0] - sigma);
@@ -387,36 +397,49 @@ pub fn dynamics(
             ],
         }
     };
-    let states: Vec<_> = (0..n).map(|j| kin.state_and_contacts(theta(j))).collect();
-    let nodes: Vec<Node> = states.iter().map(node).collect();
-    let all = |j: usize, f: &dyn Fn(&Node) -> Vec2| {
-        (0..kin.arms()).fold(Vec2::ZERO, |s, k| s + f(&nodes[arm_node(k, j)]))
+    // At the kinematics' nodes (its node count a multiple of n) the state is read from them.
+    let stride = (kin.len().is_multiple_of(n)).then(|| kin.len() / n);
+    let state = |j: usize| match stride {
+        Some(s) => kin.node_state_and_contacts(j * s),
+        None => kin.state_and_contacts(theta(j)),
     };
-    let all_scalar = |j: usize, f: &dyn Fn(&Node) -> f64| {
-        (0..kin.arms())
-            .map(|k| f(&nodes[arm_node(k, j)]))
-            .sum::<f64>()
-    };
-    let xy = |v: Vec2| [v.x, v.y];
+    let nodes: Vec<Node> = (0..n).map(|j| node(&state(j))).collect();
+    // Every arm set at node j: arm k is arm I at node j − k·n/arms. One pass sums them.
     let weight = gravity * spec.carrier_mass_kg;
-    let input_torque_nm: Vec<f64> = (0..n).map(|j| all_scalar(j, &|x| x.torque)).collect();
-    let input_torque_energy_nm: Vec<f64> = (0..n)
-        .map(|j| all_scalar(j, &|x| x.torque_energy))
-        .collect();
-    let sun_shaft: Vec<Vec2> = (0..n).map(|j| all(j, &|x| x.sun_load)).collect();
-    let carrier_bearing: Vec<Vec2> = (0..n)
-        .map(|j| all(j, &|x| -(x.intermediate_axle + x.planet_axle)) + weight)
-        .collect();
-    let shaking: Vec<Vec2> = (0..n).map(|j| all(j, &|x| x.inertial_force)).collect();
-    let shaking_moment_nm: Vec<f64> = (0..n)
-        .map(|j| all_scalar(j, &|x| x.inertial_moment))
-        .collect();
-    let reduced_inertia_kg_m2: Vec<f64> = (0..n).map(|j| all_scalar(j, &|x| x.kinetic)).collect();
-    let load_torque_nm: Vec<f64> = (0..n).map(|j| all_scalar(j, &|x| x.load_torque)).collect();
-    let o3_rel = states[0]
-        .0
-        .o3
-        .rotated(crate::angle::unit(-nodes[0].joint[0][0]));
+    let mut input_torque_nm = Vec::with_capacity(n);
+    let mut input_torque_energy_nm = Vec::with_capacity(n);
+    let mut sun_shaft = Vec::with_capacity(n);
+    let mut carrier_bearing = Vec::with_capacity(n);
+    let mut shaking = Vec::with_capacity(n);
+    let mut shaking_moment_nm = Vec::with_capacity(n);
+    let mut reduced_inertia_kg_m2 = Vec::with_capacity(n);
+    let mut load_torque_nm = Vec::with_capacity(n);
+    for j in 0..n {
+        let (mut torque, mut torque_energy, mut kinetic, mut load, mut moment) =
+            (0.0, 0.0, 0.0, 0.0, 0.0);
+        let (mut sun, mut axles, mut inertial) = (Vec2::ZERO, Vec2::ZERO, Vec2::ZERO);
+        for k in 0..kin.arms() {
+            let x = &nodes[arm_node(k, j)];
+            torque += x.torque;
+            torque_energy += x.torque_energy;
+            kinetic += x.kinetic;
+            load += x.load_torque;
+            moment += x.inertial_moment;
+            sun += x.sun_load;
+            axles += x.intermediate_axle + x.planet_axle;
+            inertial += x.inertial_force;
+        }
+        input_torque_nm.push(torque);
+        input_torque_energy_nm.push(torque_energy);
+        sun_shaft.push(sun);
+        carrier_bearing.push(-axles + weight);
+        shaking.push(inertial);
+        shaking_moment_nm.push(moment);
+        reduced_inertia_kg_m2.push(kinetic);
+        load_torque_nm.push(load);
+    }
+    let xy = |v: Vec2| [v.x, v.y];
+    let o3_rel = (state(0).0.o3).rotated(unit(-nodes[0].joint[0][0]));
     let peak = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let peak_vec = |v: &[Vec2]| v.iter().fold(0.0f64, |m, x| m.max(x.hypot2().sqrt()));
     let column = |f: &dyn Fn(&Node) -> Vec2| nodes.iter().map(f).collect::<Vec<_>>();

@@ -690,16 +690,15 @@ impl Kinematics {
     /// planet's, in their own frames (as [`Kinematics::planet_points`] and the gearbox place
     /// them), each `face_width_mm` thick of `density_kg_m3`.
     pub fn blanks(&self, face_width_mm: f64, density_kg_m3: f64) -> [Blank; 2] {
-        let blank = |s: &mut dyn Iterator<Item = (f64, f64, f64)>| {
-            Blank::from_polar(s, face_width_mm, density_kg_m3)
-        };
+        // Each iterator by its own type (not `dyn`): the sums inline and pipeline.
+        let (b, rho) = (face_width_mm, density_kg_m3);
         let first = self.pair();
-        let layer_a = blank(&mut first.driven_polar());
+        let layer_a = Blank::from_polar(first.driven_polar(), b, rho);
         match self.second_pair() {
-            None => [layer_a, blank(&mut first.driver_polar())],
+            None => [layer_a, Blank::from_polar(first.driver_polar(), b, rho)],
             Some(second) => [
-                layer_a.with(blank(&mut second.driver_polar())),
-                blank(&mut second.driven_polar()),
+                layer_a.with(Blank::from_polar(second.driver_polar(), b, rho)),
+                Blank::from_polar(second.driven_polar(), b, rho),
             ],
         }
     }
@@ -796,7 +795,7 @@ impl Kinematics {
     /// The full state of arm I at any carrier angle `theta` (rad): positions, the tip's
     /// first two derivatives, orientations and the pusher-axis angle.
     pub fn state_at(&self, theta: f64) -> ArmState {
-        self.state_from(theta, &self.lag_at(theta))
+        self.state_from(theta, &self.lag_at(theta), None)
     }
 
     /// The state of arm I at carrier angle `theta` (rad) with the two meshes' pitch-curve
@@ -804,8 +803,51 @@ impl Kinematics {
     /// planet's against the intermediate (the paper's train: the planet is the sun's
     /// twin) or the intermediate's layer B against the planet (two pairs).
     pub fn state_and_contacts(&self, theta: f64) -> (ArmState, [PitchContact; 2]) {
-        let lag = self.lag_at(theta);
-        let state = self.state_from(theta, &lag);
+        self.with_contacts(theta, &self.lag_at(theta), None)
+    }
+
+    /// [`Kinematics::state_and_contacts`] at node `j`, carrier angle `θ_j` (to rounding),
+    /// from what the nodes keep: the sun's sample, the ratio and the intermediate's turn
+    /// there, and the planet's lag. One curve evaluation, at the lag, instead of two with
+    /// two interpolations and an inverse: the dynamics at the kinematics' nodes reads it.
+    pub fn node_state_and_contacts(&self, j: usize) -> (ArmState, [PitchContact; 2]) {
+        let first = &self.gears.first;
+        let (g, dg) = (first.pair.ratio_nodes()[j], first.dg[j]);
+        let big_phi = first.pair.phi2_nodes()[j];
+        let value = self.planet_lag[j];
+        let (d1, d2, mate) = match &self.gears.second {
+            None => {
+                let (g_s, dg_s, twin) = first.ratio_and_curve_at(value);
+                let ts1 = g / g_s;
+                (ts1, (dg * g_s - g * dg_s * ts1) / (g_s * g_s), twin)
+            }
+            Some(second) => {
+                let (g_b, dg_b, layer_b) = second.ratio_and_curve_at(big_phi);
+                (g_b * g, dg_b * g * g + g_b * dg, layer_b)
+            }
+        };
+        let lag = Lag {
+            big_phi,
+            g,
+            dg,
+            value,
+            d1,
+            d2,
+            curves: [first.pair.samples()[j], mate],
+        };
+        self.with_contacts(self.theta(j), &lag, Some(j))
+    }
+
+    /// The state and the meshes' contacts at carrier angle `theta` (node `node`'s if given)
+    /// with its `lag`.
+    #[inline(always)]
+    fn with_contacts(
+        &self,
+        theta: f64,
+        lag: &Lag,
+        node: Option<usize>,
+    ) -> (ArmState, [PitchContact; 2]) {
+        let state = self.state_from(theta, lag, node);
         let towards = |from: Vec2, to: Vec2| (to - from) * (1.0 / (to - from).hypot2().sqrt());
         let [sun, mate] = lag.curves;
         let mesh_a = PitchContact {
@@ -830,9 +872,10 @@ impl Kinematics {
         (state, [mesh_a, mesh_b])
     }
 
-    /// [`Kinematics::state_at`] from the lag at `theta`.
+    /// [`Kinematics::state_at`] from the lag at `theta`, which is node `node`'s angle if
+    /// one is given.
     #[inline(always)]
-    fn state_from(&self, theta: f64, lag: &Lag) -> ArmState {
+    fn state_from(&self, theta: f64, lag: &Lag, node: Option<usize>) -> ArmState {
         let sigma = self.sigma;
         let Lag {
             big_phi,
@@ -846,14 +889,20 @@ impl Kinematics {
         let (gamma0, beta0) = (self.gamma0, self.beta0);
         let s = self.spec.arm_length_mm;
         let [a1, a2] = self.carrier_a;
-        let theta3 = self.planet_base + sigma * (theta - lag) + gamma0 + std::f64::consts::PI;
         let th1 = sigma * (1.0 - lag1);
         let th2 = -sigma * lag2;
         let phi_h = self.phi0 + sigma * theta;
-        let (e1, e2) = (unit(phi_h), unit(phi_h + gamma0));
-        let o2 = e1 * a1;
-        let o3 = o2 + e2 * a2;
-        let u = unit(theta3 + beta0);
+        let o2 = unit(phi_h) * a1;
+        // At a node, the planet's centre and orientation and the arm's direction as the
+        // nodes keep them (to rounding what the angles give).
+        let (o3, theta3, u) = match node {
+            Some(j) => (self.o3[j], self.theta3[j], self.arm_dir[j]),
+            None => {
+                let theta3 =
+                    self.planet_base + sigma * (theta - lag) + gamma0 + std::f64::consts::PI;
+                (o2 + unit(phi_h + gamma0) * a2, theta3, unit(theta3 + beta0))
+            }
+        };
         let tip = o3 + u * s;
         // O3'' = −O3; u' = θ3' u⊥.
         let tip_d1 = self.tip_velocity(o3, u, th1);
