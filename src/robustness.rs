@@ -85,9 +85,11 @@ pub fn robustness_table(r: &Robustness) -> String {
          samples per turn",
         r.scene, rep.samples, rep.part_sets, rep.seed, r.samples_per_turn
     );
+    let [lo, hi] = rep.probability_all_ci95;
     let _ = writeln!(
         t,
-        "P(every objective met) = {:.4} ± {:.4} (one standard error)",
+        "P(every objective met) = {:.4}, 95 % interval [{lo:.4}, {hi:.4}] (Wilson; standard \
+         error {:.4}; the samples taken as independent)",
         rep.probability_all, rep.probability_all_se
     );
     let _ = writeln!(
@@ -101,12 +103,13 @@ pub fn robustness_table(r: &Robustness) -> String {
     let q = REPORTED_QUANTILES.map(|q| format!("q{}", q * 100.0));
     let _ = writeln!(
         t,
-        "\n{:<22} {:>5} {:>10} {:>10} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9} {:>11} {:>11}  dominant",
+        "\n{:<22} {:>5} {:>10} {:>10} {:>7} {:>17} {:>9} {:>9} {:>9} {:>9} {:>9} {:>11} {:>11}  dominant",
         "objective",
         "unit",
         "nominal",
         "margin",
         "P(met)",
+        "95 % interval",
         q[0],
         q[1],
         q[2],
@@ -127,12 +130,13 @@ pub fn robustness_table(r: &Robustness) -> String {
         let mq = o.margin_quantiles.map(num);
         let _ = writeln!(
             t,
-            "{:<22} {:>5} {:>10} {:>10} {:>7.4} {:>9} {:>9} {:>9} {:>9} {:>9} {:>11} {:>11}  {}",
+            "{:<22} {:>5} {:>10} {:>10} {:>7.4} {:>17} {:>9} {:>9} {:>9} {:>9} {:>9} {:>11} {:>11}  {}",
             o.objective.name(),
             o.unit,
             num(o.nominal_value),
             num(o.nominal_margin),
             o.probability,
+            format!("[{:.4}, {:.4}]", o.probability_ci95[0], o.probability_ci95[1]),
             mq[0],
             mq[1],
             mq[2],

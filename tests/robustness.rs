@@ -91,6 +91,21 @@ fn the_linearised_worst_case_holds_at_its_corner_and_bounds_the_samples() {
     (t.tray_distance_mm, t.tray_normal_deg) = (zero, zero);
     let r = robustness(&exact, true).unwrap();
     assert_eq!(r.report.probability_all, 1.0);
+    // Every sample met: the interval is Wilson's [n/(n+z²), 1], not the point 1 ± 0.
+    let n = r.report.samples as f64;
+    let z2 = 1.959_963_984_540_054f64.powi(2);
+    let [lo, hi] = r.report.probability_all_ci95;
+    assert!(
+        (lo - n / (n + z2)).abs() < 1e-12 && hi == 1.0,
+        "[{lo}, {hi}] of {n}"
+    );
+    for o in &r.report.objectives {
+        assert_eq!(
+            o.probability_ci95, r.report.probability_all_ci95,
+            "{:?}",
+            o.objective
+        );
+    }
     for o in &r.report.objectives {
         let w = o.worst_case.as_ref().unwrap();
         assert_eq!(w.predicted_margin, o.nominal_margin, "{:?}", o.objective);

@@ -30,8 +30,10 @@ impl Figure for MarginsFigure<'_> {
     {
         root.fill(&WHITE).map_err(err)?;
         let r = &self.analysis.report;
+        let [lo, hi] = r.probability_all_ci95;
         let title = format!(
-            "Margins under the tolerances: {} samples, P(every objective met) = {:.3}",
+            "Margins under the tolerances: {} samples, P(every objective met) = {:.3} \
+             (95 % interval {lo:.4}–{hi:.4})",
             r.samples, r.probability_all
         );
         let area = root.titled(&title, (FONT, 20)).map_err(err)?;
@@ -66,7 +68,12 @@ impl Figure for MarginsFigure<'_> {
                 counts[(((v - lo) / width) as usize).min(bins - 1)] += 1;
             }
             let top = counts.iter().copied().max().unwrap_or(1).max(1) as f64 * 1.15;
-            let caption = format!("{}: P(met) = {:.3}", o.objective.label(), o.probability);
+            let [p_lo, p_hi] = o.probability_ci95;
+            let caption = format!(
+                "{}: P(met) = {:.3} ({p_lo:.4}–{p_hi:.4})",
+                o.objective.label(),
+                o.probability
+            );
             let mut chart = ChartBuilder::on(panel)
                 .caption(caption, (FONT, 14))
                 .margin(8)
@@ -101,12 +108,17 @@ impl Figure for MarginsFigure<'_> {
                     )))
                     .map_err(err)?;
             } else {
+                // The bound is left of every sample when they meet it, right when they miss.
                 let sd = o.margin_sd.max(1e-12);
+                let (gap, side) = if o.margin_quantiles[0] > 0.0 {
+                    (o.margin_quantiles[0], "left")
+                } else {
+                    (-o.margin_quantiles[4], "right")
+                };
                 let far = format!(
-                    "bound {:.2} {} to the left ({:.0} sd)",
-                    o.margin_quantiles[0],
+                    "bound {gap:.2} {} to the {side} ({:.0} sd)",
                     o.unit,
-                    o.margin_quantiles[0] / sd
+                    gap / sd
                 );
                 chart
                     .draw_series(std::iter::once(Text::new(
@@ -127,7 +139,7 @@ impl Figure for MarginsFigure<'_> {
         }
         // One key for every panel, under them.
         let key = "red line: the bound (margin 0, missed to its left; where it is far, the \
-                   panel says how far from the lowest 1 %); dashed: the design as drawn; bars: \
+                   panel says how far from the nearest 1 % of the samples); dashed: the design as drawn; bars: \
                    the tolerance samples (machines as built)";
         key_area
             .draw(&Text::new(key, (12, 4), (FONT, 13)))

@@ -361,6 +361,36 @@ fn quantile_of_sorted(v: &[f64], q: f64) -> f64 {
     }
 }
 
+/// The normal quantile of a two-sided 95 % interval.
+const Z_95: f64 = 1.959_963_984_540_054;
+
+/// Wilson's 95 % score interval for a probability from `met` successes in `n` trials: never
+/// empty at 0 or `n` successes (where `p ± se` is a point), always within [0, 1], and close
+/// to its nominal coverage down to a few trials (Brown, Cai and DasGupta 2001). `[0, 1]`
+/// for no trials.
+pub(crate) fn wilson_interval(met: usize, n: usize) -> [f64; 2] {
+    if n == 0 {
+        return [0.0, 1.0];
+    }
+    let (k, n) = (met.min(n) as f64, n as f64);
+    let p = k / n;
+    let z2 = Z_95 * Z_95;
+    let centre = (p + z2 / (2.0 * n)) / (1.0 + z2 / n);
+    let half = Z_95 / (1.0 + z2 / n) * (p * (1.0 - p) / n + z2 / (4.0 * n * n)).sqrt();
+    // At 0 and n successes one end is exactly 0 or 1 (rounding would leave 1e-17).
+    let lower = if met == 0 {
+        0.0
+    } else {
+        (centre - half).max(0.0)
+    };
+    let upper = if met as f64 >= n {
+        1.0
+    } else {
+        (centre + half).min(1.0)
+    };
+    [lower, upper]
+}
+
 /// The quantiles a report gives of each margin.
 pub const REPORTED_QUANTILES: [f64; 5] = [0.01, 0.05, 0.5, 0.95, 0.99];
 
@@ -372,8 +402,10 @@ pub struct ObjectiveSpread {
     pub unit: &'static str,
     pub nominal_value: f64,
     pub nominal_margin: f64,
-    /// Fraction of the samples that meet it (refused samples do not).
+    /// Fraction of the samples that meet it (refused samples do not), and its 95 % Wilson
+    /// interval with the samples taken as independent ([`wilson_interval`]).
     pub probability: f64,
+    pub probability_ci95: [f64; 2],
     /// The margin's quantiles at [`REPORTED_QUANTILES`] over the samples the model took.
     pub margin_quantiles: [f64; 5],
     pub margin_mean: f64,
@@ -405,8 +437,10 @@ pub struct ToleranceReport {
     /// Fraction of the samples meeting every objective.
     pub probability_all: f64,
     /// Its standard error as if the samples were independent, `√(p(1−p)/n)` (scrambled
-    /// Sobol points do at least as well).
+    /// Sobol points do at least as well), and its 95 % Wilson interval likewise
+    /// ([`wilson_interval`]; not a point when every sample, or none, meets them).
     pub probability_all_se: f64,
+    pub probability_all_ci95: [f64; 2],
     /// Samples the model refused.
     pub refused: usize,
     /// Samples whose picking (planting) moved to another branch of the trajectory.
@@ -434,7 +468,8 @@ pub fn analyse(
     let samples = ToleranceSamples::new(tol, radius_count(&scene.gear.curve), tol.seed)?;
     let outcomes = deviated.run(evaluator, &samples);
     let n = outcomes.len() as f64;
-    let p_all = outcomes.iter().filter(|o| o.met).count() as f64 / n;
+    let met_all = outcomes.iter().filter(|o| o.met).count();
+    let p_all = met_all as f64 / n;
     let bounds = worst_case
         .then(|| worst_case_bounds(evaluator, &deviated))
         .transpose()?;
@@ -448,15 +483,16 @@ pub fn analyse(
             let mean = margins.iter().sum::<f64>() / margins.len().max(1) as f64;
             let var = margins.iter().map(|m| (m - mean).powi(2)).sum::<f64>()
                 / (margins.len().max(2) - 1) as f64;
+            let met = (outcomes.iter())
+                .filter(|s| s.margins[k] >= 0.0 && !s.refused)
+                .count();
             ObjectiveSpread {
                 objective: o.kind,
                 unit: o.kind.unit(),
                 nominal_value: o.value,
                 nominal_margin: o.margin,
-                probability: (outcomes.iter())
-                    .filter(|s| s.margins[k] >= 0.0 && !s.refused)
-                    .count() as f64
-                    / n,
+                probability: met as f64 / n,
+                probability_ci95: wilson_interval(met, outcomes.len()),
                 margin_quantiles: REPORTED_QUANTILES.map(|q| quantile_of_sorted(&margins, q)),
                 margin_mean: mean,
                 margin_sd: var.sqrt(),
@@ -472,6 +508,7 @@ pub fn analyse(
         seed: tol.seed,
         probability_all: p_all,
         probability_all_se: (p_all * (1.0 - p_all) / n).sqrt(),
+        probability_all_ci95: wilson_interval(met_all, outcomes.len()),
         refused: outcomes.iter().filter(|o| o.refused).count(),
         picking_branch_switches: outcomes.iter().filter(|o| o.picking_switch).count(),
         planting_branch_switches: outcomes.iter().filter(|o| o.planting_switch).count(),
@@ -583,6 +620,41 @@ pub fn robust_score(
 
 #[cfg(test)]
 mod tests {
+    /// Wilson's interval against its closed forms at 0 and n successes (`[0, z²/(n+z²)]`,
+    /// `[n/(n+z²), 1]`) and a value from the literature (5 of 10: [0.2366, 0.7634], Brown,
+    /// Cai and DasGupta 2001); it holds the estimate and stays in [0, 1].
+    #[test]
+    fn wilson_interval_has_its_closed_forms() {
+        let z2 = super::Z_95 * super::Z_95;
+        for n in [1, 10, 640, 10_000] {
+            let nf = n as f64;
+            let [lo, hi] = super::wilson_interval(0, n);
+            assert!(
+                lo == 0.0 && (hi - z2 / (nf + z2)).abs() < 1e-15,
+                "{n}: {lo} {hi}"
+            );
+            let [lo, hi] = super::wilson_interval(n, n);
+            assert!(
+                (lo - nf / (nf + z2)).abs() < 1e-15 && hi == 1.0,
+                "{n}: {lo} {hi}"
+            );
+            for k in 0..=n.min(50) {
+                let [lo, hi] = super::wilson_interval(k, n);
+                let p = k as f64 / nf;
+                assert!(
+                    (0.0..=p).contains(&lo) && (p..=1.0).contains(&hi),
+                    "{k}/{n}"
+                );
+            }
+        }
+        let [lo, hi] = super::wilson_interval(5, 10);
+        assert!(
+            (lo - 0.2366).abs() < 5e-5 && (hi - 0.7634).abs() < 5e-5,
+            "{lo} {hi}"
+        );
+        assert_eq!(super::wilson_interval(0, 0), [0.0, 1.0]);
+    }
+
     use super::*;
     use crate::tolerance::Spread;
 
