@@ -19,7 +19,7 @@ const TRAIN = [
  * set): path, label, unit. */
 const AGRONOMY = [
   ['train.arms', 'arm sets', ''],
-  ['train.picks_per_minute', 'picking rate', '1/min'],
+  ['train.picks_per_minute', 'picking rate', '1/min', { optional: 'empty: the carrier speed sets the working speed' }],
   ['train.carrier_speed_rpm', 'carrier speed', 'rpm'],
   ['agronomy.tray_normal_deg', 'tray normal', 'deg'],
   ['agronomy.tray_depth_mm', 'tray depth', 'mm'],
@@ -60,8 +60,12 @@ const state = {
   /** The last good evaluation: `{report, view}`. */
   out: null,
   free: [],
+  /** History steps `{toml, origin}`: the scene text and where the design came from. */
   undo: [],
   redo: [],
+  /** Where the design came from, for the scene menu: `{name, file, toml}` (a built-in's
+   *  or a file's name, and its text as loaded: the menu says "modified" once it differs). */
+  origin: null,
   /** The scene text of the last committed change (the undo stack's next entry). */
   committed: '',
   carrier: 0,
@@ -139,14 +143,90 @@ function apply(assignments, field = null) {
   return true;
 }
 
+/** Removes the optional value at `path` (its field emptied), as `apply` sets one. */
+function unset(path, field) {
+  let text;
+  try {
+    text = state.design.unset(path);
+  } catch (e) {
+    fieldMessage(field, e.message);
+    return false;
+  }
+  fieldMessage(field, null);
+  show(JSON.parse(text), field);
+  return true;
+}
+
 /** Records the current design as a step of the undo history, if it changed. */
 function commit() {
   const now = state.design.toToml();
   if (now === state.committed) return;
-  state.undo.push(state.committed);
+  state.undo.push({ toml: state.committed, origin: state.origin });
   state.redo = [];
   state.committed = now;
   updateUndoButtons();
+  markOrigin();
+}
+
+/**
+ * Loads scene text as a new step of the history: a built-in or a file (`origin`
+ * `{name, file}`, which the scene menu then names), or a fit's result (the origin kept).
+ */
+function loadStep(text, name, origin = null) {
+  const before = { toml: state.design.toToml(), origin: state.origin };
+  if (!load(text, name)) return false;
+  state.undo.push(before);
+  state.redo = [];
+  state.committed = state.design.toToml();
+  if (origin) {
+    state.origin = { ...origin, toml: state.committed };
+    // A search's or a fit's result belongs to the scene it ran on, not to this one.
+    state.searchResult = null;
+    state.fitResult = null;
+    $('search-load').disabled = true;
+    $('fit-load').disabled = true;
+  }
+  updateUndoButtons();
+  markOrigin();
+  return true;
+}
+
+/** Steps the history from `from` to `to` (undo or redo). */
+function step(from, to) {
+  if (!from.length) return;
+  const { toml, origin } = from.pop();
+  to.push({ toml: state.design.toToml(), origin: state.origin });
+  load(toml, 'undo history');
+  state.origin = origin;
+  state.committed = state.design.toToml();
+  updateUndoButtons();
+  markOrigin();
+}
+
+/** The scene menu: the built-in or file the design came from, "(modified)" once it differs. */
+function markOrigin() {
+  const menu = $('builtin');
+  const o = state.origin;
+  if (!o) return;
+  const modified = state.committed !== o.toml;
+  let file = menu.querySelector('option[data-file]');
+  if (o.file) {
+    if (!file) {
+      file = new Option('', '');
+      file.dataset.file = 'true';
+      file.disabled = true;
+      menu.add(file, 0);
+    }
+    file.selected = true;
+  } else {
+    file?.remove();
+    menu.value = o.name;
+  }
+  for (const option of menu.options) {
+    const name = option.dataset.file ? `file: ${o.name}` : option.value;
+    option.textContent = option.selected && modified ? `${name} (modified)` : name;
+  }
+  menu.title = modified ? `${o.name}, changed since it was loaded` : o.name;
 }
 
 function updateUndoButtons() {
@@ -183,8 +263,9 @@ function showFileError(message) {
   box.hidden = !message;
 }
 
-/** A labelled numeric field (with a slider when `range` is given) bound to `path`. */
-function numberRow(parent, path, label, unit, { range = null, title = '' } = {}) {
+/** A labelled numeric field (with a slider when `range` is given) bound to `path`; an
+ *  `optional` one (its text says what an empty field means) is unset when emptied. */
+function numberRow(parent, path, label, unit, { range = null, title = '', optional = null } = {}) {
   const row = document.createElement('div');
   row.className = range ? 'row slider' : 'row';
   const id = 'f-' + path.replace(/[^a-z0-9]/gi, '-');
@@ -193,7 +274,8 @@ function numberRow(parent, path, label, unit, { range = null, title = '' } = {})
   if (range) {
     slider = document.createElement('input');
     Object.assign(slider, { type: 'range', min: range[0], max: range[1], step: (range[1] - range[0]) / 400 });
-    slider.setAttribute('aria-label', `${label} (${unit})`);
+    // The label's text, not its markup (`Φ0 <span class="unit">…</span>`).
+    slider.setAttribute('aria-label', `${label.replace(/<[^>]*>/g, '')} (${unit})`);
     row.appendChild(slider);
   }
   const input = document.createElement('input');
@@ -204,7 +286,13 @@ function numberRow(parent, path, label, unit, { range = null, title = '' } = {})
   const guide = document.createElement('span'); guide.className = 'guide'; guide.dataset.guide = path; row.appendChild(guide);
   const msg = document.createElement('span'); msg.className = 'msg'; row.appendChild(msg);
   parent.appendChild(row);
+  if (optional) input.placeholder = 'unset';
+  if (optional) input.title = optional;
   input.addEventListener('input', () => {
+    if (optional && input.value.trim() === '' && input.checkValidity()) {
+      unset(path, input);
+      return;
+    }
     if (input.value.trim() === '' || !input.checkValidity()) {
       fieldMessage(input, `${path}: expected a finite number`);
       return;
@@ -228,7 +316,7 @@ function buildFields() {
     numberRow(train, path, `${sym} <span class="unit">${path.split('.')[1]}</span>`, unit, { range: f ? [f.lower, f.upper] : null, title });
   }
   const agro = $('agronomy'); agro.replaceChildren();
-  for (const [path, label, unit] of AGRONOMY) numberRow(agro, path, label, unit);
+  for (const [path, label, unit, options] of AGRONOMY) numberRow(agro, path, label, unit, options);
   const res = $('resolution'); res.replaceChildren();
   for (const [path, label, unit] of RESOLUTION) numberRow(res, path, label, unit);
   const dyn = $('dynamics-fields'); dyn.replaceChildren();
@@ -1030,9 +1118,7 @@ function loadFitResult() {
   const text = r?.best_toml ?? r?.repaired_toml;
   if (!text) return;
   const before = state.design.toToml();
-  if (load(text, state.fitJob === 'fit' ? 'the fit' : 'the repair')) {
-    state.undo.push(before); state.redo = []; state.committed = state.design.toToml(); updateUndoButtons();
-  }
+  loadStep(text, state.fitJob === 'fit' ? 'the fit' : 'the repair');
 }
 
 function loadSearchResult() {
@@ -1049,33 +1135,25 @@ function wire() {
   for (const name of JSON.parse(builtinScenes())) builtin.add(new Option(name, name));
   builtin.value = 'paper-search';
   builtin.addEventListener('change', () => {
-    const before = state.design.toToml();
-    if (load(builtinScene(builtin.value), builtin.value)) { state.undo.push(before); state.redo = []; state.committed = state.design.toToml(); updateUndoButtons(); }
+    if (!loadStep(builtinScene(builtin.value), builtin.value, { name: builtin.value, file: false })) markOrigin();
   });
   $('open').addEventListener('change', async (ev) => {
     const file = ev.target.files[0];
     if (!file) return;
-    const before = state.design.toToml();
-    if (load(await file.text(), file.name)) { state.undo.push(before); state.redo = []; state.committed = state.design.toToml(); updateUndoButtons(); }
+    loadStep(await file.text(), file.name, { name: file.name, file: true });
     ev.target.value = '';
   });
   const name = () => state.out?.report.scene || 'scene';
   $('save-toml').addEventListener('click', () => P.download(`${name()}.toml`, state.design.toToml(), 'application/toml'));
   $('save-json').addEventListener('click', () => P.download(`${name()}.json`, state.design.toJson(), 'application/json'));
-  const step = (from, to) => {
-    if (!from.length) return;
-    const text = from.pop();
-    to.push(state.design.toToml());
-    load(text, 'undo history');
-    state.committed = state.design.toToml();
-    updateUndoButtons();
-  };
   $('undo').addEventListener('click', () => step(state.undo, state.redo));
   $('redo').addEventListener('click', () => step(state.redo, state.undo));
   document.addEventListener('keydown', (ev) => {
     if (!(ev.ctrlKey || ev.metaKey) || ev.target.matches('input[type=number]')) return;
-    if (ev.key === 'z' && !ev.shiftKey) { ev.preventDefault(); step(state.undo, state.redo); }
-    if (ev.key === 'y' || (ev.key === 'z' && ev.shiftKey)) { ev.preventDefault(); step(state.redo, state.undo); }
+    // With Shift held the key reads 'Z'.
+    const key = ev.key.toLowerCase();
+    if (key === 'z' && !ev.shiftKey) { ev.preventDefault(); step(state.undo, state.redo); }
+    if (key === 'y' || (key === 'z' && ev.shiftKey)) { ev.preventDefault(); step(state.redo, state.undo); }
   });
   $('curve-kind').addEventListener('change', (ev) => { if (apply(`gear.curve.kind="${ev.target.value}"`, ev.target)) commit(); });
   $('carrier').addEventListener('input', (ev) => { state.carrier = +ev.target.value; drawMechanism(); });
@@ -1162,6 +1240,17 @@ function wire() {
   $('fit-stop').addEventListener('click', () => state.worker?.postMessage({ type: 'stop' }));
   $('fit-load').addEventListener('click', loadFitResult);
   $('search-checkpoint').addEventListener('click', () => P.download('checkpoint.json', state.searchResult.checkpoint, 'application/json'));
+  // The file buttons are labels around hidden inputs: in the Tab order, opened with Enter
+  // or Space as a button is.
+  for (const label of document.querySelectorAll('label.button')) {
+    label.tabIndex = 0;
+    label.setAttribute('role', 'button');
+    label.addEventListener('keydown', (ev) => {
+      if (ev.key !== 'Enter' && ev.key !== ' ') return;
+      ev.preventDefault();
+      label.querySelector('input[type=file]').click();
+    });
+  }
   wireDragging();
 }
 
@@ -1170,6 +1259,8 @@ window.studio.ready = (async () => {
   wire();
   load(builtinScene('paper-search'), 'paper-search');
   state.committed = state.design.toToml();
+  state.origin = { name: 'paper-search', file: false, toml: state.committed };
   updateUndoButtons();
+  markOrigin();
   document.body.dataset.ready = 'true';
 })();

@@ -161,6 +161,80 @@ test('undo and redo step through the design\'s history', async () => {
   assert.equal(await pageScene(), dragged);
 });
 
+test('the scene menu names where the design came from and marks it modified; Ctrl+Shift+Z redoes', async () => {
+  const original = await pageScene();
+  const menu = () => page.locator('#builtin option:checked').textContent();
+  const noFocus = () => page.evaluate(() => document.activeElement?.blur());
+  // The built-in afresh (the tests above left their edits).
+  await page.selectOption('#builtin', 'two-arm');
+  await page.selectOption('#builtin', 'paper-search');
+  const scene = await pageScene();
+  assert.equal(await menu(), 'paper-search');
+  const field = page.locator('input[data-path="train.arm_length_mm"]');
+  const length = Number(await field.inputValue());
+  await field.fill(String(length + 1));
+  await field.dispatchEvent('change');
+  assert.equal(await menu(), 'paper-search (modified)');
+  await noFocus();
+  await page.keyboard.press('Control+z');
+  assert.equal(await pageScene(), scene);
+  assert.equal(await menu(), 'paper-search');
+  await page.keyboard.press('Control+Shift+Z');
+  assert.equal(await page.evaluate(() => window.studio.state.design.get('train.arm_length_mm')), length + 1);
+  assert.equal(await menu(), 'paper-search (modified)');
+  await page.keyboard.press('Control+z');
+  // A file: the menu names it; undo goes back to the built-in.
+  await page.setInputFiles('#open', { name: 'mine.toml', mimeType: 'text/plain', buffer: Buffer.from(scene) });
+  await page.waitForFunction(() => document.querySelector('#builtin option:checked').textContent === 'file: mine.toml');
+  await noFocus();
+  await page.keyboard.press('Control+z');
+  assert.equal(await menu(), 'paper-search');
+  assert.equal(await pageScene(), scene);
+  // Back through the two built-ins to the design the tests above left.
+  await page.keyboard.press('Control+z');
+  await page.keyboard.press('Control+z');
+  assert.equal(await pageScene(), original);
+});
+
+test('the file buttons are in the Tab order and open with Enter or Space; no accessible name holds markup', async () => {
+  // Each file input records the clicks that would open its chooser (the headless browser
+  // shows none; waiting for Playwright's "filechooser" event proved flaky under load).
+  await page.evaluate(() => {
+    window.fileClicks = [];
+    for (const input of document.querySelectorAll('input[type=file]')) {
+      input.addEventListener('click', (ev) => { window.fileClicks.push(input.id); ev.preventDefault(); });
+    }
+  });
+  await page.focus('#builtin');
+  await page.keyboard.press('Tab');
+  assert.equal(await page.evaluate(() => document.activeElement.textContent.trim()), 'Open…');
+  await page.keyboard.press('Enter');
+  for (const id of ['target-open', 'search-resume']) {
+    const label = page.locator(`label.button:has(#${id})`);
+    assert.equal(await label.getAttribute('tabindex'), '0', id);
+    await label.press(' ');
+  }
+  assert.deepEqual(await page.evaluate(() => window.fileClicks), ['open', 'target-open', 'search-resume']);
+  const marked = await page.evaluate(() => [...document.querySelectorAll('[aria-label]')]
+    .map((e) => e.getAttribute('aria-label')).filter((n) => /[<>]/.test(n)));
+  assert.deepEqual(marked, []);
+});
+
+test('an emptied picking rate is unset: the carrier speed sets the working speed again', async () => {
+  const scene = await pageScene();
+  const rate = page.locator('input[data-path="train.picks_per_minute"]');
+  const rpm = page.locator('input[data-path="train.carrier_speed_rpm"]');
+  await rate.fill('240');
+  await page.waitForFunction(() => /picks_per_minute = 240/.test(window.studio.state.design.toToml()));
+  assert.ok(await rpm.isDisabled(), 'the rate sets the carrier speed');
+  await rate.fill('');
+  await page.waitForFunction(() => !/picks_per_minute/.test(window.studio.state.design.toToml()));
+  assert.ok(!(await rpm.isDisabled()));
+  assert.equal(await rate.getAttribute('placeholder'), 'unset');
+  assert.equal(await page.locator('.row:has(input[data-path="train.picks_per_minute"]) .msg').textContent(), '');
+  assert.equal(await pageScene(), scene);
+});
+
 test('a bad value in a field is reported beside it, kept as typed, and the design stays', async () => {
   const scene = await pageScene();
   const field = page.locator('input[data-path="train.arm_length_mm"]');
@@ -473,8 +547,13 @@ test('Repair in the worker gives the CLI\'s noncirc repair for the same scene an
 
 test('the two-arm scene draws two arm sets half a turn apart, as the CLI reports them', async () => {
   const scene = await pageScene();
+  const hadResults = await page.evaluate(() => [!document.getElementById('search-load').disabled, !document.getElementById('fit-load').disabled]);
+  assert.ok(hadResults.some(Boolean), 'the tests above left a result to load');
   await page.selectOption('#builtin', 'two-arm');
   await page.waitForFunction(() => window.studio.state.out.report.events.arms.length === 2);
+  // The paper's search or repair result is not the two-arm scene's to load.
+  assert.ok(await page.locator('#search-load').isDisabled());
+  assert.ok(await page.locator('#fit-load').isDisabled());
   const expected = cliJson('evaluate', join(repo, 'scenes/two-arm.toml'));
   assertClose(await pageReport(), expected, 1e-12);
   const [first, second] = expected.events.arms;

@@ -5,7 +5,7 @@ use noncirc::core::{scale, Evaluation, Evaluator, ObjectiveValue, Param, Scene, 
 use noncirc::dynamics::{dynamics_from, report_from, strength_from};
 use noncirc::fit::{fit_measure_rows, parse_target, target_toml};
 use noncirc::report::{check_finite, EvaluationReport};
-use noncirc::scene_file::{apply_overrides, parse_scene, BUILTIN};
+use noncirc::scene_file::{apply_overrides, apply_values, parse_scene, BUILTIN};
 use noncirc::teeth::TeethRun;
 use serde::Serialize;
 use std::sync::Arc;
@@ -135,6 +135,14 @@ impl Design {
         // The page shows the message beside the field, which names the key: without the
         // CLI's `--set key=value:`.
         let scene = apply_overrides(self.scene.clone(), &list).map_err(|e| js_error(e.detail()))?;
+        self.replace_scene(scene)
+    }
+
+    /// Removes an optional value (`train.picks_per_minute`: the carrier speed then sets the
+    /// working speed), checks the scene and evaluates it, as [`Design::set`] does.
+    pub fn unset(&mut self, path: &str) -> Result<String, JsError> {
+        let cleared = [(path.to_string(), serde_json::Value::Null)];
+        let scene = apply_values(self.scene.clone(), &cleared).map_err(|e| js_error(e.detail()))?;
         self.replace_scene(scene)
     }
 
