@@ -72,6 +72,19 @@ fn progress_figures(
         .map(|v| (v[0], v[1]))
         .collect();
     if !pts.is_empty() {
+        // The reported design, the front's best on the first goal, drawn over it.
+        let reported = (outcome.confirmed.best.as_ref())
+            .and_then(|(scene, eval)| Some(outcome.problem.goal_values_of(eval.as_ref()?, scene)))
+            .filter(|v| v.len() >= 2)
+            .map(|v| vec![(v[0], v[1])])
+            .unwrap_or_default();
+        let mut series = vec![("first front".into(), pts.clone())];
+        if !reported.is_empty() {
+            series.push((
+                "reported design: the front's best on the first goal".into(),
+                reported,
+            ));
+        }
         files.extend(save(
             &LinesFigure {
                 title: format!(
@@ -80,7 +93,7 @@ fn progress_figures(
                 ),
                 x_desc: outcome.problem.goal_quantities()[0].label(),
                 y_desc: outcome.problem.goal_quantities()[1].label(),
-                series: vec![("first front".into(), pts)],
+                series,
                 points_only: true,
                 markers: false,
                 band: None,

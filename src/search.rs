@@ -286,42 +286,64 @@ impl Confirmed {
         let mut ev = Evaluator::new();
         let mut scratch = base.clone();
         let reported = state.reported();
-        let mut best = None;
+        let several_goals = problem.goals() >= 2;
         let mut members: Vec<Candidate> = state.solver.front();
         if members.is_empty() {
             members.extend(reported.cloned());
+        } else if let Some(r) =
+            reported.filter(|r| several_goals && members.iter().all(|c| c.u != r.u))
+        {
+            // The run's best on the first goal joins the solver's last front (whose crowding
+            // may have dropped it), so that the reported design is a member of the front.
+            members.push(r.clone());
         }
+        let mut best = None;
         let mut confirmed = Vec::with_capacity(members.len());
+        let mut evals = Vec::with_capacity(members.len());
         for c in &members {
             let (fitness, eval) = problem.fitness(&c.u, &mut ev, &mut scratch, &base.resolution);
-            if best.is_none() && reported.is_some_and(|r| r.u == c.u) {
-                best = Some((problem.scene_at(&c.u), eval));
+            if !several_goals && best.is_none() && reported.is_some_and(|r| r.u == c.u) {
+                best = Some((problem.scene_at(&c.u), eval.clone()));
             }
             confirmed.push((problem.decode(&c.u), fitness));
+            evals.push(eval);
+        }
+        let feasible: Vec<usize> = (0..confirmed.len())
+            .filter(|&i| confirmed[i].1.feasible())
+            .collect();
+        let mut pareto: Vec<usize> = if feasible.is_empty() {
+            (0..confirmed.len().min(1)).collect()
+        } else {
+            // Confirmation moves the goals slightly: keep the non-dominated confirmed designs.
+            let candidates: Vec<Candidate> = (feasible.iter())
+                .map(|&i| Candidate {
+                    u: confirmed[i].0.clone(),
+                    fitness: confirmed[i].1.clone(),
+                })
+                .collect();
+            let front = non_dominated_fronts(&candidates)
+                .into_iter()
+                .next()
+                .unwrap_or_default();
+            front.into_iter().map(|k| feasible[k]).collect()
+        };
+        // Sorted by the first goal's value (in its unit, ascending).
+        let first = |i: &usize| problem.goal_values(&confirmed[*i].1.f)[0];
+        pareto.sort_by(|a, b| first(a).total_cmp(&first(b)));
+        if several_goals && !feasible.is_empty() {
+            // Two goals or more: the reported design is the confirmed front's best on the
+            // first goal (Deb's rule, as with one goal), printed and drawn as such.
+            let top = (pareto.iter().copied())
+                .min_by(|&a, &b| confirmed[a].1.f[0].total_cmp(&confirmed[b].1.f[0]));
+            if let Some(i) = top {
+                best = Some((problem.scene_at(&members[i].u), evals[i].take()));
+            }
         }
         if let (None, Some(r)) = (&best, reported) {
             let (_, eval) = problem.fitness(&r.u, &mut ev, &mut scratch, &base.resolution);
             best = Some((problem.scene_at(&r.u), eval));
         }
-        let feasible: Vec<Candidate> = (confirmed.iter())
-            .filter(|(_, f)| f.feasible())
-            .map(|(x, f)| Candidate {
-                u: x.clone(),
-                fitness: f.clone(),
-            })
-            .collect();
-        let pareto = if feasible.is_empty() {
-            confirmed.into_iter().take(1).collect()
-        } else {
-            // Confirmation moves the goals slightly: keep the non-dominated confirmed designs.
-            let front = non_dominated_fronts(&feasible)
-                .into_iter()
-                .next()
-                .unwrap_or_default();
-            (front.into_iter())
-                .map(|i| (feasible[i].u.clone(), feasible[i].fitness.clone()))
-                .collect()
-        };
+        let pareto = pareto.into_iter().map(|i| confirmed[i].clone()).collect();
         Self { best, pareto }
     }
 }
@@ -565,6 +587,21 @@ pub struct GoalReading {
     pub value: Option<f64>,
 }
 
+/// A parameter map serialised in the scene's order ([`crate::report::scene_order`]).
+fn in_scene_order<S: serde::Serializer>(
+    values: &BTreeMap<String, f64>,
+    serializer: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    use serde::ser::SerializeMap;
+    let mut keys: Vec<&String> = values.keys().collect();
+    keys.sort_by(|a, b| crate::report::scene_order(a, b));
+    let mut map = serializer.serialize_map(Some(keys.len()))?;
+    for k in keys {
+        map.serialize_entry(k, &values[k])?;
+    }
+    map.end()
+}
+
 /// The summary `--format json` prints.
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
@@ -574,6 +611,9 @@ pub struct Summary {
     pub threads: usize,
     /// Whether the reported design meets every objective at the scene's (default) resolution.
     pub feasible: bool,
+    /// The reported design's parameters, written in the scene's order (`radii_mm[2]` before
+    /// `radii_mm[10]`, the curve before the train).
+    #[serde(serialize_with = "in_scene_order")]
     pub best: BTreeMap<String, f64>,
     pub violations: BTreeMap<String, f64>,
     pub objectives: BTreeMap<String, f64>,

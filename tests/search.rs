@@ -289,6 +289,29 @@ fn multi_objective_runs_are_feasible_from_random_starts() {
                 .filter(|(_, f)| f.feasible())
                 .count();
             feasible.push((seed, summary.feasible, front));
+            // The reported design is the front's best on the first goal, and the front is
+            // sorted by that goal's value.
+            let pareto = &outcome.confirmed.pareto;
+            let module = |f: &Fitness| outcome.problem.goal_values(&f.f)[0];
+            assert!(pareto
+                .windows(2)
+                .all(|w| module(&w[0].1) <= module(&w[1].1)));
+            let reported = summary.goals[0].value.unwrap();
+            let top = (pareto.iter().filter(|(_, f)| f.feasible()))
+                .map(|(_, f)| module(f))
+                .fold(f64::NEG_INFINITY, f64::max);
+            assert_eq!(reported, top, "{algorithm:?} seed {seed}");
+            let names = outcome.problem.names();
+            let best: Vec<f64> = names.iter().map(|n| summary.best[&n.to_string()]).collect();
+            assert!(
+                pareto.iter().any(|(x, _)| *x == best),
+                "{algorithm:?} seed {seed}: the reported design is not in the front"
+            );
+            // summary.json names the parameters in the scene's order.
+            let json = serde_json::to_string(&summary).unwrap();
+            let at = |k: &str| json.find(&format!("\"{k}\":")).unwrap();
+            assert!(at("gear.curve.radii_mm[2]") < at("gear.curve.radii_mm[10]"));
+            assert!(at("gear.curve.radii_mm[11]") < at("train.phi0_deg"));
             // The goals in physical terms: the module in mm (maximised), the tip speed in
             // m/s (minimised), equal to a fresh evaluation of each design of the front.
             let names: Vec<_> = (summary.goals.iter())

@@ -186,7 +186,13 @@ pub fn summary_table(s: &crate::search::Summary) -> String {
             },
         ),
     ]);
-    out += "\nbest design (docs/scenes.md: the fields and the papers' symbols):\n";
+    out += if s.goals.len() >= 2 {
+        "\nbest design: the Pareto set's best on the first goal (pareto.csv lists every \
+         member, sorted by it; docs/search.md; docs/scenes.md: the fields and the papers' \
+         symbols):\n"
+    } else {
+        "\nbest design (docs/scenes.md: the fields and the papers' symbols):\n"
+    };
     let mut names: Vec<&String> = s.best.keys().collect();
     names.sort_by(|a, b| scene_order(a, b));
     for k in names {
