@@ -399,11 +399,10 @@ fn the_train_pair_has_the_conjugate_on_every_grid() {
     }
 }
 
-/// The state and contacts read from the nodes (what the dynamics at the kinematics' nodes
-/// uses) are those computed at the node's carrier angle, to rounding: every field, for
-/// both trains, both senses, and a reassembled train.
-#[test]
-fn node_states_are_the_states_at_the_nodes() {
+/// The trains the node tests read: both trains (the paper's, and each second curve's),
+/// both senses, each as solved and (where the sun does not turn the grid) reassembled with
+/// another β0, Φ0 and a bore error; with a label for messages.
+fn node_test_trains() -> Vec<(String, Kinematics)> {
     let sun = CurveSpec::paper().build().unwrap();
     let seconds: Vec<Option<PitchCurve>> = std::iter::once(None)
         .chain(
@@ -412,6 +411,7 @@ fn node_states_are_the_states_at_the_nodes() {
                 .map(|(_, s)| Some(s.build().unwrap())),
         )
         .collect();
+    let mut trains = Vec::new();
     for second in &seconds {
         for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
             let train = TrainSpec {
@@ -425,53 +425,62 @@ fn node_states_are_the_states_at_the_nodes() {
                 phi0_deg: train.phi0_deg - 4.0,
                 ..train
             };
-            let variants = [
-                Some(kin.clone()),
-                (train.sun_frame != SunFrame::Ground)
-                    .then(|| kin.reassembled(&moved, 0.05).unwrap()),
-            ];
-            for kin in variants.into_iter().flatten() {
-                for j in 0..kin.len() {
-                    let (node, [na, nb]) = kin.node_state_and_contacts(j);
-                    let (at, [a, b]) = kin.state_and_contacts(kin.theta(j));
-                    let label = format!("two pairs {} {rotation:?} node {j}", second.is_some());
-                    let close = |x: f64, y: f64, scale: f64, what: &str| {
-                        assert!((x - y).abs() <= 1e-11 * scale, "{label} {what}: {x} vs {y}");
-                    };
-                    let close2 = |x: Vec2, y: Vec2, scale: f64, what: &str| {
-                        close(x.x, y.x, scale, what);
-                        close(x.y, y.y, scale, what);
-                    };
-                    let mm = node.tip.hypot();
-                    close2(node.o2, at.o2, mm, "O2");
-                    close2(node.o3, at.o3, mm, "O3");
-                    close2(node.tip, at.tip, mm, "tip");
-                    close2(node.tip_d1, at.tip_d1, at.tip_d1.hypot(), "tip'");
-                    close2(node.tip_d2, at.tip_d2, at.tip_d2.hypot(), "tip''");
-                    close(node.theta2, at.theta2, 1.0, "θ2");
-                    close(node.theta3, at.theta3, 1.0, "θ3");
-                    for k in 0..2 {
-                        close(
-                            node.theta2_d[k],
-                            at.theta2_d[k],
-                            at.theta2_d[k].abs().max(1.0),
-                            "θ2 rates",
-                        );
-                        close(
-                            node.theta3_d[k],
-                            at.theta3_d[k],
-                            at.theta3_d[k].abs().max(1.0),
-                            "θ3 rates",
-                        );
-                    }
-                    for (x, y) in [(na, a), (nb, b)] {
-                        close2(x.centre, y.centre, mm, "contact centre");
-                        close2(x.towards, y.towards, 1.0, "contact direction");
-                        close(x.psi, y.psi, 1.0, "contact ψ");
-                        close(x.rho, y.rho, mm, "contact ρ");
-                        close(x.rho_d1, y.rho_d1, mm, "contact ρ'");
-                    }
-                }
+            let label = format!("two pairs {} {rotation:?}", second.is_some());
+            if train.sun_frame != SunFrame::Ground {
+                let reassembled = kin.reassembled(&moved, 0.05).unwrap();
+                trains.push((format!("{label} reassembled"), reassembled));
+            }
+            trains.push((label, kin));
+        }
+    }
+    trains
+}
+
+/// The state and contacts read from the nodes (what the dynamics at the kinematics' nodes
+/// uses) are those computed at the node's carrier angle, to rounding: every field, for
+/// both trains, both senses, and a reassembled train.
+#[test]
+fn node_states_are_the_states_at_the_nodes() {
+    for (train, kin) in node_test_trains() {
+        for j in 0..kin.len() {
+            let (node, [na, nb]) = kin.node_state_and_contacts(j);
+            let (at, [a, b]) = kin.state_and_contacts(kin.theta(j));
+            let label = format!("{train} node {j}");
+            let close = |x: f64, y: f64, scale: f64, what: &str| {
+                assert!((x - y).abs() <= 1e-11 * scale, "{label} {what}: {x} vs {y}");
+            };
+            let close2 = |x: Vec2, y: Vec2, scale: f64, what: &str| {
+                close(x.x, y.x, scale, what);
+                close(x.y, y.y, scale, what);
+            };
+            let mm = node.tip.hypot();
+            close2(node.o2, at.o2, mm, "O2");
+            close2(node.o3, at.o3, mm, "O3");
+            close2(node.tip, at.tip, mm, "tip");
+            close2(node.tip_d1, at.tip_d1, at.tip_d1.hypot(), "tip'");
+            close2(node.tip_d2, at.tip_d2, at.tip_d2.hypot(), "tip''");
+            close(node.theta2, at.theta2, 1.0, "θ2");
+            close(node.theta3, at.theta3, 1.0, "θ3");
+            for k in 0..2 {
+                close(
+                    node.theta2_d[k],
+                    at.theta2_d[k],
+                    at.theta2_d[k].abs().max(1.0),
+                    "θ2 rates",
+                );
+                close(
+                    node.theta3_d[k],
+                    at.theta3_d[k],
+                    at.theta3_d[k].abs().max(1.0),
+                    "θ3 rates",
+                );
+            }
+            for (x, y) in [(na, a), (nb, b)] {
+                close2(x.centre, y.centre, mm, "contact centre");
+                close2(x.towards, y.towards, 1.0, "contact direction");
+                close(x.psi, y.psi, 1.0, "contact ψ");
+                close(x.rho, y.rho, mm, "contact ρ");
+                close(x.rho_d1, y.rho_d1, mm, "contact ρ'");
             }
         }
     }
@@ -482,44 +491,15 @@ fn node_states_are_the_states_at_the_nodes() {
 /// train (another β0, Φ0 and a bore error).
 #[test]
 fn node_tip_speeds_are_the_states_tip_speeds_at_the_nodes() {
-    let sun = CurveSpec::paper().build().unwrap();
-    let seconds: Vec<Option<PitchCurve>> = std::iter::once(None)
-        .chain(
-            second_curves()
-                .into_iter()
-                .map(|(_, s)| Some(s.build().unwrap())),
-        )
-        .collect();
-    for second in &seconds {
-        for rotation in [Rotation::Clockwise, Rotation::Counterclockwise] {
-            let train = TrainSpec {
-                rotation,
-                ..TrainSpec::default()
-            };
-            let kin =
-                Kinematics::solve(&sun, second.as_ref(), &train, &Resolution::DEFAULT).unwrap();
-            let moved = TrainSpec {
-                beta0_deg: train.beta0_deg + 7.0,
-                phi0_deg: train.phi0_deg - 4.0,
-                ..train
-            };
-            let sun_turns_grid = train.sun_frame == SunFrame::Ground;
-            let variants = [
-                Some(kin.clone()),
-                (!sun_turns_grid).then(|| kin.reassembled(&moved, 0.05).unwrap()),
-            ];
-            for kin in variants.into_iter().flatten() {
-                let speeds = kin.node_tip_speeds();
-                assert_eq!(speeds.len(), kin.len());
-                for (j, &v) in speeds.iter().enumerate() {
-                    let state = kin.state_at(kin.theta(j)).tip_d1.hypot();
-                    let label = format!("two pairs {} {rotation:?} node {j}", second.is_some());
-                    assert!(
-                        (v - state).abs() <= 1e-12 * state,
-                        "{label}: {v} vs {state}"
-                    );
-                }
-            }
+    for (train, kin) in node_test_trains() {
+        let speeds = kin.node_tip_speeds();
+        assert_eq!(speeds.len(), kin.len());
+        for (j, &v) in speeds.iter().enumerate() {
+            let state = kin.state_at(kin.theta(j)).tip_d1.hypot();
+            assert!(
+                (v - state).abs() <= 1e-12 * state,
+                "{train} node {j}: {v} vs {state}"
+            );
         }
     }
 }
