@@ -55,3 +55,18 @@ def test_the_repair_example_runs_as_written(capsys):
     exec(compile(block, str(DOC), "exec"), {})
     lines = capsys.readouterr().out.splitlines()
     assert lines == ["True 20.6", "True", "r8 34.5"]
+
+
+def test_the_dask_example_runs_as_a_script(tmp_path):
+    """As a user pastes it into a file: its own process, Dask's workers importing it."""
+    import subprocess
+    import sys
+
+    block = next(b for b in blocks() if "LocalCluster" in b)
+    script = tmp_path / "cluster.py"
+    script.write_text(block)
+    out = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True,
+                         text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-2000:]
+    line = out.stdout.strip().splitlines()[-1]
+    assert line.startswith("(10000, 9) ") and line.endswith("[True, True, True, True]"), line
