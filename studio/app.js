@@ -263,6 +263,32 @@ function showFileError(message) {
   box.hidden = !message;
 }
 
+/**
+ * Binds a number field to `path`. Typed, pasted or deleted text is evaluated when it is
+ * complete: on Enter or when the field is left, never a prefix (no "-5" on the way to
+ * "-50", no two arm sets on the way to "2.5"); a step of the field's arrows or of the arrow
+ * keys at once. Evaluated on leaving, the change is a step of the history. `optional`:
+ * emptied, the value is unset; `onApplied` runs after each value the design took.
+ */
+function bindField(input, path, { optional = false, onApplied = null } = {}) {
+  const evaluate = () => {
+    let ok;
+    if (optional && input.value.trim() === '' && input.checkValidity()) {
+      ok = unset(path, input);
+    } else if (input.value.trim() === '' || !input.checkValidity()) {
+      fieldMessage(input, `${path}: expected a finite number`);
+      return false;
+    } else {
+      ok = apply(`${path}=${input.value}`, input);
+    }
+    if (ok) onApplied?.();
+    return ok;
+  };
+  // An arrow's step has no `inputType`; typing, pasting and deleting have one.
+  input.addEventListener('input', (ev) => { if (!ev.inputType) evaluate(); });
+  input.addEventListener('change', () => { if (evaluate()) commit(); });
+}
+
 /** A labelled numeric field (with a slider when `range` is given) bound to `path`; an
  *  `optional` one (its text says what an empty field means) is unset when emptied. */
 function numberRow(parent, path, label, unit, { range = null, title = '', optional = null } = {}) {
@@ -288,18 +314,7 @@ function numberRow(parent, path, label, unit, { range = null, title = '', option
   parent.appendChild(row);
   if (optional) input.placeholder = 'unset';
   if (optional) input.title = optional;
-  input.addEventListener('input', () => {
-    if (optional && input.value.trim() === '' && input.checkValidity()) {
-      unset(path, input);
-      return;
-    }
-    if (input.value.trim() === '' || !input.checkValidity()) {
-      fieldMessage(input, `${path}: expected a finite number`);
-      return;
-    }
-    if (apply(`${path}=${input.value}`, input) && slider) slider.value = input.value;
-  });
-  input.addEventListener('change', () => { if (!input.classList.contains('invalid')) commit(); });
+  bindField(input, path, { optional: Boolean(optional), onApplied: () => { if (slider) slider.value = input.value; } });
   if (slider) {
     slider.addEventListener('input', () => { if (apply(`${path}=${slider.value}`, input)) input.value = slider.value; });
     slider.addEventListener('change', commit);
@@ -335,11 +350,7 @@ function buildFields() {
       input.setAttribute('aria-label', `control point ${i} ${list === 'radii_mm' ? 'radius (mm)' : 'angle (deg)'}`);
       td.appendChild(input);
       const msg = document.createElement('span'); msg.className = 'msg'; td.appendChild(msg);
-      input.addEventListener('input', () => {
-        if (input.value.trim() === '') { fieldMessage(input, `${path}: expected a finite number`); return; }
-        apply(`${path}=${input.value}`, input);
-      });
-      input.addEventListener('change', () => { if (!input.classList.contains('invalid')) commit(); });
+      bindField(input, path);
     }
     const guide = tr.insertCell();
     guide.className = 'guide';

@@ -173,7 +173,7 @@ test('the scene menu names where the design came from and marks it modified; Ctr
   const field = page.locator('input[data-path="train.arm_length_mm"]');
   const length = Number(await field.inputValue());
   await field.fill(String(length + 1));
-  await field.dispatchEvent('change');
+  await field.press('Enter');
   assert.equal(await menu(), 'paper-search (modified)');
   await noFocus();
   await page.keyboard.press('Control+z');
@@ -225,9 +225,11 @@ test('an emptied picking rate is unset: the carrier speed sets the working speed
   const rate = page.locator('input[data-path="train.picks_per_minute"]');
   const rpm = page.locator('input[data-path="train.carrier_speed_rpm"]');
   await rate.fill('240');
+  await rate.press('Enter');
   await page.waitForFunction(() => /picks_per_minute = 240/.test(window.studio.state.design.toToml()));
   assert.ok(await rpm.isDisabled(), 'the rate sets the carrier speed');
   await rate.fill('');
+  await rate.press('Enter');
   await page.waitForFunction(() => !/picks_per_minute/.test(window.studio.state.design.toToml()));
   assert.ok(!(await rpm.isDisabled()));
   assert.equal(await rate.getAttribute('placeholder'), 'unset');
@@ -235,15 +237,50 @@ test('an emptied picking rate is unset: the carrier speed sets the working speed
   assert.equal(await pageScene(), scene);
 });
 
+test('typed text is evaluated when complete (Enter or leaving the field), never a prefix; an arrow key steps at once', async () => {
+  const scene = await pageScene();
+  const length = page.locator('input[data-path="train.arm_length_mm"]');
+  const lengthMessage = page.locator('.row:has(input[data-path="train.arm_length_mm"]) .msg');
+  const original = await length.inputValue();
+  await length.fill('');
+  await length.pressSequentially('-50');
+  // No "-5 is out of range" on the way, no evaluation.
+  assert.equal(await lengthMessage.textContent(), '');
+  assert.equal(await pageScene(), scene);
+  await length.press('Enter');
+  assert.match(await lengthMessage.textContent(), /= -50 is out of range/);
+  assert.equal(await pageScene(), scene);
+  const arms = page.locator('input[data-path="train.arms"]');
+  await arms.fill('');
+  await arms.pressSequentially('2.5');
+  // No two-arm design on the way to 2.5.
+  assert.equal(await page.evaluate(() => window.studio.state.out.report.events.arms.length), 3);
+  await arms.press('Tab');
+  assert.match(await page.locator('.row:has(input[data-path="train.arms"]) .msg').textContent(), /train\.arms/);
+  assert.equal(await pageScene(), scene);
+  for (const [field, value] of [[length, original], [arms, '3']]) {
+    await field.fill(value);
+    await field.press('Enter');
+  }
+  assert.equal(await pageScene(), scene);
+  await length.focus();
+  await page.keyboard.press('ArrowUp');
+  assert.equal(await page.evaluate(() => window.studio.state.design.get('train.arm_length_mm')), Number(original) + 1);
+  await page.keyboard.press('ArrowDown');
+  assert.equal(await pageScene(), scene);
+});
+
 test('a bad value in a field is reported beside it, kept as typed, and the design stays', async () => {
   const scene = await pageScene();
   const field = page.locator('input[data-path="train.arm_length_mm"]');
   await field.fill('-5');
+  await field.press('Enter');
   const message = page.locator('.row:has(input[data-path="train.arm_length_mm"]) .msg');
   assert.match(await message.textContent(), /train\.arm_length_mm \(S\) = -5 is out of range/);
   assert.equal(await field.inputValue(), '-5');
   assert.equal(await pageScene(), scene);
   await field.fill('145');
+  await field.press('Enter');
   assert.equal(await message.textContent(), '');
   assert.equal(await pageScene(), scene);
 });
@@ -604,6 +641,7 @@ test('the dynamics panel shows noncirc dynamics\' numbers, follows the picking r
   const scene = await pageScene();
   const at180 = await assertDynamicsAreTheCli('dynamics-180.toml');
   await page.locator('#f-train-picks-per-minute').fill('300');
+  await page.locator('#f-train-picks-per-minute').press('Enter');
   await page.waitForFunction(() => Math.abs(Number(document.querySelector('#dynamics-table tr[data-key=carrier_rpm] td.num').dataset.value) - 100) < 1e-9);
   const at300 = await assertDynamicsAreTheCli('dynamics-300.toml');
   // The inertia's share of the torque grows with the speed squared: the peak grows, the
@@ -636,16 +674,19 @@ test('a bad flywheel is reported beside its field and changes nothing; a good on
   const field = page.locator('#f-dynamics-flywheel-inertia-kg-m2');
   const before = await dynamicsTable();
   await field.fill('-1');
+  await field.press('Enter');
   assert.match(await field.locator('xpath=..').locator('.msg').textContent(), /dynamics\.flywheel_inertia_kg_m2/);
   assert.equal(await field.inputValue(), '-1');
   assert.deepEqual(await dynamicsTable(), before);
   await field.fill('0.5');
+  await field.press('Enter');
   await page.waitForFunction(() => document.querySelector('#dynamics-table tr[data-key=speed_fluctuation] td').textContent.includes('0.5'));
   const after = await dynamicsTable();
   assert.ok(after.speed_fluctuation < before.speed_fluctuation, `δ ${after.speed_fluctuation} against ${before.speed_fluctuation} without a flywheel`);
   assert.equal(after.flywheel_needed_kg_m2, before.flywheel_needed_kg_m2);
   await assertDynamicsAreTheCli('dynamics-flywheel.toml');
   await field.fill('0');
+  await field.press('Enter');
   await page.waitForFunction(() => document.querySelector('#dynamics-table tr[data-key=speed_fluctuation] td').textContent.includes('Jf = 0 '));
 });
 
@@ -677,6 +718,7 @@ test('Tooth strength gives noncirc dynamics\' safety factors, or says why the te
   assert.equal(await page.evaluate(() => document.querySelectorAll('#dynamics-plot g[clip-path] path[stroke-width="1.5"]').length), cli.strength.gears.length);
   await page.locator('#dynamics-plot').screenshot({ path: join(results, 'dynamics_contact_stress.png') });
   await page.locator('#f-dynamics-face-width-mm').fill('15');
+  await page.locator('#f-dynamics-face-width-mm').press('Enter');
   await page.waitForFunction(() => window.studio.state.strength === null);
   assert.equal(await page.locator('#dynamics-quantity').inputValue(), 'input_torque');
   assert.equal(await page.locator('#strength-table tr').count(), 0);
