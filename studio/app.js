@@ -429,7 +429,8 @@ function drawGauges(report) {
       const g = document.createElement('div');
       g.dataset.objective = o.name;
       g.innerHTML = `<div class="head"><span>${o.label}</span><span><b class="value-text"></b> ${o.unit} <span class="unit bound"></span> <span class="verdict"></span></span></div>
-        <div class="bar" role="meter" aria-label="${o.label}"><div class="ok"></div><div class="value"></div></div>`;
+        <div class="bar" role="meter" aria-label="${o.label}"><div class="ok"></div><div class="value"></div><span class="offscale" aria-hidden="true"></span></div>
+        <div class="margin unit"></div>`;
       box.appendChild(g);
     }
     box.dataset.names = names;
@@ -442,9 +443,12 @@ function drawGauges(report) {
     // The bar spans the bounds with room either side; a one-sided bound gets a span from it.
     const span = lo !== null && hi !== null ? hi - lo : Math.max(Math.abs(lo ?? hi) * 0.5, 1);
     const a = (lo ?? hi - 2 * span) - span * 0.5, b = (hi ?? lo + 2 * span) + span * 0.5;
+    const raw = (o.value - a) / (b - a) * 100;
     const pos = (v) => Math.min(100, Math.max(0, (v - a) / (b - a) * 100));
     const g = box.children[k];
-    g.className = `gauge ${ok ? 'met' : 'missed'}`;
+    // Beyond the bar's range the marker sits at its edge with an arrow pointing on.
+    const off = raw < 0 ? 'low' : raw > 100 ? 'high' : '';
+    g.className = `gauge ${ok ? 'met' : 'missed'}${off ? ` off-${off}` : ''}`;
     g.querySelector('.value-text').textContent = P.fmt(+o.value.toPrecision(4));
     g.querySelector('.bound').textContent = lo !== null && hi !== null ? `[${lo}, ${hi}]` : lo !== null ? `≥ ${lo}` : `≤ ${hi}`;
     g.querySelector('.verdict').textContent = ok ? 'met' : 'missed';
@@ -453,6 +457,12 @@ function drawGauges(report) {
     band.style.left = `${pos(lo ?? a)}%`;
     band.style.right = `${100 - pos(hi ?? b)}%`;
     g.querySelector('.value').style.left = `calc(${pos(o.value)}% - 1px)`;
+    g.querySelector('.offscale').textContent = off === 'low' ? '◀' : off === 'high' ? '▶' : '';
+    // The margin in the objective's unit (negative: missed by that much) and, for a band,
+    // as a share of its width.
+    const share = lo !== null && hi !== null && hi > lo ? ` (${Math.round(o.margin / (hi - lo) * 100)} % of the band)` : '';
+    g.querySelector('.margin').textContent = `margin ${o.margin >= 0 ? '+' : '−'}${P.fmt(+Math.abs(o.margin).toPrecision(3))} ${o.unit}${share}` +
+      (off ? `, off the bar's scale (${off === 'low' ? 'below' : 'above'})` : '');
   });
   const v = $('verdict');
   v.textContent = `${met} of ${report.objectives.length} met`;

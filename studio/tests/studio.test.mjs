@@ -270,6 +270,35 @@ test('typed text is evaluated when complete (Enter or leaving the field), never 
   assert.equal(await pageScene(), scene);
 });
 
+test('the gauges read at a glance (colour, margin, off-scale arrows) and stay in view while the train is edited', async () => {
+  const report = await pageReport();
+  const missed = report.objectives.filter((o) => o.violation > 0);
+  assert.ok(missed.length > 0, 'the design misses an objective');
+  for (const o of report.objectives) {
+    const g = page.locator(`[data-objective="${o.name}"]`);
+    const cls = await g.getAttribute('class');
+    assert.equal(cls.includes('missed'), o.violation > 0, o.name);
+    // The margin in its unit, signed.
+    const margin = await g.locator('.margin').textContent();
+    assert.match(margin, new RegExp(`^margin ${o.margin >= 0 ? '\\+' : '−'}`), `${o.name}: ${margin}`);
+    // An off-scale marker carries an arrow, and only then.
+    const arrow = await g.locator('.offscale').textContent();
+    assert.equal(arrow !== '', /off-(low|high)/.test(cls), `${o.name}: ${cls} '${arrow}'`);
+  }
+  const red = await page.locator(`[data-objective="${missed[0].name}"] .value`).evaluate((e) => getComputedStyle(e).backgroundColor);
+  assert.equal(red, 'rgb(198, 40, 40)');
+  await page.setViewportSize({ width: 1280, height: 800 });
+  try {
+    await page.locator('input[data-path="train.gamma0_deg"]').scrollIntoViewIfNeeded();
+    await page.locator('#f-agronomy-housing-margin-mm').scrollIntoViewIfNeeded();
+    const box = await page.locator('#gauges').boundingBox();
+    assert.ok(box.y >= 0 && box.y < 800 - 100, `the gauges are at y = ${box.y}`);
+  } finally {
+    await page.setViewportSize({ width: 1500, height: 1100 });
+    await page.evaluate(() => window.scrollTo(0, 0));
+  }
+});
+
 test('a bad value in a field is reported beside it, kept as typed, and the design stays', async () => {
   const scene = await pageScene();
   const field = page.locator('input[data-path="train.arm_length_mm"]');
