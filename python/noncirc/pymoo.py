@@ -4,7 +4,7 @@ The objectives' normalised violations are pymoo inequality constraints (`G <= 0`
 pymoo sums them the same way noncirc does), and the scene's search goals are `F` as
 noncirc's own searches rank them: all minimised, a maximised goal negated, an objective's
 margin divided by its scale. `scene.goal_names()` names the quantities, and
-`noncirc.evaluate_batch(...).goal_values` gives them in their units.
+`SceneProblem.goal_values(res.X)` gives them in their units.
 
 pymoo's NSGA-II seldom reaches the feasible region of a transplanting mechanism from random
 starts (best CV 0.10 after 100 000 evaluations on the default space). `feasible_start`
@@ -48,6 +48,19 @@ class SceneProblem(Problem):
         )
         out["F"] = result["goals"]
         out["G"] = result["normalised_violations"]
+
+    def goal_values(self, x) -> np.ndarray:
+        """The goals of designs `x` (one row per design: pymoo's `res.X`, `res.opt.get("X")`)
+        as the quantities they are, in their units, one column per `scene.goal_names()`
+        (`module_mm`, `picking_tip_speed_m_s`, …). `F` holds their ranked form (a maximised
+        goal negated, an objective's margin over its scale), which is what pymoo compares
+        but not what a reader wants; the designs are evaluated again, at the problem's
+        resolution, so the values are `evaluate_batch`'s own."""
+        x = np.ascontiguousarray(np.atleast_2d(x), dtype=np.float64)
+        result = evaluate_batch(
+            self.scene, x, samples_per_turn=self.samples_per_turn, threads=self.threads, measures=[]
+        )
+        return np.asarray(result["goal_values"])
 
 
 def feasible_start(

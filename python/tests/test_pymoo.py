@@ -47,6 +47,14 @@ def test_the_documented_example_returns_a_feasible_front_of_at_least_20_designs(
     f = res.opt.get("F")
     dominated = [any(np.all(f[j] <= f[i]) and np.any(f[j] < f[i]) for j in range(len(f))) for i in range(len(f))]
     assert not any(dominated)
+    # The front in the goals' units: the module in mm (maximised: F falls as it grows,
+    # every feasible design at or above the 2.5 mm bound), the tip speed in m/s (F itself).
+    problem = SceneProblem(scene)
+    values = problem.goal_values(res.opt.get("X"))
+    assert values.shape == (len(f), 2)
+    assert np.all(values[:, 0] >= 2.5)
+    assert np.array_equal(np.argsort(f[:, 0]), np.argsort(-values[:, 0]))
+    assert np.array_equal(values[:, 1], f[:, 1])
 
 
 def test_a_run_that_ends_infeasible_says_so():
