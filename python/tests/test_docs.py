@@ -1,72 +1,98 @@
-"""docs/python.md's examples run as written (the pymoo one in test_pymoo.py)."""
+"""The Python examples of docs/python.md and docs/robustness.md run as written, as a user
+runs them: each block saved to a file and run with `python` in a folder of its own (which
+sees the repository's `scenes/`, as the examples name its targets), not inside pytest; what
+their comments promise is checked on what they print."""
 
 import re
+import subprocess
+import sys
 from pathlib import Path
 
-DOC = Path(__file__).resolve().parents[2] / "docs" / "python.md"
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+DOC = REPO / "docs" / "python.md"
+DOCS = [DOC, REPO / "docs" / "robustness.md"]
 
 
-def blocks():
-    return re.findall(r"```python\n(.*?)```", DOC.read_text(), re.S)
+def blocks(doc: Path = DOC) -> list[str]:
+    return re.findall(r"```python\n(.*?)```", doc.read_text(), re.S)
 
 
-def test_the_worked_example_and_the_long_search_example_run_as_written(tmp_path, monkeypatch, capsys):
-    worked, long_search = blocks()[:2]
-    assert "noncirc.evaluate(scene)" in worked and "resume=" in long_search
-    monkeypatch.chdir(tmp_path)  # the example writes run.ckpt
-    namespace: dict = {}
-    exec(compile(worked, str(DOC), "exec"), namespace)
-    exec(compile(long_search, str(DOC), "exec"), namespace)
-    # What the comments promise: the confirmed result is feasible, the resumed search
-    # ran to its raised budget, the checkpoint exists.
-    assert namespace["result"].feasible and namespace["r"].evaluations >= 400_000
+def block_with(text: str) -> str:
+    return next(b for b in blocks() if text in b)
+
+
+def run_as_script(block: str, folder: Path) -> list[str]:
+    """`python example.py` in `folder`; its printed lines (a failure shows its stderr)."""
+    (folder / "scenes").symlink_to(REPO / "scenes")
+    script = folder / "example.py"
+    script.write_text(block)
+    done = subprocess.run([sys.executable, str(script)], cwd=folder, capture_output=True,
+                          text=True, timeout=900)
+    assert done.returncode == 0, done.stderr[-3000:]
+    return done.stdout.splitlines()
+
+
+# The blocks whose output a test below checks; every other block runs in
+# `test_every_other_block_runs_as_a_script`.
+CHECKED = ("noncirc.evaluate(scene)", "resume=", "r = noncirc.robustness(scene, samples=1024)",
+           "noncirc.fit(", "noncirc.inverse(", "noncirc.repair(", "LocalCluster")
+OTHERS = [(doc.name, i) for doc in DOCS for i, b in enumerate(blocks(doc))
+          if not any(c in b for c in CHECKED)]
+
+
+def test_the_worked_example_runs_as_written(tmp_path):
+    lines = run_as_script(block_with("noncirc.evaluate(scene)"), tmp_path)
+    # As the comments say.
+    assert lines[0] == "86.0 [21.0, 28.0, 50.0]" and lines[1].startswith("85.0175")
+    assert lines[2].startswith("Objective(name='picking_angle', value=0.297")
+    assert lines[3] == "False" and lines[4] == "(120, 2) (802, 2)"
+    # The search's result is feasible, and confirmed so.
+    assert lines[-2].startswith("True {") and lines[-1] == "True"
+
+
+def test_the_long_search_example_resumes_to_its_raised_budget(tmp_path):
+    lines = run_as_script(block_with("resume="), tmp_path)
+    assert lines[-1] == "True"
     assert (tmp_path / "run.ckpt").exists()
-    printed = capsys.readouterr().out
-    assert "85.0175" in printed and "Objective(name='picking_angle'" in printed
 
 
-def test_the_robust_design_example_runs_as_written(capsys):
-    block = next(b for b in blocks() if "noncirc.robustness(" in b)
-    exec(compile(block, str(DOC), "exec"), {})
-    lines = capsys.readouterr().out.splitlines()
+def test_the_robust_design_example_runs_as_written(tmp_path):
+    lines = run_as_script(block_with("r = noncirc.robustness(scene, samples=1024)"), tmp_path)
     assert lines[0] == "0.0" and lines[1] == "0.0"
     assert lines[2] == "(9, 1024)" and lines[3] == "train.arm_length_mm"
 
 
-def test_the_fit_example_runs_as_written(monkeypatch, capsys):
-    block = next(b for b in blocks() if "noncirc.fit(" in b)
-    monkeypatch.chdir(DOC.parents[1])  # the example names the target from the repository
-    exec(compile(block, str(DOC), "exec"), {})
-    lines = capsys.readouterr().out.splitlines()
+def test_the_fit_example_runs_as_written(tmp_path):
+    lines = run_as_script(block_with("noncirc.fit("), tmp_path)
     assert lines[0] == "True 0.084"
     assert lines[1].startswith("FitMeasure(name='pose1_position_mm'")
 
 
-def test_the_inverse_example_runs_as_written(monkeypatch, capsys):
-    block = next(b for b in blocks() if "noncirc.inverse(" in b)
-    monkeypatch.chdir(DOC.parents[1])  # the example names the target from the repository
-    exec(compile(block, str(DOC), "exec"), {})
-    lines = capsys.readouterr().out.splitlines()
+def test_the_inverse_example_runs_as_written(tmp_path):
+    lines = run_as_script(block_with("noncirc.inverse("), tmp_path)
     assert lines == ["True True 160.9", "0.73 1.41"]
 
 
-def test_the_repair_example_runs_as_written(capsys):
-    block = next(b for b in blocks() if "noncirc.repair(" in b)
-    exec(compile(block, str(DOC), "exec"), {})
-    lines = capsys.readouterr().out.splitlines()
+def test_the_repair_example_runs_as_written(tmp_path):
+    lines = run_as_script(block_with("noncirc.repair("), tmp_path)
     assert lines == ["True 20.6", "True", "r8 34.5"]
 
 
 def test_the_dask_example_runs_as_a_script(tmp_path):
-    """As a user pastes it into a file: its own process, Dask's workers importing it."""
-    import subprocess
-    import sys
-
-    block = next(b for b in blocks() if "LocalCluster" in b)
-    script = tmp_path / "cluster.py"
-    script.write_text(block)
-    out = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True,
-                         text=True, timeout=600)
-    assert out.returncode == 0, out.stderr[-2000:]
-    line = out.stdout.strip().splitlines()[-1]
+    """Dask's workers are processes that import the script: the example's guard matters."""
+    line = run_as_script(block_with("LocalCluster"), tmp_path)[-1]
     assert line.startswith("(10000, 9) ") and line.endswith("[True, True, True, True]"), line
+
+
+@pytest.mark.parametrize("doc,index", OTHERS)
+def test_every_other_block_runs_as_a_script(doc, index, tmp_path):
+    run_as_script(blocks(REPO / "docs" / doc)[index], tmp_path)
+
+
+def test_every_block_is_run():
+    """No block escapes: the checked ones and the others are all of them."""
+    every = sum(len(blocks(doc)) for doc in DOCS)
+    checked = sum(any(c in b for c in CHECKED) for doc in DOCS for b in blocks(doc))
+    assert checked == len(CHECKED) and checked + len(OTHERS) == every
