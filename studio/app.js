@@ -1272,6 +1272,16 @@ function wire() {
       label.querySelector('input[type=file]').click();
     });
   }
+  // Every plot zooms (wheel), pans (drag, when zoomed) and reads out the point under the
+  // pointer; the trajectory pans only while no target tool uses its clicks.
+  for (const id of ['polar', 'trajectory', 'mechanism', 'dynamics-plot', 'sweep', 'convergence']) {
+    const svg = $(id);
+    const readout = document.createElement('output');
+    readout.className = 'readout';
+    readout.setAttribute('aria-live', 'off');
+    svg.closest('figure').querySelector('figcaption').appendChild(readout);
+    P.inspectable(svg, readout, { canPan: id === 'trajectory' ? () => !state.tool : () => true });
+  }
   wireDragging();
 }
 

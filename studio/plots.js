@@ -77,7 +77,8 @@ export function axes(svg, options) {
   }
   clear(svg);
   const { x, y, equal = false, xlabel = '', ylabel = '', title = '', margin = [46, 14, 22, 36] } = options;
-  const [w, h] = [svg.viewBox.baseVal.width, svg.viewBox.baseVal.height];
+  // The plot's own size, whatever part of it a zoom shows (`inspectable`).
+  const [w, h] = svg.fullBox ? svg.fullBox.slice(2) : [svg.viewBox.baseVal.width, svg.viewBox.baseVal.height];
   const [l, r, t, b] = margin;
   let [x0, x1] = x, [y0, y1] = y;
   const pw = w - l - r, ph = h - t - b;
@@ -108,8 +109,60 @@ export function axes(svg, options) {
   el('clipPath', { id: `${svg.id}-clip` }, svg).appendChild(el('rect', { x: l, y: t, width: pw, height: ph }));
   const plot = el('g', { 'clip-path': `url(#${svg.id}-clip)` }, svg);
   const overlay = el('g', {}, svg);
-  svg.axesCache = { key, sx, sy, ix, iy, plot, overlay, box: [l, t, pw, ph] };
+  svg.axesCache = { key, sx, sy, ix, iy, plot, overlay, box: [l, t, pw, ph], xlabel, ylabel };
   return svg.axesCache;
+}
+
+/**
+ * Makes a plot inspectable: the wheel zooms around the pointer (up to 64×), a drag on the
+ * plot pans a zoomed plot, a double click shows it whole again, and `readout` (an element
+ * beside the plot) gives the data coordinates under the pointer in the axes' units. A drag
+ * that starts on a handle (`.handle`), or while `canPan()` is false (the page uses clicks
+ * on the plot), is left to the page.
+ */
+export function inspectable(svg, readout, { canPan = () => true } = {}) {
+  const b = svg.viewBox.baseVal;
+  svg.fullBox = [b.x, b.y, b.width, b.height];
+  const set = (box) => svg.setAttribute('viewBox', box.map((v) => +v.toFixed(4)).join(' '));
+  const current = () => { const v = svg.viewBox.baseVal; return [v.x, v.y, v.width, v.height]; };
+  const toBox = (ev) => {
+    const pt = svg.createSVGPoint(); pt.x = ev.clientX; pt.y = ev.clientY;
+    return pt.matrixTransform(svg.getScreenCTM().inverse());
+  };
+  svg.addEventListener('wheel', (ev) => {
+    ev.preventDefault();
+    const [x, y, w, h] = current();
+    const p = toBox(ev);
+    const k = ev.deltaY < 0 ? 1 / 1.25 : 1.25;
+    const [fw, fh] = svg.fullBox.slice(2);
+    const nw = Math.min(fw, Math.max(fw / 64, w * k)), nh = nw * h / w;
+    if (nw >= fw) { set(svg.fullBox); return; }
+    set([p.x - (p.x - x) * nw / w, p.y - (p.y - y) * nh / h, nw, nh]);
+  }, { passive: false });
+  let pan = null;
+  svg.addEventListener('pointerdown', (ev) => {
+    const zoomed = current()[2] < svg.fullBox[2];
+    if (ev.button !== 0 || !zoomed || ev.target.closest?.('.handle') || !canPan()) return;
+    pan = { start: toBox(ev), box: current() };
+    svg.setPointerCapture(ev.pointerId);
+  });
+  svg.addEventListener('pointermove', (ev) => {
+    if (pan) {
+      // The point under the pointer stays under it.
+      const p = toBox(ev);
+      const [x, y, w, h] = current();
+      set([x - (p.x - pan.start.x), y - (p.y - pan.start.y), w, h]);
+    }
+    const a = svg.axesCache;
+    if (!a || !readout) return;
+    const p = toBox(ev);
+    readout.textContent = `${a.xlabel || 'x'} ${fmt(+a.ix(p.x).toPrecision(5))}, ${a.ylabel || 'y'} ${fmt(+a.iy(p.y).toPrecision(5))}`;
+  });
+  const end = () => { pan = null; };
+  svg.addEventListener('pointerup', end);
+  svg.addEventListener('pointercancel', end);
+  svg.addEventListener('pointerleave', () => { if (readout) readout.textContent = ''; });
+  svg.addEventListener('dblclick', () => set(svg.fullBox));
 }
 
 /** A number as a tick label. */
@@ -148,18 +201,23 @@ export function download(name, text, type = 'text/plain') {
   setTimeout(() => URL.revokeObjectURL(url), 1000);
 }
 
-/** An SVG element as standalone SVG text. */
+/** A plot's own size (its viewBox's when whole; a zoom shows part of it at that size). */
+function plotSize(svg) {
+  return svg.fullBox ? svg.fullBox.slice(2) : [svg.viewBox.baseVal.width, svg.viewBox.baseVal.height];
+}
+
+/** An SVG element as standalone SVG text: what the plot shows (zoomed or whole) at its size. */
 export function svgText(svg) {
   const copy = svg.cloneNode(true);
   copy.setAttribute('xmlns', NS);
-  const { width, height } = svg.viewBox.baseVal;
+  const [width, height] = plotSize(svg);
   copy.setAttribute('width', width); copy.setAttribute('height', height);
   return new XMLSerializer().serializeToString(copy);
 }
 
-/** Downloads an SVG element as a PNG at `scale` × its viewBox size. */
+/** Downloads an SVG element as a PNG at `scale` × its size. */
 export function downloadPng(svg, name, scale = 3) {
-  const { width, height } = svg.viewBox.baseVal;
+  const [width, height] = plotSize(svg);
   const img = new Image();
   img.onload = () => {
     const canvas = document.createElement('canvas');

@@ -299,6 +299,40 @@ test('the gauges read at a glance (colour, margin, off-scale arrows) and stay in
   }
 });
 
+test('a plot zooms around the pointer, pans when zoomed, reads out the point under it and shows it whole on a double click', async () => {
+  const svg = page.locator('#mechanism');
+  const full = await svg.getAttribute('viewBox');
+  // The pointer at the sun's centre, (0, 0) mm, to the pixel; `under` is the data point
+  // exactly under it.
+  const centre = await page.evaluate(() => window.studio.toScreen('mechanism', [0, 0]));
+  const at = { x: Math.round(centre.x), y: Math.round(centre.y) };
+  await page.mouse.move(at.x, at.y);
+  const under = await page.evaluate(({ x, y }) => {
+    const svg = document.getElementById('mechanism');
+    const pt = svg.createSVGPoint(); pt.x = x; pt.y = y;
+    const p = pt.matrixTransform(svg.getScreenCTM().inverse());
+    return [svg.axesCache.ix(p.x), svg.axesCache.iy(p.y)];
+  }, at);
+  const readout = page.locator('#mechanism ~ figcaption .readout, figure:has(#mechanism) .readout');
+  const read = (await readout.textContent()).match(/^x \(mm\) (\S+), y \(mm\) (\S+)$/);
+  assert.ok(read && Math.abs(Number(read[1])) < 2 && Math.abs(Number(read[2])) < 2, `readout '${read?.[0]}'`);
+  for (let i = 0; i < 6; i++) await page.mouse.wheel(0, -100);
+  await page.waitForFunction((f) => document.getElementById('mechanism').getAttribute('viewBox') !== f, full);
+  const [, , w] = (await svg.getAttribute('viewBox')).split(' ').map(Number);
+  assert.ok(Math.abs(w - 520 / 1.25 ** 6) < 0.01, `zoomed to a width of ${w}`);
+  // Zoomed around the pointer: the point under it is still under it.
+  const still = await page.evaluate((p) => window.studio.toScreen('mechanism', p), under);
+  assert.ok(Math.hypot(still.x - at.x, still.y - at.y) < 0.5, `moved by ${still.x - at.x}, ${still.y - at.y}`);
+  // A drag pans: the point follows the pointer.
+  await page.mouse.down();
+  await page.mouse.move(at.x + 40, at.y + 25, { steps: 5 });
+  await page.mouse.up();
+  const panned = await page.evaluate((p) => window.studio.toScreen('mechanism', p), under);
+  assert.ok(Math.hypot(panned.x - at.x - 40, panned.y - at.y - 25) < 0.5, `panned to ${panned.x - at.x}, ${panned.y - at.y}`);
+  await svg.dblclick({ position: { x: 20, y: 20 } });
+  assert.equal(await svg.getAttribute('viewBox'), full);
+});
+
 test('a bad value in a field is reported beside it, kept as typed, and the design stays', async () => {
   const scene = await pageScene();
   const field = page.locator('input[data-path="train.arm_length_mm"]');
