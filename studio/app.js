@@ -961,9 +961,22 @@ function clearGuide() {
   P.el('text', { x: 20, y: 30 }, $('sweep')).textContent = `Above ${LIVE_SAMPLES} samples per turn: press "Update guide and response".`;
 }
 
+/** The "guide by" menu: the worst objective the parameters move (automatic), or any of the
+ *  scene's objectives; rebuilt when they change, the choice kept while it exists. */
+function guideMenu(report) {
+  const menu = $('guide-by');
+  const names = report.objectives.map((o) => o.name);
+  if (menu.dataset.names === names.join()) return;
+  const chosen = menu.value;
+  menu.replaceChildren(new Option('the worst the parameters move', ''), ...names.map((n) => new Option(n, n)));
+  menu.value = names.includes(chosen) ? chosen : '';
+  menu.dataset.names = names.join();
+}
+
 function drawGuide() {
   let guide;
-  try { guide = JSON.parse(state.design.guide()); } catch { return; }
+  guideMenu(state.out.report);
+  try { guide = JSON.parse(state.design.guide($('guide-by').value)); } catch (e) { $('guide-missed').textContent = e.message; return; }
   for (const span of document.querySelectorAll('[data-guide]')) span.textContent = '';
   for (const row of guide.rows) {
     const span = document.querySelector(`[data-guide="${CSS.escape(row.name)}"]`);
@@ -973,8 +986,9 @@ function drawGuide() {
     const handle = $('polar').querySelector(`[data-point="${row.name.match(/radii_mm\[(\d+)\]/)?.[1]}"]`);
     if (handle && row.slope !== null) handle.querySelector('title').textContent += ` — guide: ${text}`;
   }
-  $('verdict').title = `worst objective: ${guide.worst} (margin/scale ${guide.worst_margin.toPrecision(3)})`;
+  $('verdict').title = `${guide.chosen ? 'guided by' : 'worst objective'}: ${guide.worst} (margin/scale ${guide.worst_margin.toPrecision(3)})`;
   $('guide-head').textContent = `guide: ${guide.worst}`;
+  $('guide-missed').textContent = guide.missed.length ? `missed: ${guide.missed.join(', ')}` : 'every objective met';
 }
 
 function drawSweep() {
@@ -1219,6 +1233,7 @@ function wire() {
     });
   }
   $('sweep-param').addEventListener('change', drawSweep);
+  $('guide-by').addEventListener('change', drawGuide);
   const quantities = $('dynamics-quantity');
   for (const [name, label] of JSON.parse(dynamicsQuantities())) quantities.add(new Option(label, name));
   for (const [name, [label]] of Object.entries(STRESSES)) quantities.add(new Option(label, name));

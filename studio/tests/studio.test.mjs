@@ -333,6 +333,24 @@ test('a plot zooms around the pointer, pans when zoomed, reads out the point und
   assert.equal(await svg.getAttribute('viewBox'), full);
 });
 
+test('the guide follows the objective chosen, and names every missed one', async () => {
+  const report = await pageReport();
+  const missed = report.objectives.filter((o) => o.violation > 0).map((o) => o.name);
+  assert.equal(await page.locator('#guide-missed').textContent(), missed.length ? `missed: ${missed.join(', ')}` : 'every objective met');
+  const train = ['train.phi0_deg', 'train.beta0_deg', 'train.arm_length_mm', 'train.pusher_offset_mm', 'train.gamma0_deg'];
+  const texts = () => page.evaluate((paths) => paths.map((p) => document.querySelector(`.row [data-guide="${p}"]`).textContent), train);
+  await page.selectOption('#guide-by', 'picking_angle');
+  assert.equal(await page.locator('#guide-head').textContent(), 'guide: picking_angle');
+  // The picking angle turns with the arm's installation angle: not "no effect" on every
+  // train parameter, as the module (which the train does not move) would say.
+  const picking = await texts();
+  assert.ok(picking.some((t) => /raise it|lower it/.test(t)), picking.join(' | '));
+  await page.selectOption('#guide-by', 'module');
+  assert.ok((await texts()).every((t) => /no effect/.test(t)), (await texts()).join(' | '));
+  await page.selectOption('#guide-by', '');
+  assert.match(await page.locator('#guide-head').textContent(), /^guide: /);
+});
+
 test('a bad value in a field is reported beside it, kept as typed, and the design stays', async () => {
   const scene = await pageScene();
   const field = page.locator('input[data-path="train.arm_length_mm"]');

@@ -620,6 +620,9 @@ pub fn robust_score(
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+    use crate::tolerance::Spread;
+
     /// Wilson's interval against its closed forms at 0 and n successes (`[0, z²/(n+z²)]`,
     /// `[n/(n+z²), 1]`) and a value from the literature (5 of 10: [0.2366, 0.7634], Brown,
     /// Cai and DasGupta 2001); it holds the estimate and stays in [0, 1].
@@ -654,9 +657,6 @@ mod tests {
         );
         assert_eq!(super::wilson_interval(0, 0), [0.0, 1.0]);
     }
-
-    use super::*;
-    use crate::tolerance::Spread;
 
     #[test]
     fn the_quantile_matches_numpy() {

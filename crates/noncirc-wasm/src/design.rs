@@ -43,12 +43,17 @@ struct GuideRow {
     slope: Option<f64>,
 }
 
-/// The parameter guide: the worst objective and every parameter's pull on it.
+/// The parameter guide: the objective it guides by (the one asked for, else the worst),
+/// its normalised margin, every parameter's pull on it, and every missed objective.
 #[derive(Serialize)]
 struct Guide {
     worst: &'static str,
     worst_margin: f64,
     rows: Vec<GuideRow>,
+    /// Whether `worst` is the one asked for (not chosen as the worst).
+    chosen: bool,
+    /// Every objective the design misses, in the scene's order.
+    missed: Vec<&'static str>,
 }
 
 /// One step of a live sweep: each objective's margin over its scale (`None`: refused).
@@ -278,12 +283,14 @@ impl Design {
         Ok(sum)
     }
 
-    /// The parameter guide (the paper's heuristic made visible): the objective with the
-    /// least normalised margin among those the free parameters move (an objective pinned
-    /// at its bound whatever the design, as "does not push the seedling" usually is, guides
-    /// nothing), and for each free parameter the central difference of that margin over
-    /// ±0.1 % of the parameter's range, per tenth of the range, as JSON.
-    pub fn guide(&mut self) -> Result<String, JsError> {
+    /// The parameter guide (the paper's heuristic made visible): for the objective named
+    /// `objective` (empty: the one with the least normalised margin among those the free
+    /// parameters move; an objective pinned at its bound whatever the design, as "does not
+    /// push the seedling" usually is, guides nothing), for each free parameter the central
+    /// difference of that margin over ±0.1 % of the parameter's range, per tenth of the
+    /// range, and every missed objective, as JSON. An unknown name is an error naming the
+    /// scene's objectives.
+    pub fn guide(&mut self, objective: &str) -> Result<String, JsError> {
         let problem = SceneProblem::new(&self.scene).map_err(js_error)?;
         let eval = self.evaluator.evaluate(&self.scene).map_err(js_error)?;
         let margins = normalised_margins(&eval, &self.scene);
@@ -320,9 +327,20 @@ impl Design {
         let least = |candidates: &mut dyn Iterator<Item = usize>| {
             candidates.min_by(|&a, &b| margins[a].total_cmp(&margins[b]))
         };
-        let worst = least(&mut (0..margins.len()).filter(|&k| moved(k)))
-            .or_else(|| least(&mut (0..margins.len())))
-            .ok_or_else(|| js_error("the scene has no objectives"))?;
+        let names: Vec<&'static str> = eval.objectives.iter().map(|o| o.kind.name()).collect();
+        let chosen = !objective.is_empty();
+        let worst = if chosen {
+            names.iter().position(|n| *n == objective).ok_or_else(|| {
+                js_error(format!(
+                    "unknown objective '{objective}' to guide by (one of {})",
+                    names.join(", ")
+                ))
+            })?
+        } else {
+            least(&mut (0..margins.len()).filter(|&k| moved(k)))
+                .or_else(|| least(&mut (0..margins.len())))
+                .ok_or_else(|| js_error("the scene has no objectives"))?
+        };
         let rows = (problem.names().iter().zip(&slopes))
             .map(|(name, s)| GuideRow {
                 name: name.to_string(),
@@ -330,9 +348,14 @@ impl Design {
             })
             .collect();
         to_json(&Guide {
-            worst: eval.objectives[worst].kind.name(),
+            worst: names[worst],
             worst_margin: margins[worst],
             rows,
+            chosen,
+            missed: (eval.objectives.iter())
+                .filter(|o| o.violation > 0.0)
+                .map(|o| o.kind.name())
+                .collect(),
         })
     }
 
