@@ -231,16 +231,44 @@ fn read_scene(text: &str, origin: &str) -> Result<Scene, SceneError> {
         serde_path_to_error::deserialize(de).map_err(|e| {
             let key = e.path().to_string();
             let inner = e.into_inner();
-            let location = inner
-                .span()
-                .map(|s| {
-                    let line = text[..s.start.min(text.len())].matches('\n').count() + 1;
-                    format!("line {line}: ")
-                })
+            let at = inner.span().map(|s| place(text, s.start));
+            // The path is "." (the root) when the text is not TOML at all: a syntax error,
+            // told with its column and the line it is on, not as a key.
+            if key == "." {
+                let (location, quoted) = at
+                    .map(|(line, column, source)| {
+                        (
+                            format!("line {line}, column {column}: "),
+                            format!(" (in `{source}`)"),
+                        )
+                    })
+                    .unwrap_or_default();
+                return parse_err(format!(
+                    "{location}not valid TOML: {}{quoted}",
+                    inner.message().trim_end()
+                ));
+            }
+            let location = at
+                .map(|(line, ..)| format!("line {line}: "))
                 .unwrap_or_default();
             parse_err(format!("{location}key '{key}': {}", inner.message()))
         })
     }
+}
+
+/// Where byte `offset` of `text` is: its line and column (from 1, in characters) and that
+/// line's text, trimmed.
+fn place(text: &str, offset: usize) -> (usize, usize, &str) {
+    // On a character's boundary, so that slicing cannot panic whatever the span says.
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let line = text[..offset].matches('\n').count() + 1;
+    let column = text[line_start..offset].chars().count() + 1;
+    let source = text[line_start..].lines().next().unwrap_or("").trim();
+    (line, column, source)
 }
 
 /// Loads and checks a built-in scene by its bare name, or a scene file by its path (a file
@@ -584,6 +612,21 @@ mod tests {
             .to_string();
         assert!(
             e.contains("j.json") && e.contains("samples_per_turn"),
+            "{e}"
+        );
+    }
+
+    /// Text that is not TOML is told as a syntax error with its line, column and source
+    /// line, not as "key '.'".
+    #[test]
+    fn a_toml_syntax_error_names_its_place_not_a_key() {
+        let e = parse_scene("[train]\narm_length_mm = 140 150\n", "bad.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(!e.contains("key '.'"), "{e}");
+        assert!(
+            e.contains("bad.toml: line 2, column 21: not valid TOML: expected newline")
+                && e.ends_with("(in `arm_length_mm = 140 150`)"),
             "{e}"
         );
     }
