@@ -107,6 +107,12 @@ pub fn dynamics_from(scene: &Scene, eval: &Evaluation) -> Result<Dynamics> {
     Ok(scene_dynamics(kin, events, scene)?)
 }
 
+/// `|F|` of each force of a series (N): the axle loads' and the shaking force's size over
+/// the cycle, as the figures and the studio draw them.
+pub fn magnitudes(forces: &[[f64; 2]]) -> Vec<f64> {
+    forces.iter().map(|[x, y]| x.hypot(*y)).collect()
+}
+
 /// The same design with two, three and four arm sets at the scene's picking rate (the
 /// carrier slower as the arms are more): how the arm count balances the train. An arm
 /// count the model refuses for this design is left out.
@@ -315,7 +321,6 @@ pub fn figures(
     let (d, strength) = (&r.dynamics, r.strength.as_ref());
     let theta = &d.carrier_deg;
     let over_cycle = |v: &[f64]| theta.iter().copied().zip(v.iter().copied()).collect();
-    let magnitude = |v: &[[f64; 2]]| v.iter().map(|f| f[0].hypot(f[1])).collect::<Vec<_>>();
     let rpm = d.carrier_speed_rad_s * 60.0 / std::f64::consts::TAU;
     let speed = format!("{rpm:.0} r/min, {} arm sets", d.arms);
     let x_desc = "carrier angle θ (°)".to_string();
@@ -372,16 +377,16 @@ pub fn figures(
                 vec![
                     (
                         "intermediate (set I)".into(),
-                        over_cycle(&magnitude(&d.intermediate_axle_n)),
+                        over_cycle(&magnitudes(&d.intermediate_axle_n)),
                     ),
                     (
                         "planet (set I)".into(),
-                        over_cycle(&magnitude(&d.planet_axle_n)),
+                        over_cycle(&magnitudes(&d.planet_axle_n)),
                     ),
-                    ("sun shaft".into(), over_cycle(&magnitude(&d.sun_shaft_n))),
+                    ("sun shaft".into(), over_cycle(&magnitudes(&d.sun_shaft_n))),
                     (
                         "carrier bearing".into(),
-                        over_cycle(&magnitude(&d.carrier_bearing_n)),
+                        over_cycle(&magnitudes(&d.carrier_bearing_n)),
                     ),
                 ],
             ),
@@ -404,7 +409,7 @@ pub fn figures(
                 "force (N)",
                 vec![(
                     "|shaking force|".into(),
-                    over_cycle(&magnitude(&d.shaking_force_n)),
+                    over_cycle(&magnitudes(&d.shaking_force_n)),
                 )],
             ),
             "shaking_force",

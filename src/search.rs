@@ -587,14 +587,13 @@ pub struct GoalReading {
     pub value: Option<f64>,
 }
 
-/// A parameter map serialised in the scene's order ([`crate::report::scene_order`]).
+/// A parameter map serialised in the scene's order ([`crate::report::keys_in_scene_order`]).
 fn in_scene_order<S: serde::Serializer>(
     values: &BTreeMap<String, f64>,
     serializer: S,
 ) -> std::result::Result<S::Ok, S::Error> {
     use serde::ser::SerializeMap;
-    let mut keys: Vec<&String> = values.keys().collect();
-    keys.sort_by(|a, b| crate::report::scene_order(a, b));
+    let keys = crate::report::keys_in_scene_order(values);
     let mut map = serializer.serialize_map(Some(keys.len()))?;
     for k in keys {
         map.serialize_entry(k, &values[k])?;

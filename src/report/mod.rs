@@ -11,7 +11,8 @@ use serde::Serialize;
 mod finite;
 mod tables;
 pub use tables::{
-    box_table, natural_cmp, objective_table, scene_order, summary_table, sweep_table, table,
+    box_table, keys_in_scene_order, natural_cmp, objective_table, scene_order, summary_table,
+    sweep_table, table,
 };
 
 /// Everything `noncirc gear` reports about a gear pair.

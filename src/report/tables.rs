@@ -193,9 +193,7 @@ pub fn summary_table(s: &crate::search::Summary) -> String {
     } else {
         "\nbest design (docs/scenes.md: the fields and the papers' symbols):\n"
     };
-    let mut names: Vec<&String> = s.best.keys().collect();
-    names.sort_by(|a, b| scene_order(a, b));
-    for k in names {
+    for k in keys_in_scene_order(&s.best) {
         let symbol = noncirc_core::symbol(k).unwrap_or_default();
         let unit = noncirc_core::field(k).map_or("", |f| f.unit);
         out += &format!("  {k:<28} {symbol:<8} {:>10.4} {unit}\n", s.best[k]);
@@ -212,6 +210,13 @@ pub fn summary_table(s: &crate::search::Summary) -> String {
         }
     }
     out
+}
+
+/// A map's keys (scene paths) in [`scene_order`].
+pub fn keys_in_scene_order<V>(map: &std::collections::BTreeMap<String, V>) -> Vec<&String> {
+    let mut keys: Vec<&String> = map.keys().collect();
+    keys.sort_by(|a, b| scene_order(a, b));
+    keys
 }
 
 /// Orders scene paths as a scene file does (docs/scenes.md): by field, then list elements

@@ -811,30 +811,14 @@ impl Kinematics {
     /// there, and the planet's lag. One curve evaluation, at the lag, instead of two with
     /// two interpolations and an inverse: the dynamics at the kinematics' nodes reads it.
     pub fn node_state_and_contacts(&self, j: usize) -> (ArmState, [PitchContact; 2]) {
-        let first = &self.gears.first;
-        let (g, dg) = (first.pair.ratio_nodes()[j], first.dg[j]);
-        let big_phi = first.pair.phi2_nodes()[j];
-        let value = self.planet_lag[j];
-        let (d1, d2, mate) = match &self.gears.second {
-            None => {
-                let (g_s, dg_s, twin) = first.ratio_and_curve_at(value);
-                let ts1 = g / g_s;
-                (ts1, (dg * g_s - g * dg_s * ts1) / (g_s * g_s), twin)
-            }
-            Some(second) => {
-                let (g_b, dg_b, layer_b) = second.ratio_and_curve_at(big_phi);
-                (g_b * g, dg_b * g * g + g_b * dg, layer_b)
-            }
-        };
-        let lag = Lag {
-            big_phi,
-            g,
-            dg,
-            value,
-            d1,
-            d2,
-            curves: [first.pair.samples()[j], mate],
-        };
+        let pair = &self.gears.first.pair;
+        let lag = self.lag_with(
+            pair.phi2_nodes()[j],
+            pair.ratio_nodes()[j],
+            self.gears.first.dg[j],
+            pair.samples()[j],
+            self.planet_lag[j],
+        );
         self.with_contacts(self.theta(j), &lag, Some(j))
     }
 
@@ -931,20 +915,33 @@ impl Kinematics {
         let first = &self.gears.first;
         let (big_phi, _) = first.phi().eval(theta);
         let (g, dg, sun) = first.ratio_and_curve_at(theta);
-        let (value, d1, d2, mate) = match &self.gears.second {
+        let value = match &self.gears.second {
             None => {
                 // Start the cell search where node ⌊θ/h⌋'s own θ_s lies: O(1), not O(N).
                 let hint = self.node_below(self.planet_lag[self.node_below(theta)]);
-                let (ts, _) = first.phi_inverse().eval(big_phi - self.delay, hint);
-                let (g_s, dg_s, twin) = first.ratio_and_curve_at(ts);
+                first.phi_inverse().eval(big_phi - self.delay, hint).0
+            }
+            Some(second) => second.phi().eval(big_phi).0,
+        };
+        self.lag_with(big_phi, g, dg, sun, value)
+    }
+
+    /// The lag `value` at the carrier angle where the intermediate has turned `big_phi` at
+    /// ratio `g` (rate `dg`) with the sun's curve at `sun` there: its two derivatives and
+    /// the mate's curve at the planet mesh (one curve evaluation).
+    #[inline(always)]
+    fn lag_with(&self, big_phi: f64, g: f64, dg: f64, sun: Polar, value: f64) -> Lag {
+        let first = &self.gears.first;
+        let (d1, d2, mate) = match &self.gears.second {
+            None => {
+                let (g_s, dg_s, twin) = first.ratio_and_curve_at(value);
                 let ts1 = g / g_s;
-                (ts, ts1, (dg * g_s - g * dg_s * ts1) / (g_s * g_s), twin)
+                (ts1, (dg * g_s - g * dg_s * ts1) / (g_s * g_s), twin)
             }
             Some(second) => {
                 // lag = Φ_B(Φ_A(θ)): lag' = g_B·g_A, lag'' = g_B'·g_A² + g_B·g_A'.
-                let (lag, _) = second.phi().eval(big_phi);
                 let (g_b, dg_b, layer_b) = second.ratio_and_curve_at(big_phi);
-                (lag, g_b * g, dg_b * g * g + g_b * dg, layer_b)
+                (g_b * g, dg_b * g * g + g_b * dg, layer_b)
             }
         };
         Lag {

@@ -5,7 +5,7 @@
 //! one set of curves, not the report's twenty.
 
 use noncirc::core::{Dynamics, DynamicsSummary};
-use noncirc::dynamics::DynamicsReport;
+use noncirc::dynamics::{magnitudes, DynamicsReport};
 use serde::Serialize;
 use std::f64::consts::TAU;
 
@@ -55,11 +55,6 @@ struct Quantity {
     unit: &'static str,
     /// `(name, values)` of each curve.
     curves: Vec<(String, Vec<f64>)>,
-}
-
-/// `|v|` of each force vector.
-fn magnitudes(forces: &[[f64; 2]]) -> Vec<f64> {
-    forces.iter().map(|[x, y]| x.hypot(*y)).collect()
 }
 
 impl<'a> DynamicsView<'a> {
