@@ -126,10 +126,21 @@ function fieldMessage(field, message) {
  * the core's message beside `field` and keeps the last good design.
  */
 function apply(assignments, field = null) {
+  return change(() => state.design.set(assignments), field);
+}
+
+/** Removes the optional value at `path` (its field emptied), as `apply` sets one. */
+function unset(path, field) {
+  return change(() => state.design.unset(path), field);
+}
+
+/** Runs `call`, a change of the design that returns its evaluation; on success redraws
+ *  and returns true, on an error shows the message beside `field` (or above the page). */
+function change(call, field) {
   const t0 = performance.now();
   let text;
   try {
-    text = state.design.set(assignments);
+    text = call();
   } catch (e) {
     if (field) fieldMessage(field, e.message); else showFileError(e.message);
     return false;
@@ -140,20 +151,6 @@ function apply(assignments, field = null) {
   // the next paint anyway; raster happens off this thread).
   void document.body.offsetHeight;
   state.timings.push(performance.now() - t0);
-  return true;
-}
-
-/** Removes the optional value at `path` (its field emptied), as `apply` sets one. */
-function unset(path, field) {
-  let text;
-  try {
-    text = state.design.unset(path);
-  } catch (e) {
-    fieldMessage(field, e.message);
-    return false;
-  }
-  fieldMessage(field, null);
-  show(JSON.parse(text), field);
   return true;
 }
 
@@ -643,11 +640,7 @@ function applyTarget(table) {
 
 /** A click on the trajectory in mm (0.1 mm), through the plot's axes. */
 function clickMm(ev) {
-  const svg = $('trajectory');
-  const pt = svg.createSVGPoint(); pt.x = ev.clientX; pt.y = ev.clientY;
-  const p = pt.matrixTransform(svg.getScreenCTM().inverse());
-  const { ix, iy } = svg.axesCache;
-  return [+ix(p.x).toFixed(1), +iy(p.y).toFixed(1)];
+  return P.dataAt($('trajectory'), ev).map((v) => +v.toFixed(1));
 }
 
 function setTool(tool) {

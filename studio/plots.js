@@ -78,7 +78,7 @@ export function axes(svg, options) {
   clear(svg);
   const { x, y, equal = false, xlabel = '', ylabel = '', title = '', margin = [46, 14, 22, 36] } = options;
   // The plot's own size, whatever part of it a zoom shows (`inspectable`).
-  const [w, h] = svg.fullBox ? svg.fullBox.slice(2) : [svg.viewBox.baseVal.width, svg.viewBox.baseVal.height];
+  const [w, h] = plotSize(svg);
   const [l, r, t, b] = margin;
   let [x0, x1] = x, [y0, y1] = y;
   const pw = w - l - r, ph = h - t - b;
@@ -113,6 +113,18 @@ export function axes(svg, options) {
   return svg.axesCache;
 }
 
+/** The point of `svg`'s viewBox under a pointer event (zoomed or not). */
+function viewBoxAt(svg, ev) {
+  const pt = svg.createSVGPoint(); pt.x = ev.clientX; pt.y = ev.clientY;
+  return pt.matrixTransform(svg.getScreenCTM().inverse());
+}
+
+/** The data point `[x, y]` under a pointer event, through the plot's axes. */
+export function dataAt(svg, ev) {
+  const p = viewBoxAt(svg, ev);
+  return [svg.axesCache.ix(p.x), svg.axesCache.iy(p.y)];
+}
+
 /**
  * Makes a plot inspectable: the wheel zooms around the pointer (up to 64×), a drag on the
  * plot pans a zoomed plot, a double click shows it whole again, and `readout` (an element
@@ -125,10 +137,7 @@ export function inspectable(svg, readout, { canPan = () => true } = {}) {
   svg.fullBox = [b.x, b.y, b.width, b.height];
   const set = (box) => svg.setAttribute('viewBox', box.map((v) => +v.toFixed(4)).join(' '));
   const current = () => { const v = svg.viewBox.baseVal; return [v.x, v.y, v.width, v.height]; };
-  const toBox = (ev) => {
-    const pt = svg.createSVGPoint(); pt.x = ev.clientX; pt.y = ev.clientY;
-    return pt.matrixTransform(svg.getScreenCTM().inverse());
-  };
+  const toBox = (ev) => viewBoxAt(svg, ev);
   svg.addEventListener('wheel', (ev) => {
     ev.preventDefault();
     const [x, y, w, h] = current();
@@ -155,8 +164,8 @@ export function inspectable(svg, readout, { canPan = () => true } = {}) {
     }
     const a = svg.axesCache;
     if (!a || !readout) return;
-    const p = toBox(ev);
-    readout.textContent = `${a.xlabel || 'x'} ${fmt(+a.ix(p.x).toPrecision(5))}, ${a.ylabel || 'y'} ${fmt(+a.iy(p.y).toPrecision(5))}`;
+    const [x, y] = dataAt(svg, ev);
+    readout.textContent = `${a.xlabel || 'x'} ${fmt(+x.toPrecision(5))}, ${a.ylabel || 'y'} ${fmt(+y.toPrecision(5))}`;
   });
   const end = () => { pan = null; };
   svg.addEventListener('pointerup', end);
