@@ -23,6 +23,8 @@ pub mod robustness;
 pub mod scene_file;
 pub mod scene_reference;
 pub mod search;
+#[cfg(feature = "solids")]
+pub mod solids;
 pub mod sweep;
 pub mod teeth;
 

@@ -474,6 +474,9 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
         top.entry("dynamics").or_insert_with(|| {
             serde_json::to_value(noncirc_core::DynamicsSpec::default()).expect("serialises")
         });
+        top.entry("cad").or_insert_with(|| {
+            serde_json::to_value(noncirc_core::CadSpec::default()).expect("serialises")
+        });
     }
     tree
 }

@@ -237,6 +237,40 @@ pub(crate) struct TeethArgs {
     pub(crate) force: bool,
 }
 
+/// A file format of `noncirc cad`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum CadFormat {
+    /// STEP AP214: the assembly and each part.
+    Step,
+    /// Binary STL, each part in its own frame.
+    Stl,
+    /// Only `assembly.json` (written with every format): the parts' volumes and where
+    /// each copy stands.
+    Json,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct CadArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneSource,
+    /// The formats to write, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "step,stl")]
+    pub(crate) format: Vec<CadFormat>,
+    /// Carrier angle of the assembled train (degrees).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub(crate) carrier_deg: f64,
+    /// The directory to write the files into.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: std::path::PathBuf,
+    /// Largest distance of the STEP's lines and arcs from the cut outline, and of the
+    /// STL's chords from those arcs (mm).
+    #[arg(long, default_value_t = 1e-3)]
+    pub(crate) tolerance_mm: f64,
+    /// Write the solids even when the teeth fail a check (the exit code is still 3).
+    #[arg(long)]
+    pub(crate) force: bool,
+}
+
 #[derive(clap::Args)]
 pub(crate) struct AnimateArgs {
     #[command(flatten)]
@@ -319,6 +353,12 @@ pub(crate) enum Command {
     /// turn (undercut, tip land, clearance, backlash, contact ratio) and export them for
     /// manufacturing. The tooth count is `gear.module.teeth` or the module rule's.
     Teeth(TeethArgs),
+    /// Solid models of the scene's gears and train for CAD and printing: each gear's cut
+    /// teeth extruded by the face width with its bore, keyway and phase mark, the
+    /// carrier's plates, the arms and pushers, assembled at a carrier angle; STEP AP214
+    /// (the assembly and each part) and STL (each part), with the `[cad]` dimensions.
+    /// docs/cad.md
+    Cad(CadArgs),
     /// How the design fares once cut and assembled with the scene's tolerances
     /// (`[tolerances]`): each objective's probability of being met, its margin's
     /// distribution, a linearised worst case checked at its corner, and branch switches.

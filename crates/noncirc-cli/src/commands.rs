@@ -2,8 +2,8 @@
 //! the library, writes its files and prints its report.
 
 use crate::args::{
-    AnimateArgs, CompareArgs, Format, GearArgs, RobustnessArgs, SceneArgs, ScenesArgs,
-    SensitivityArgs, StudioArgs, SweepArgs, TeethArgs,
+    AnimateArgs, CadArgs, CadFormat, CompareArgs, Format, GearArgs, RobustnessArgs, SceneArgs,
+    ScenesArgs, SensitivityArgs, StudioArgs, SweepArgs, TeethArgs,
 };
 use crate::output::{json, out};
 use crate::studio as server;
@@ -112,6 +112,69 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
         return Err(Box::new(VerdictFailed(format!(
             "the teeth fail {checks}: {}",
             run.failures().join("; ")
+        ))));
+    }
+    Ok(())
+}
+
+/// Write the solids of the scene's gears and train. Teeth that fail a check or cannot be
+/// cut are reported and nothing is written (unless `--force` for a failed check); a
+/// `[cad]` dimension that does not fit is an error naming it, and nothing is written.
+pub(crate) fn cad(args: CadArgs) -> Result<(), Box<dyn Error>> {
+    use noncirc::solids::{Assembly, Format};
+    let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
+    if !(args.tolerance_mm > 0.0 && args.tolerance_mm.is_finite()) {
+        return Err(Box::new(noncirc::core::Error::OutOfRange {
+            name: "--tolerance-mm".into(),
+            value: args.tolerance_mm,
+            expected: "a positive number of mm".into(),
+        }));
+    }
+    if !args.carrier_deg.is_finite() {
+        return Err(Box::new(noncirc::core::Error::NonFinite {
+            name: "--carrier-deg".into(),
+            value: args.carrier_deg,
+        }));
+    }
+    let run = match noncirc::teeth::TeethRun::from_scene(&scene, args.carrier_deg) {
+        Ok(run) => run,
+        Err(noncirc::Error::Core(
+            e @ (noncirc::core::Error::Teeth { .. } | noncirc::core::Error::OutlineCrossing { .. }),
+        )) => {
+            return Err(Box::new(VerdictFailed(format!(
+                "the teeth cannot be cut: {e} (noncirc teeth gives advice)"
+            ))))
+        }
+        Err(e) => return Err(e.into()),
+    };
+    let failures = run.failures();
+    if !failures.is_empty() && !args.force {
+        return Err(Box::new(VerdictFailed(format!(
+            "nothing written: the teeth fail {} (--force writes them anyway): {}",
+            run.failed_checks(),
+            failures.join("; ")
+        ))));
+    }
+    let assembly = Assembly::from_run(&scene, &run, args.tolerance_mm)?;
+    let formats: Vec<Format> = (args.format.iter())
+        .filter_map(|f| match f {
+            CadFormat::Step => Some(Format::Step),
+            CadFormat::Stl => Some(Format::Stl),
+            CadFormat::Json => None,
+        })
+        .collect();
+    let files = assembly.files(&formats, args.tolerance_mm)?;
+    noncirc::files::create_dir(&args.out)?;
+    for (name, bytes) in files {
+        let path = args.out.join(name);
+        noncirc::files::write_file(&path, &bytes)?;
+        say!("wrote {}", path.display());
+    }
+    if !failures.is_empty() {
+        return Err(Box::new(VerdictFailed(format!(
+            "the teeth fail {}: {}",
+            run.failed_checks(),
+            failures.join("; ")
         ))));
     }
     Ok(())

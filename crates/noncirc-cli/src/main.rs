@@ -71,6 +71,7 @@ fn run(cli: Cli) -> Result<Finished, Box<dyn std::error::Error>> {
         Command::Repair(args) => return fit::repair(args),
         Command::Gear(args) => commands::gear(args)?,
         Command::Teeth(args) => commands::teeth(args)?,
+        Command::Cad(args) => commands::cad(args)?,
         Command::Animate(args) => commands::animate(args)?,
         Command::Evaluate(args) => commands::evaluate(args)?,
         Command::Box(args) => commands::moving_box(args)?,

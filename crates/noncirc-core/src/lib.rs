@@ -34,6 +34,7 @@ mod teeth;
 // Scene: what is designed and asked, by name; its checks; the table of its fields; the error messages
 // (which name fields by the table's symbols).
 mod agronomy;
+mod cad_spec;
 mod check;
 mod dynamics_spec;
 mod goal;
@@ -70,6 +71,7 @@ mod serial;
 // The scene: what is designed and asked, and at which resolution.
 pub use agronomy::{Agronomy, Travel};
 pub use blank::Blank;
+pub use cad_spec::CadSpec;
 pub use curve::{
     paper_control_points, CartesianCurve, CartesianKind, CurveSpec, Ellipse, Fourier,
     PeriodicSpline, PitchCurve, Polar,

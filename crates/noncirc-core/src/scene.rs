@@ -1,6 +1,7 @@
 //! Scenes: what is being designed and asked, as plain serialisable data (no I/O here).
 
 use crate::agronomy::Agronomy;
+use crate::cad_spec::CadSpec;
 use crate::curve::{CurveSpec, PitchCurve};
 use crate::dynamics_spec::DynamicsSpec;
 use crate::error::{Error, Result};
@@ -221,6 +222,10 @@ pub struct Scene {
     /// out of a written scene while it is the default.
     #[serde(default, skip_serializing_if = "DynamicsSpec::is_default")]
     pub dynamics: DynamicsSpec,
+    /// The solid models' dimensions that the design does not give (`noncirc cad`). Left
+    /// out of a written scene while they are the defaults.
+    #[serde(default, skip_serializing_if = "CadSpec::is_default")]
+    pub cad: CadSpec,
 }
 
 impl Default for Scene {
@@ -240,6 +245,7 @@ impl Default for Scene {
             tolerances: Tolerances::default(),
             target: None,
             dynamics: DynamicsSpec::default(),
+            cad: CadSpec::default(),
         }
     }
 }

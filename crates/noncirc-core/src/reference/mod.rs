@@ -110,6 +110,7 @@ macro_rules! curve_list {
 
 mod agronomy;
 mod bounds;
+mod cad;
 mod dynamics;
 mod gear;
 mod moving_box;
@@ -186,7 +187,7 @@ pub(crate) enum Checker {
 /// The field tables, in the order of a scene file, each with the scene table it
 /// describes (its first key's part: "" for the top level and `[resolution]`) and what
 /// checks its numbers.
-pub(crate) const TABLES: [(&str, Checker, &[Field]); 10] = [
+pub(crate) const TABLES: [(&str, Checker, &[Field]); 11] = [
     ("", Checker::Code, top::FIELDS),
     ("gear", Checker::Code, gear::FIELDS),
     ("train", Checker::Code, train::FIELDS),
@@ -197,6 +198,7 @@ pub(crate) const TABLES: [(&str, Checker, &[Field]); 10] = [
     ("tolerances", Checker::Code, tolerances::FIELDS),
     ("target", Checker::Code, target::FIELDS),
     ("dynamics", Checker::Table, dynamics::FIELDS),
+    ("cad", Checker::Table, cad::FIELDS),
 ];
 
 /// Every field of a scene, in the order of a scene file: one table per scene table.
