@@ -159,13 +159,13 @@ fn every_step_reference_resolves_and_names_each_part_and_instance() {
         );
     }
     let train = std::str::from_utf8(&files[0].1).unwrap();
-    for i in &asm.instances {
-        assert!(
-            train.contains(&format!("NEXT_ASSEMBLY_USAGE_OCCURRENCE('"))
-                && train.contains(&format!(",'{}',", i.name)),
-            "{}",
-            i.name
-        );
+    // One usage per instance, in order, each named.
+    let usages: Vec<&str> = (train.lines())
+        .filter(|l| l.contains("NEXT_ASSEMBLY_USAGE_OCCURRENCE("))
+        .collect();
+    assert_eq!(usages.len(), asm.instances.len());
+    for (line, i) in usages.iter().zip(&asm.instances) {
+        assert!(line.contains(&format!(",'{}',", i.name)), "{line}");
     }
     for p in &asm.parts {
         assert!(train.contains(&format!("PRODUCT('{0}','{0}'", p.name)));

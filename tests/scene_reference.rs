@@ -55,6 +55,7 @@ fn scenes() -> Vec<noncirc_core::Scene> {
             "agronomy.tray_distance_mm=120",
             "moving_box.speed_ratio=3",
             "dynamics.planting_force_n=8",
+            "cad.bore_diameter_mm=10",
         ],
         &[
             "tolerances.radius_mm={sigma=0.01}",

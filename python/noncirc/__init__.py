@@ -29,11 +29,14 @@ from ._noncirc import (
     robustness,
     sensitivity,
 )
-from .api import dynamics, evaluate, evaluate_batch, fit, inverse, optimise, repair
+from .api import cad, dynamics, evaluate, evaluate_batch, fit, inverse, optimise, repair
 from .progress import ProgressBar
 from .results import (
     Batch,
     Body,
+    CadInstance,
+    CadPart,
+    CadResult,
     Change,
     Condition,
     Design,
@@ -58,6 +61,9 @@ from .results import (
 __all__ = [
     "Batch",
     "Body",
+    "CadInstance",
+    "CadPart",
+    "CadResult",
     "Change",
     "Condition",
     "Design",
@@ -85,6 +91,7 @@ __all__ = [
     "SpeedFluctuation",
     "Strength",
     "UnknownNameError",
+    "cad",
     "dynamics",
     "evaluate",
     "evaluate_batch",

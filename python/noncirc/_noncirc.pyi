@@ -182,6 +182,18 @@ def robustness(
     quantiles, worst case), branch switches, `convergence`, as the CLI's JSON; `margins`
     an (objectives, samples) array of every sample's margin (NaN where refused)."""
 
+def cad(
+    scene: Scene,
+    out: str,
+    *,
+    carrier_deg: float = 0.0,
+    formats: list[str] = ...,
+    tolerance_mm: float = 1e-3,
+    force: bool = False,
+) -> dict[str, Any]:
+    """The solids written into `out` (`noncirc cad`): `paths`, `failures`, `manifest`; see
+    `noncirc.cad` for the typed result."""
+
 def sensitivity(
     scene: Scene,
     *,

@@ -12,7 +12,7 @@ import numpy.typing as npt
 from . import _noncirc
 from ._noncirc import Scene
 from .progress import ProgressBar, interactive
-from .results import Batch, Dynamics, Evaluation, FitResult, InverseResult, RepairResult, SearchResult
+from .results import Batch, CadResult, Dynamics, Evaluation, FitResult, InverseResult, RepairResult, SearchResult
 
 Progress = Union[bool, Callable[[dict[str, Any]], Optional[bool]], None]
 
@@ -31,6 +31,27 @@ def dynamics(scene: Scene) -> Dynamics:
     `[dynamics]` bodies and loads. Raises `ParameterError` for a bad value (naming the
     field) and `ModelError` for a design the model cannot build."""
     return Dynamics._from_raw(_noncirc.dynamics(scene))
+
+
+def cad(
+    scene: Scene,
+    out: Union[str, os.PathLike],
+    *,
+    carrier_deg: float = 0.0,
+    formats: Sequence[str] = ("step", "stl"),
+    tolerance_mm: float = 1e-3,
+    force: bool = False,
+) -> CadResult:
+    """The solids of the scene's gears and train written into `out` (`noncirc cad`,
+    docs/cad.md): STEP AP214 (the assembly and each part) and STL (each part), with the
+    scene's `[cad]` dimensions, assembled at `carrier_deg`. Teeth that fail a check are
+    reported in `failures` and not written unless `force`. Raises `ParameterError` for a
+    dimension that does not fit (naming the field; nothing is written) and `ModelError`
+    for teeth that cannot be cut."""
+    raw = _noncirc.cad(
+        scene, os.fspath(out), carrier_deg=carrier_deg, formats=list(formats), tolerance_mm=tolerance_mm, force=force
+    )
+    return CadResult._from_raw(raw)
 
 
 def evaluate_batch(

@@ -9,6 +9,7 @@ Column and attribute names end in their unit (`centre_distance_mm`, `picking_ang
 from __future__ import annotations
 
 import dataclasses
+from pathlib import Path
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Optional
 
@@ -941,3 +942,51 @@ class Dynamics:
                 columns[f.name] = value
         columns["carrier_speed_constant_drive_rad_s"] = self.speed.carrier_speed_rad_s
         return _pandas().DataFrame(columns)
+
+
+@dataclass(frozen=True)
+class CadPart:
+    """A part of `noncirc.cad`'s solids: its profile extruded by its thickness (mm)."""
+
+    name: str
+    thickness_mm: float
+    #: The profile's area (mm²), exactly from its lines and arcs.
+    area_mm2: float
+    volume_mm3: float
+
+
+@dataclass(frozen=True)
+class CadInstance:
+    """A placed copy of a part: its frame's origin (mm) and turn about z (degrees)."""
+
+    name: str
+    part: str
+    at_mm: tuple[float, float, float]
+    angle_deg: float
+
+
+@dataclass(frozen=True)
+class CadResult:
+    """What `noncirc.cad` wrote (docs/cad.md): the files, and the teeth's failed checks
+    (where there are any, nothing is written unless `force`)."""
+
+    paths: list[Path]
+    failures: list[str]
+    #: Degrees; None for a gear pair (or where nothing was written).
+    carrier_deg: Optional[float]
+    parts: list[CadPart]
+    instances: list[CadInstance]
+
+    @staticmethod
+    def _from_raw(raw: dict[str, Any]) -> CadResult:
+        m = raw["manifest"] or {"carrier_deg": None, "parts": [], "instances": []}
+        parts = [CadPart(p["name"], p["thickness_mm"], p["area_mm2"], p["volume_mm3"]) for p in m["parts"]]
+        return CadResult(
+            paths=[Path(p) for p in raw["paths"]],
+            failures=list(raw["failures"]),
+            carrier_deg=m["carrier_deg"],
+            parts=parts,
+            instances=[
+                CadInstance(i["name"], parts[i["part"]].name, tuple(i["at_mm"]), i["angle_deg"]) for i in m["instances"]
+            ],
+        )

@@ -248,3 +248,24 @@ def test_bad_dimensions_are_refused_naming_the_field_and_nothing_is_written(tmp_
         assert done.returncode == 2, (assignment, done.returncode, done.stderr)
         assert field in done.stderr, done.stderr
         assert not out.exists()
+
+
+def test_python_writes_what_the_cli_writes(cad, tmp_path):
+    import noncirc
+
+    scene = noncirc.Scene.builtin("two-arm").with_set("gear.teeth.cutter", {"kind": "shaper", "teeth": 100})
+    scene = scene.with_set("gear.teeth.backlash_mm", 0.1)
+    done = noncirc.cad(scene, tmp_path)
+    assert not done.failures and done.carrier_deg == 0.0
+    names = sorted(p.name for p in done.paths)
+    assert names == sorted(p.name for p in cad.iterdir())
+    for p in done.paths:
+        assert p.read_bytes() == (cad / p.name).read_bytes(), p.name
+    assert [p.name for p in done.parts] == [p["name"] for p in manifest(cad)["parts"]]
+    assert done.instances[1].part == "intermediate" and done.instances[1].name == "intermediate_1"
+    # A dimension that does not fit names its field and writes nothing.
+    with pytest.raises(noncirc.ParameterError, match="cad.key_width_mm"):
+        noncirc.cad(scene.with_set("cad.key_width_mm", 20.0), tmp_path / "no")
+    assert not (tmp_path / "no").exists()
+    with pytest.raises(noncirc.ParameterError, match="formats"):
+        noncirc.cad(scene, tmp_path / "no", formats=["iges"])

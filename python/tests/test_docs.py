@@ -1,4 +1,4 @@
-"""The Python examples of docs/python.md and docs/robustness.md run as written, as a user
+"""The Python examples of docs/python.md, docs/robustness.md and docs/cad.md run as written, as a user
 runs them: each block saved to a file and run with `python` in a folder of its own (which
 sees the repository's `scenes/`, as the examples name its targets), not inside pytest; what
 their comments promise is checked on what they print."""
@@ -12,7 +12,7 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 DOC = REPO / "docs" / "python.md"
-DOCS = [DOC, REPO / "docs" / "robustness.md"]
+DOCS = [DOC, REPO / "docs" / "robustness.md", REPO / "docs" / "cad.md"]
 
 
 def blocks(doc: Path = DOC) -> list[str]:

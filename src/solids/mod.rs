@@ -57,25 +57,91 @@ pub enum Format {
 }
 
 /// `assembly.json`: what the files hold, for a reader or a test.
-#[derive(Serialize)]
-struct Manifest<'a> {
-    name: &'a str,
-    carrier_deg: Option<f64>,
+#[derive(Debug, Serialize)]
+pub struct Manifest<'a> {
+    pub name: &'a str,
+    /// Degrees; `None` for a gear pair.
+    pub carrier_deg: Option<f64>,
     /// The largest distance of the STEP's lines and arcs from the cut outline, and of the
     /// STL's chords from those arcs (mm).
-    tolerance_mm: f64,
-    parts: Vec<PartEntry<'a>>,
-    instances: &'a [Instance],
+    pub tolerance_mm: f64,
+    pub parts: Vec<PartEntry<'a>>,
+    pub instances: &'a [Instance],
 }
 
 /// A part in `assembly.json`.
-#[derive(Serialize)]
-struct PartEntry<'a> {
-    name: &'a str,
-    thickness_mm: f64,
+#[derive(Debug, Serialize)]
+pub struct PartEntry<'a> {
+    pub name: &'a str,
+    pub thickness_mm: f64,
     /// The profile's area (mm²), exactly from its lines and arcs.
-    area_mm2: f64,
-    volume_mm3: f64,
+    pub area_mm2: f64,
+    pub volume_mm3: f64,
+}
+
+/// What [`export`] did: the files written (none where the teeth fail a check and
+/// `force` is off) and the teeth's failed checks.
+#[derive(Debug, Clone)]
+pub struct Export {
+    pub paths: Vec<std::path::PathBuf>,
+    pub failures: Vec<String>,
+    /// The failed checks' names, for a one-line verdict.
+    pub failed_checks: String,
+    pub assembly: Option<Assembly>,
+}
+
+/// Cuts the scene's teeth at carrier angle `carrier_deg` (degrees), builds the solids and
+/// writes the files of `formats` into `dir` (`noncirc cad`, Python's `noncirc.cad`). Teeth
+/// that cannot be cut, a `[cad]` dimension that does not fit or a bad argument is an error
+/// and nothing is written; teeth that fail a check are written only with `force`.
+pub fn export(
+    scene: &Scene,
+    carrier_deg: f64,
+    formats: &[Format],
+    tolerance_mm: f64,
+    dir: &std::path::Path,
+    force: bool,
+) -> Result<Export> {
+    if !(tolerance_mm > 0.0 && tolerance_mm.is_finite()) {
+        return Err(misfit(
+            "tolerance_mm",
+            tolerance_mm,
+            "a positive number of mm".into(),
+        ));
+    }
+    if !carrier_deg.is_finite() {
+        return Err(noncirc_core::Error::NonFinite {
+            name: "carrier_deg".into(),
+            value: carrier_deg,
+        }
+        .into());
+    }
+    let run = TeethRun::from_scene(scene, carrier_deg)?;
+    let failures = run.failures();
+    let failed_checks = run.failed_checks();
+    if !failures.is_empty() && !force {
+        return Ok(Export {
+            paths: Vec::new(),
+            failures,
+            failed_checks,
+            assembly: None,
+        });
+    }
+    let assembly = Assembly::from_run(scene, &run, tolerance_mm)?;
+    let files = assembly.files(formats, tolerance_mm)?;
+    crate::files::create_dir(dir)?;
+    let mut paths = Vec::with_capacity(files.len());
+    for (name, bytes) in files {
+        let path = dir.join(name);
+        crate::files::write_file(&path, &bytes)?;
+        paths.push(path);
+    }
+    Ok(Export {
+        paths,
+        failures,
+        failed_checks,
+        assembly: Some(assembly),
+    })
 }
 
 /// A field of `[cad]` that does not fit the design: the typed error naming it.
@@ -364,7 +430,19 @@ impl Assembly {
                 files.push((format!("{}.stl", p.name), stl::binary(&p.name, &t)));
             }
         }
-        let manifest = Manifest {
+        let json = serde_json::to_vec_pretty(&self.manifest(tolerance_mm)).map_err(|e| {
+            Error::Serialise {
+                what: "assembly.json",
+                message: e.to_string(),
+            }
+        })?;
+        files.push(("assembly.json".into(), json));
+        Ok(files)
+    }
+
+    /// What `assembly.json` holds, the files made with `tolerance_mm`.
+    pub fn manifest(&self, tolerance_mm: f64) -> Manifest<'_> {
+        Manifest {
             name: &self.name,
             carrier_deg: self.carrier_deg,
             tolerance_mm,
@@ -377,13 +455,7 @@ impl Assembly {
                 })
                 .collect(),
             instances: &self.instances,
-        };
-        let json = serde_json::to_vec_pretty(&manifest).map_err(|e| Error::Serialise {
-            what: "assembly.json",
-            message: e.to_string(),
-        })?;
-        files.push(("assembly.json".into(), json));
-        Ok(files)
+        }
     }
 
     /// Each part's volume (mm³): its profile's area, exactly, times its thickness.

@@ -182,18 +182,18 @@ pub fn hull_of_circles(centres: &[Vec2], r: f64) -> Vec<Piece> {
     let edge = |i: usize| hull[(i + 1) % n] - hull[i];
     let outward = |e: Vec2| Vec2::new(e.y, -e.x) * (r / e.hypot2().sqrt());
     let mut pieces = Vec::with_capacity(2 * n);
-    for i in 0..n {
+    for (i, &corner) in hull.iter().enumerate() {
         let (before, after) = (edge((i + n - 1) % n), edge(i));
         // The corner's arc from the previous edge's offset to the next's, then the edge.
         // In [0, π] on a convex hull (two centres: a half turn at each; `abs` keeps a
         // cross product of −0 from making it −π).
         let turn = before.cross(after).atan2(before.dot(after)).abs();
         pieces.push(Piece {
-            start: hull[i] + outward(before),
+            start: corner + outward(before),
             bulge: (0.25 * turn).tan(),
         });
         pieces.push(Piece {
-            start: hull[i] + outward(after),
+            start: corner + outward(after),
             bulge: 0.0,
         });
     }

@@ -121,8 +121,16 @@ pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
 /// cut are reported and nothing is written (unless `--force` for a failed check); a
 /// `[cad]` dimension that does not fit is an error naming it, and nothing is written.
 pub(crate) fn cad(args: CadArgs) -> Result<(), Box<dyn Error>> {
-    use noncirc::solids::{Assembly, Format};
+    use noncirc::solids::Format;
     let scene = load_scene_with(args.scene.scene.as_deref(), &args.scene.set)?;
+    let formats: Vec<Format> = (args.format.iter())
+        .filter_map(|f| match f {
+            CadFormat::Step => Some(Format::Step),
+            CadFormat::Stl => Some(Format::Stl),
+            CadFormat::Json => None,
+        })
+        .collect();
+    // The library names its own arguments; here they are flags.
     if !(args.tolerance_mm > 0.0 && args.tolerance_mm.is_finite()) {
         return Err(Box::new(noncirc::core::Error::OutOfRange {
             name: "--tolerance-mm".into(),
@@ -136,8 +144,15 @@ pub(crate) fn cad(args: CadArgs) -> Result<(), Box<dyn Error>> {
             value: args.carrier_deg,
         }));
     }
-    let run = match noncirc::teeth::TeethRun::from_scene(&scene, args.carrier_deg) {
-        Ok(run) => run,
+    let done = match noncirc::solids::export(
+        &scene,
+        args.carrier_deg,
+        &formats,
+        args.tolerance_mm,
+        &args.out,
+        args.force,
+    ) {
+        Ok(done) => done,
         Err(noncirc::Error::Core(
             e @ (noncirc::core::Error::Teeth { .. } | noncirc::core::Error::OutlineCrossing { .. }),
         )) => {
@@ -147,34 +162,19 @@ pub(crate) fn cad(args: CadArgs) -> Result<(), Box<dyn Error>> {
         }
         Err(e) => return Err(e.into()),
     };
-    let failures = run.failures();
-    if !failures.is_empty() && !args.force {
-        return Err(Box::new(VerdictFailed(format!(
-            "nothing written: the teeth fail {} (--force writes them anyway): {}",
-            run.failed_checks(),
-            failures.join("; ")
-        ))));
-    }
-    let assembly = Assembly::from_run(&scene, &run, args.tolerance_mm)?;
-    let formats: Vec<Format> = (args.format.iter())
-        .filter_map(|f| match f {
-            CadFormat::Step => Some(Format::Step),
-            CadFormat::Stl => Some(Format::Stl),
-            CadFormat::Json => None,
-        })
-        .collect();
-    let files = assembly.files(&formats, args.tolerance_mm)?;
-    noncirc::files::create_dir(&args.out)?;
-    for (name, bytes) in files {
-        let path = args.out.join(name);
-        noncirc::files::write_file(&path, &bytes)?;
+    for path in &done.paths {
         say!("wrote {}", path.display());
     }
-    if !failures.is_empty() {
+    if !done.failures.is_empty() {
         return Err(Box::new(VerdictFailed(format!(
-            "the teeth fail {}: {}",
-            run.failed_checks(),
-            failures.join("; ")
+            "{}the teeth fail {}: {}",
+            if done.paths.is_empty() {
+                "nothing written (--force writes them anyway): "
+            } else {
+                ""
+            },
+            done.failed_checks,
+            done.failures.join("; ")
         ))));
     }
     Ok(())

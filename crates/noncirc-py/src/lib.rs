@@ -38,6 +38,7 @@ fn _noncirc(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(studies::robustness, m)?)?;
     m.add_function(wrap_pyfunction!(studies::dynamics, m)?)?;
     m.add_function(wrap_pyfunction!(studies::sensitivity, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::cad, m)?)?;
     errors::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

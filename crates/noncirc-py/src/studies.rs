@@ -124,3 +124,46 @@ pub(crate) fn sensitivity<'py>(
     out.set_item("ST_conf", table(|s| &s.total_conf).into_pyarray(py))?;
     Ok(out)
 }
+
+/// The solids of the scene's gears and train written into `out` (`noncirc cad`,
+/// docs/cad.md): `formats` of "step" and "stl"; `assembly.json` always. A dict: `paths`,
+/// `failures` (the teeth's failed checks: nothing is written unless `force`), and the
+/// manifest's `parts` and `instances`.
+#[pyfunction]
+#[pyo3(signature = (scene, out, *, carrier_deg = 0.0, formats = vec!["step".to_string(), "stl".to_string()], tolerance_mm = 1e-3, force = false))]
+pub(crate) fn cad<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    out: std::path::PathBuf,
+    carrier_deg: f64,
+    formats: Vec<String>,
+    tolerance_mm: f64,
+    force: bool,
+) -> Result<Bound<'py, PyDict>> {
+    use noncirc::solids::Format;
+    let formats: Vec<Format> = (formats.iter())
+        .map(|f| match f.as_str() {
+            "step" => Ok(Format::Step),
+            "stl" => Ok(Format::Stl),
+            other => Err(noncirc::Error::Input(format!(
+                "formats: unknown format {other:?}: expected \"step\" or \"stl\""
+            ))),
+        })
+        .collect::<std::result::Result<_, _>>()?;
+    let s = scene.inner.clone();
+    let done = py.allow_threads(|| {
+        noncirc::solids::export(&s, carrier_deg, &formats, tolerance_mm, &out, force)
+    })?;
+    let manifest = match &done.assembly {
+        Some(a) => serde_json::to_value(a.manifest(tolerance_mm)).map_err(internal)?,
+        None => serde_json::Value::Null,
+    };
+    let value = serde_json::json!({
+        "paths": done.paths,
+        "failures": done.failures,
+        "manifest": manifest,
+    });
+    Ok(json_to_py(py, &value)?
+        .into_bound(py)
+        .downcast_into::<PyDict>()?)
+}
