@@ -4,6 +4,7 @@
 
 import init, { Design, builtinScene, builtinScenes, dynamicsQuantities } from './pkg/noncirc_wasm.js';
 import * as P from './plots.js';
+import { openSolidView } from './solid.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -97,6 +98,8 @@ const state = {
   dynamicsTimer: null,
   /** Milliseconds of each panel update (wasm, draw, style and layout), for the browser test. */
   dynamicsTimings: [],
+  /** The open 3D view of the solids (`openSolidView`), or null. */
+  solid: null,
 };
 window.studio = {
   state,
@@ -146,6 +149,7 @@ function change(call, field) {
     return false;
   }
   if (field) fieldMessage(field, null);
+  closeSolid('the design changed: open the 3D view again');
   show(JSON.parse(text), field);
   // Style and layout now, so that the timing covers them (the browser would do them before
   // the next paint anyway; raster happens off this thread).
@@ -248,6 +252,8 @@ function load(text, origin) {
   state.trajectoryBounds = null;
   $('teeth').checked = false;
   $('teeth-msg').textContent = '';
+  closeSolid('');
+  $('solid-status').textContent = '';
   showFileError(null);
   buildFields();
   show(out, null);
@@ -749,6 +755,47 @@ function drawMechanism() {
   });
   $('carrier-out').textContent = `${Math.round(state.carrier)}°`;
   moveDynamicsMarker();
+  state.solid?.place(state.carrier);
+}
+
+// ---------------------------------------------------------------- solids (3D)
+
+/** Builds the solids (cutting the teeth first: about a second, the status says so) and
+ *  opens the 3D view at the mechanism's carrier angle. */
+async function openSolid() {
+  const status = $('solid-status');
+  status.className = '';
+  status.textContent = 'cutting the teeth and building the solids…';
+  await new Promise((r) => setTimeout(r, 0));
+  try {
+    const parts = JSON.parse(state.design.solidParts());
+    closeSolid('');
+    $('solid-figure').hidden = false;
+    state.solid = await openSolidView(state.design, parts, $('solid'));
+    state.solid.place(state.carrier);
+    $('solid-stl').disabled = false;
+    const copies = state.solid.placements.length;
+    status.textContent = `${parts.length} parts, ${copies} copies: ${parts.map((p) => p.name).join(', ')}`;
+  } catch (e) {
+    status.className = 'msg';
+    status.textContent = e.message;
+  }
+}
+
+/** Closes the 3D view (its solids belong to a design that changed), saying `why`. */
+function closeSolid(why) {
+  if (!state.solid && !why) return;
+  state.solid?.dispose();
+  state.solid = null;
+  $('solid-figure').hidden = true;
+  $('solid-stl').disabled = true;
+  if (why && $('solid-status').textContent) $('solid-status').textContent = why;
+}
+
+/** Each part's STL and `assembly.json` at the mechanism's carrier angle, as `noncirc cad`. */
+function downloadSolids() {
+  state.solid.parts.forEach((p, i) => P.download(`${p.name}.stl`, state.design.solidStl(i), 'model/stl'));
+  P.download('assembly.json', state.design.solidManifest(state.carrier), 'application/json');
 }
 
 /** The measures' table: rows built once per set of measures, values updated in place. */
@@ -1208,6 +1255,8 @@ function wire() {
     drawMechanism();
   });
   const files = (json) => { for (const f of JSON.parse(json)) P.download(f.name, f.text); };
+  $('solid-open').addEventListener('click', openSolid);
+  $('solid-stl').addEventListener('click', downloadSolids);
   $('export-pitch').addEventListener('click', () => { try { files(state.design.pitchFiles()); } catch (e) { $('teeth-msg').className = 'msg'; $('teeth-msg').textContent = e.message; } });
   $('export-teeth').addEventListener('click', () => {
     const msg = $('teeth-msg');

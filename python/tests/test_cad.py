@@ -180,37 +180,61 @@ def test_the_flanks_follow_the_cut_outline_within_the_tolerance(cad, tmp_path, g
     assert np.allclose([x0, y0], lo, atol=TOL) and np.allclose([x1, y1], hi, atol=TOL)
 
 
-def test_the_gears_mesh_without_overlap_at_36_carrier_angles(cad, tmp_path):
+# The train with two pairs: layer B of each intermediate and the planets cut on a second
+# curve (docs/inverse.md §6).
+SECOND = 'gear.second_curve={kind="ellipse",semi_major_mm=30.0,eccentricity=0.2}'
+
+
+@pytest.mark.parametrize("pairs", [1, 2])
+def test_the_gears_mesh_without_overlap_at_36_carrier_angles(tmp_path, pairs):
     # Each gear's profile (its solid's edges at z = 0, within 1e-5 mm) placed as `noncirc cad`
     # places it: each pair that meshes stands apart by no less than the 2D check's least
     # clearance over the turn (less the STEP's tolerance on each side) and no more than
-    # its largest backlash: in mesh, never overlapping.
-    sections = {g: outline(read_part(cad / f"{g}.step")) for g in ["sun", "intermediate", "planet"]}
-    report = json.loads(run("teeth", "two-arm", "--format", "json").stdout)["checks"]["mesh"]
-    least, (_, most) = report["least_clearance_mm"], report["backlash_mm"]
-    assert 0 < least < most
+    # its largest backlash: in mesh, never overlapping. With two pairs, each layer's gears
+    # share a height and the other layer's stand b + g above or below.
+    sets = SETS + ([SECOND] if pairs == 2 else [])
+    done = run("cad", "two-arm", "--format", "step", "--out", str(tmp_path / "parts"), sets=sets)
+    assert done.returncode == 0, done.stderr
+    m0 = manifest(tmp_path / "parts")
+    names = [p["name"] for p in m0["parts"]]
+    gears = ["sun", "intermediate", "planet"] + (["intermediate_b"] if pairs == 2 else [])
+    assert set(gears) <= set(names)
+    sections = {g: outline(read_part(tmp_path / "parts" / f"{g}.step")) for g in gears}
+    checks = json.loads(run("teeth", "two-arm", "--format", "json", sets=sets).stdout)
+    reports = [checks["checks"]["mesh"]] + ([checks["second_checks"]["mesh"]] if pairs == 2 else [])
+    for r in reports:
+        assert 0 < r["least_clearance_mm"] < r["backlash_mm"][1]
     seen = []
     for k in range(36):
         theta = 10.0 * k
-        done = run("cad", "two-arm", "--format", "json", "--carrier-deg", str(theta), "--out", str(tmp_path))
+        done = run("cad", "two-arm", "--format", "json", "--carrier-deg", str(theta), "--out", str(tmp_path), sets=sets)
         assert done.returncode == 0, done.stderr
         m = manifest(tmp_path)
+        at = {i["name"]: i for i in m["instances"]}
 
         def placed(name: str) -> MultiLineString:
-            inst = next(i for i in m["instances"] if i["name"] == name)
+            inst = at[name]
             lines = sections[m["parts"][inst["part"]]["name"]]
-            moved = rotate(lines, inst["angle_deg"], origin=(0, 0))
-            return translate(moved, *inst["at_mm"][:2])
+            return translate(rotate(lines, inst["angle_deg"], origin=(0, 0)), *inst["at_mm"][:2])
 
         for arm in (1, 2):
-            for a, c in [("sun", f"intermediate_{arm}"), (f"intermediate_{arm}", f"planet_{arm}")]:
+            meshes = [("sun", f"intermediate_{arm}", reports[0])]
+            if pairs == 1:
+                meshes.append((f"intermediate_{arm}", f"planet_{arm}", reports[0]))
+            else:
+                meshes.append((f"intermediate_{arm}_b", f"planet_{arm}", reports[1]))
+                # Layer B on the intermediate's axle, one layer up, with the planet.
+                assert at[f"intermediate_{arm}_b"]["at_mm"][:2] == at[f"intermediate_{arm}"]["at_mm"][:2]
+                assert at[f"intermediate_{arm}_b"]["at_mm"][2] == at[f"planet_{arm}"]["at_mm"][2] > 0
+            for a, c, r in meshes:
                 # Outlines that do not cross, of gears whose centres lie outside each other:
                 # no overlap.
+                assert at[a]["at_mm"][2] == at[c]["at_mm"][2]
                 ra, rc = placed(a), placed(c)
                 assert not ra.intersects(rc)
                 d = ra.distance(rc)
                 seen.append(d)
-                assert least - 2 * TOL - 2e-5 <= d <= most + 2 * TOL, (theta, a, c, d)
+                assert r["least_clearance_mm"] - 2 * TOL - 2e-5 <= d <= r["backlash_mm"][1] + 2 * TOL, (theta, a, c, d)
     assert len(seen) == 36 * 4
 
 

@@ -5,13 +5,14 @@
 //! STL ([`stl`]). docs/cad.md.
 
 pub mod profile;
+#[cfg(feature = "step")]
 pub mod step;
 pub mod stl;
 
 use crate::cad;
-use crate::teeth::TeethRun;
+use crate::teeth::{train_layout, PlacedGear, TeethRun};
 use crate::{Error, Result};
-use noncirc_core::{CadSpec, Member, Scene, ToothedGear, Vec2};
+use noncirc_core::{CadSpec, Kinematics, Member, Scene, ToothedGear, Vec2};
 use profile::{circle, hull_of_circles, keyed_bore, oriented, Profile};
 use serde::Serialize;
 
@@ -247,7 +248,6 @@ impl Assembly {
     pub fn from_run(scene: &Scene, run: &TeethRun, tolerance_mm: f64) -> Result<Self> {
         let spec = &scene.cad;
         let b = scene.dynamics.face_width_mm;
-        let gap = spec.axial_gap_mm;
         let gear_of = |pair: usize, member: Member| {
             let p = run.pairs().nth(pair).expect("the layout's pair is cut");
             &p.gears[usize::from(member == Member::Driven)]
@@ -286,128 +286,155 @@ impl Assembly {
                 }
             })
             .collect();
-        let mut instances: Vec<Instance> = (run.layout.iter())
+        let name = match run.carrier_deg {
+            None => "gear_pair",
+            Some(_) => {
+                // The train: the carrier's side plates in its own frame (the axles at
+                // carrier angle 0), each arm from its planet's axle to its tip, a pusher.
+                let kin = scene.kinematics(&scene.resolution)?;
+                let mut axles = vec![Vec2::ZERO];
+                for k in 0..kin.arms() {
+                    let st = kin.state_at(-kin.arm_lag(k));
+                    axles.extend([st.o2, st.o3]);
+                }
+                for (i, a) in axles.iter().enumerate() {
+                    let near = axles[..i].iter().map(|c| (*c - *a).hypot2().sqrt());
+                    if let Some(d) = near.filter(|d| *d <= 2.0 * r).reduce(f64::min) {
+                        return Err(misfit(
+                            "cad.bore_diameter_mm",
+                            spec.bore_diameter_mm,
+                            format!("less than the distance between two axles ({d:.3} mm)"),
+                        ));
+                    }
+                }
+                let tip = (gears.iter())
+                    .map(|(_, g)| greatest_radius(g.outline()))
+                    .fold(0.0, f64::max);
+                parts.push(Part {
+                    name: "carrier_plate".into(),
+                    profile: Profile {
+                        outer: hull_of_circles(&axles, tip + spec.plate_margin_mm),
+                        holes: axles
+                            .iter()
+                            .map(|a| oriented(circle(*a, r), false))
+                            .collect(),
+                    },
+                    thickness_mm: spec.plate_thickness_mm,
+                });
+                let st = kin.state_at(0.0);
+                let (wa, wp) = (spec.arm_width_mm, spec.pusher_width_mm);
+                parts.push(Part {
+                    name: "arm".into(),
+                    profile: Profile {
+                        outer: profile::stadium(
+                            Vec2::ZERO,
+                            Vec2::new((st.tip - st.o3).hypot2().sqrt(), 0.0),
+                            0.5 * wa,
+                        ),
+                        holes: vec![oriented(circle(Vec2::ZERO, r), false)],
+                    },
+                    thickness_mm: spec.arm_thickness_mm,
+                });
+                parts.push(Part {
+                    name: "pusher".into(),
+                    profile: Profile {
+                        outer: profile::stadium(
+                            Vec2::ZERO,
+                            Vec2::new(spec.pusher_length_mm, 0.0),
+                            0.5 * wp,
+                        ),
+                        holes: vec![],
+                    },
+                    thickness_mm: wp,
+                });
+                "train"
+            }
+        };
+        let mut assembly = Self {
+            name: name.into(),
+            parts,
+            instances: Vec::new(),
+            carrier_deg: run.carrier_deg,
+        };
+        assembly.instances = match run.carrier_deg {
+            None => assembly.gear_instances(&run.layout, b + spec.axial_gap_mm),
+            Some(theta) => {
+                let kin = scene.kinematics(&scene.resolution)?;
+                assembly.train_instances(scene, &kin, run, theta)
+            }
+        };
+        Ok(assembly)
+    }
+
+    /// The gears' copies of `layout`, each pair's layer `layer_mm` above the last.
+    fn gear_instances(&self, layout: &[PlacedGear], layer_mm: f64) -> Vec<Instance> {
+        (layout.iter())
             .map(|g| Instance {
                 name: g.name.clone(),
-                part: names
-                    .iter()
-                    .position(|n| *n == part_name(&g.name))
-                    .expect("named"),
-                at_mm: [g.centre_mm.x, g.centre_mm.y, g.pair as f64 * (b + gap)],
+                part: self.part(&part_name(&g.name)),
+                at_mm: [g.centre_mm.x, g.centre_mm.y, g.pair as f64 * layer_mm],
                 angle_deg: g.angle_deg,
             })
-            .collect();
-        let Some(carrier) = run.carrier_deg else {
-            return Ok(Self {
-                name: "gear_pair".into(),
-                parts,
-                instances,
-                carrier_deg: None,
-            });
-        };
-        // The train: the carrier's plates either side of the gear layers, then each arm on
-        // its planet's axle beyond the top plate and its pusher on it.
-        let kin = scene.kinematics(&scene.resolution)?;
-        let theta = carrier.to_radians();
+            .collect()
+    }
+
+    fn part(&self, name: &str) -> usize {
+        (self.parts.iter())
+            .position(|p| p.name == name)
+            .expect("every copy's part is made")
+    }
+
+    /// Every copy of a train's parts at carrier angle `carrier_deg` (degrees): the gears
+    /// as [`train_layout`] places them, the plates turned with the carrier, each arm on its
+    /// planet's axle towards its tip and each pusher on its arm. The parts of `run` (cut at
+    /// any carrier angle) and of `kin`, the scene's kinematics.
+    pub fn train_instances(
+        &self,
+        scene: &Scene,
+        kin: &Kinematics,
+        run: &TeethRun,
+        carrier_deg: f64,
+    ) -> Vec<Instance> {
+        let (spec, b) = (&scene.cad, scene.dynamics.face_width_mm);
+        let gap = spec.axial_gap_mm;
+        let theta = carrier_deg.to_radians();
+        let layout = train_layout(kin, &run.pair, run.second.as_ref(), theta);
+        let mut instances = self.gear_instances(&layout, b + gap);
         let layers = 1 + usize::from(run.second.is_some());
         let top = layers as f64 * b + (layers - 1) as f64 * gap;
-        let tip = (gears.iter())
-            .map(|(_, g)| greatest_radius(g.outline()))
-            .fold(0.0, f64::max);
-        // The plates in the carrier's frame (the axles at carrier angle 0), turned with it.
-        let mut axles = vec![Vec2::ZERO];
-        for k in 0..kin.arms() {
-            let st = kin.state_at(-kin.arm_lag(k));
-            axles.extend([st.o2, st.o3]);
-        }
-        let first_o2 = kin.state_at(theta).o2;
-        let turn = first_o2.y.atan2(first_o2.x) - axles[1].y.atan2(axles[1].x);
-        for (i, a) in axles.iter().enumerate() {
-            if let Some(c) = axles[..i]
-                .iter()
-                .find(|c| (**c - *a).hypot2().sqrt() <= 2.0 * r)
-            {
-                return Err(misfit(
-                    "cad.bore_diameter_mm",
-                    spec.bore_diameter_mm,
-                    format!(
-                        "less than the distance between two axles ({:.3} mm)",
-                        (*c - *a).hypot2().sqrt()
-                    ),
-                ));
-            }
-        }
-        let plate = Profile {
-            outer: hull_of_circles(&axles, tip + spec.plate_margin_mm),
-            holes: axles
-                .iter()
-                .map(|a| oriented(circle(*a, r), false))
-                .collect(),
-        };
-        parts.push(Part {
-            name: "carrier_plate".into(),
-            profile: plate,
-            thickness_mm: spec.plate_thickness_mm,
-        });
-        let plate_part = parts.len() - 1;
         let tp = spec.plate_thickness_mm;
+        // The plates' frame is the carrier's at angle 0: the turn of arm I's intermediate
+        // axle since then.
+        let (now, then) = (kin.state_at(theta).o2, kin.state_at(0.0).o2);
+        let turn = now.y.atan2(now.x) - then.y.atan2(then.x);
         for (name, z) in [("bottom", -gap - tp), ("top", top + gap)] {
             instances.push(Instance {
                 name: format!("carrier_plate_{name}"),
-                part: plate_part,
+                part: self.part("carrier_plate"),
                 at_mm: [0.0, 0.0, z],
                 angle_deg: turn.to_degrees(),
             });
         }
-        let st = kin.state_at(theta);
-        let arm_length = (st.tip - st.o3).hypot2().sqrt();
-        let (wa, wp, lp) = (
-            spec.arm_width_mm,
-            spec.pusher_width_mm,
-            spec.pusher_length_mm,
-        );
-        parts.push(Part {
-            name: "arm".into(),
-            profile: Profile {
-                outer: profile::stadium(Vec2::ZERO, Vec2::new(arm_length, 0.0), 0.5 * wa),
-                holes: vec![oriented(circle(Vec2::ZERO, r), false)],
-            },
-            thickness_mm: spec.arm_thickness_mm,
-        });
-        parts.push(Part {
-            name: "pusher".into(),
-            profile: Profile {
-                outer: profile::stadium(Vec2::ZERO, Vec2::new(lp, 0.0), 0.5 * wp),
-                holes: vec![],
-            },
-            thickness_mm: wp,
-        });
-        let (arm_part, pusher_part) = (parts.len() - 2, parts.len() - 1);
         let z_arm = top + gap + tp + gap;
         for k in 0..kin.arms() {
             let st = kin.state_at(theta - kin.arm_lag(k));
             let along = st.tip - st.o3;
             let u = Vec2::new(st.pusher_angle.cos(), st.pusher_angle.sin());
-            let back = st.tip - u * lp;
+            let back = st.tip - u * spec.pusher_length_mm;
             instances.push(Instance {
                 name: format!("arm_{}", k + 1),
-                part: arm_part,
+                part: self.part("arm"),
                 at_mm: [st.o3.x, st.o3.y, z_arm],
                 angle_deg: along.y.atan2(along.x).to_degrees(),
             });
             instances.push(Instance {
                 name: format!("pusher_{}", k + 1),
-                part: pusher_part,
+                part: self.part("pusher"),
                 at_mm: [back.x, back.y, z_arm + spec.arm_thickness_mm],
                 angle_deg: st.pusher_angle.to_degrees(),
             });
         }
-        Ok(Self {
-            name: "train".into(),
-            parts,
-            instances,
-            carrier_deg: Some(carrier),
-        })
+        instances
     }
 
     /// The files of `formats`: `<name>.step` (the assembly) and per part `<part>.step` and
@@ -416,13 +443,19 @@ impl Assembly {
     pub fn files(&self, formats: &[Format], tolerance_mm: f64) -> Result<Vec<(String, Vec<u8>)>> {
         let mut files = Vec::new();
         if formats.contains(&Format::Step) {
-            files.push((
-                format!("{}.step", self.name),
-                step::assembly_file(self)?.into_bytes(),
-            ));
-            for p in &self.parts {
-                files.push((format!("{}.step", p.name), step::part_file(p)?.into_bytes()));
+            #[cfg(feature = "step")]
+            {
+                let assembly = step::assembly_file(self)?;
+                files.push((format!("{}.step", self.name), assembly.into_bytes()));
+                for p in &self.parts {
+                    files.push((format!("{}.step", p.name), step::part_file(p)?.into_bytes()));
+                }
             }
+            #[cfg(not(feature = "step"))]
+            return Err(Error::Input(
+                "STEP needs noncirc built with the `step` feature (the CLI and Python have it)"
+                    .into(),
+            ));
         }
         if formats.contains(&Format::Stl) {
             for p in &self.parts {

@@ -91,11 +91,14 @@ before(async () => {
   });
   browser = await chromium.launch({
     executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+    args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
   });
   const context = await browser.newContext({ viewport: { width: 1500, height: 1100 }, acceptDownloads: true });
   page = await context.newPage();
-  page.on('console', (m) => { if (m.type() === 'error' || m.type() === 'warning') problems.push(`${m.type()}: ${m.text()}`); });
+  // SwiftShader's note on reading a WebGL canvas back is the 3D view's test reading its
+  // pixels, not the page's doing.
+  const readBack = /GL Driver Message .*GPU stall due to ReadPixels/;
+  page.on('console', (m) => { if ((m.type() === 'error' || m.type() === 'warning') && !readBack.test(m.text())) problems.push(`${m.type()}: ${m.text()}`); });
   page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
   page.on('requestfailed', (r) => problems.push(`request failed: ${r.url()}`));
   // Nothing may come from the network: every request stays on the studio's server.
@@ -803,6 +806,81 @@ test('Tooth strength gives noncirc dynamics\' safety factors, or says why the te
   await page.waitForFunction(() => window.studio.state.strength === null);
   assert.equal(await page.locator('#dynamics-quantity').inputValue(), 'input_torque');
   assert.equal(await page.locator('#strength-table tr').count(), 0);
+  await page.setInputFiles('#open', { name: 'restored.toml', mimeType: 'text/plain', buffer: Buffer.from(scene) });
+  await page.waitForFunction((s) => window.studio.state.design.toToml() === s, scene);
+});
+
+test('the 3D view places noncirc cad\'s solids as the CLI does, turns with the scrubber, and downloads the CLI\'s files', async () => {
+  const scene = await pageScene();
+  const twoArm = `${readFileSync(join(repo, 'scenes/two-arm.toml'), 'utf8')}\n[gear.teeth]\ncutter = { kind = "shaper", teeth = 100 }\n`;
+  await page.setInputFiles('#open', { name: 'two-arm-solids.toml', mimeType: 'text/plain', buffer: Buffer.from(twoArm) });
+  await page.waitForFunction(() => window.studio.state.out.report.events?.arms.length === 2);
+  await page.click('#solid-open');
+  await page.waitForFunction(() => window.studio.state.solid !== null || document.getElementById('solid-status').className === 'msg', null, { timeout: 60000 });
+  assert.equal(await page.locator('#solid-status').getAttribute('class'), '', await page.locator('#solid-status').textContent());
+  const file = sceneFile('solids.toml', await pageScene());
+  const setCarrier = (deg) => page.evaluate((d) => { const c = document.getElementById('carrier'); c.value = String(d); c.dispatchEvent(new Event('input')); }, deg);
+  // Non-white pixels of the view (the WebGL canvas drawn onto a 2D one), and their hash.
+  const picture = () => page.evaluate(() => {
+    const src = document.getElementById('solid');
+    const c = document.createElement('canvas'); c.width = src.width; c.height = src.height;
+    const ctx = c.getContext('2d'); ctx.drawImage(src, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    let inked = 0, hash = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (d[i] < 245 || d[i + 1] < 245 || d[i + 2] < 245) inked++;
+      hash = (hash * 31 + d[i] + 7 * d[i + 1] + 13 * d[i + 2]) >>> 0;
+    }
+    return { inked: inked / (d.length / 4), hash };
+  });
+  const pictures = [];
+  for (const deg of [40, 130]) {
+    await setCarrier(deg);
+    const dir = join(tmp, `solids-${deg}`);
+    execFileSync(cli, ['cad', file, '--format', 'stl', '--carrier-deg', String(deg), '--out', dir], { stdio: 'ignore' });
+    const manifest = JSON.parse(readFileSync(join(dir, 'assembly.json'), 'utf8'));
+    const shown = await page.evaluate(() => window.studio.state.solid.placements);
+    // The same copies at the same places, to the last digits of the kinematics.
+    assertClose(shown, manifest.instances, 1e-12, `placements at ${deg}°`, 1e-9);
+    pictures.push(await picture());
+    if (deg === 40) {
+      await page.locator('#solid-figure').screenshot({ path: join(results, 'studio_solids.png') });
+      // Each part's STL and assembly.json: the CLI's, up to the last digits of the teeth's
+      // iterative solves (which follow the platform's libm): the same triangles to 1e-5 mm
+      // (single precision), the same numbers to 1e-10.
+      const names = [...manifest.parts.map((p) => `${p.name}.stl`), 'assembly.json'];
+      const downloads = [];
+      page.on('download', (d) => downloads.push(d));
+      await page.click('#solid-stl');
+      for (let i = 0; i < 50 && downloads.length < names.length; i++) await new Promise((r) => setTimeout(r, 100));
+      page.removeAllListeners('download');
+      assert.deepEqual(downloads.map((d) => d.suggestedFilename()).sort(), [...names].sort());
+      for (const d of downloads) {
+        const got = readFileSync(await d.path());
+        const want = readFileSync(join(dir, d.suggestedFilename()));
+        if (d.suggestedFilename().endsWith('.json')) {
+          assertClose(JSON.parse(got.toString('utf8')), JSON.parse(want.toString('utf8')), 1e-10, 'assembly.json', 1e-9);
+          continue;
+        }
+        assert.equal(got.length, want.length, d.suggestedFilename());
+        assert.ok(got.subarray(0, 84).equals(want.subarray(0, 84)));
+        let worst = 0;
+        for (let at = 84; at < got.length; at += 50) {
+          for (let k = 12; k < 48; k += 4) worst = Math.max(worst, Math.abs(got.readFloatLE(at + k) - want.readFloatLE(at + k)));
+        }
+        assert.ok(worst <= 1e-5, `${d.suggestedFilename()}: vertices differ by ${worst} mm`);
+      }
+    }
+  }
+  // The view shows the assembly (a twentieth of the canvas or more inked) and moves with the carrier.
+  for (const p of pictures) assert.ok(p.inked > 0.05, JSON.stringify(pictures));
+  assert.notEqual(pictures[0].hash, pictures[1].hash);
+  // A change closes the view (its solids belong to the old design).
+  await page.locator('#f-dynamics-face-width-mm').fill('15');
+  await page.locator('#f-dynamics-face-width-mm').press('Enter');
+  await page.waitForFunction(() => window.studio.state.solid === null);
+  assert.equal(await page.locator('#solid-figure').isHidden(), true);
+  await setCarrier(0);
   await page.setInputFiles('#open', { name: 'restored.toml', mimeType: 'text/plain', buffer: Buffer.from(scene) });
   await page.waitForFunction((s) => window.studio.state.design.toToml() === s, scene);
 });

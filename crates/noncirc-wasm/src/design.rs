@@ -6,6 +6,7 @@ use noncirc::dynamics::{dynamics_from, report_from, strength_from};
 use noncirc::fit::{fit_measure_rows, parse_target, target_toml};
 use noncirc::report::{check_finite, EvaluationReport};
 use noncirc::scene_file::{apply_overrides, apply_values, parse_scene, BUILTIN};
+use noncirc::solids::{stl, Assembly};
 use noncirc::teeth::TeethRun;
 use serde::Serialize;
 use std::sync::Arc;
@@ -23,6 +24,8 @@ pub struct Design {
     evaluation: Option<Evaluation>,
     /// The design's toothed gears once cut ([`Design::cut_teeth`]); a change drops them.
     teeth: Option<TeethRun>,
+    /// The solids of the 3D view once made ([`Design::solid_parts`]); a change drops them.
+    solids: Option<Assembly>,
 }
 
 /// A free parameter of the scene's search space with its current value.
@@ -116,6 +119,7 @@ impl Design {
             evaluator: Evaluator::new(),
             evaluation: None,
             teeth: None,
+            solids: None,
         })
     }
 
@@ -158,6 +162,7 @@ impl Design {
         match self.evaluate() {
             Ok(json) => {
                 self.teeth = None;
+                self.solids = None;
                 Ok(json)
             }
             Err(e) => {
@@ -454,6 +459,76 @@ impl Design {
     #[wasm_bindgen(js_name = dropTeeth)]
     pub fn drop_teeth(&mut self) {
         self.teeth = None;
+        self.solids = None;
+    }
+
+    /// The solids of `noncirc cad` for the 3D view (the teeth cut first where they are not
+    /// yet; lines and arcs within 1 µm as the CLI's): each part's name and thickness, as
+    /// JSON `[{name, thickness_mm, volume_mm3}]`. An error says why the teeth cannot be cut
+    /// or which `[cad]` dimension does not fit.
+    #[wasm_bindgen(js_name = solidParts)]
+    pub fn solid_parts(&mut self) -> Result<String, JsError> {
+        if self.teeth.is_none() {
+            self.cut_teeth()?;
+        }
+        let run = self.teeth.as_ref().expect("cut above");
+        let assembly = Assembly::from_run(&self.scene, run, 1e-3).map_err(js_error)?;
+        let parts: Vec<_> = (assembly.parts.iter().zip(assembly.volumes()))
+            .map(|(p, v)| serde_json::json!({ "name": p.name, "thickness_mm": p.thickness_mm, "volume_mm3": v }))
+            .collect();
+        self.solids = Some(assembly);
+        to_json(&parts)
+    }
+
+    fn solids(&self) -> Result<&Assembly, JsError> {
+        (self.solids.as_ref()).ok_or_else(|| js_error("the solids are not made yet"))
+    }
+
+    /// Part `part`'s triangles in its own frame (mm; x, y, z of each corner, outward by
+    /// the right-hand rule), its arcs divided within `chord_mm`.
+    #[wasm_bindgen(js_name = solidMesh)]
+    pub fn solid_mesh(&self, part: usize, chord_mm: f64) -> Result<Vec<f32>, JsError> {
+        let p = (self.solids()?.parts.get(part)).ok_or_else(|| js_error("no such part"))?;
+        let tris = stl::triangles(p, chord_mm).map_err(js_error)?;
+        Ok(tris.iter().flatten().flatten().map(|&x| x as f32).collect())
+    }
+
+    /// Every copy of the parts at carrier angle `carrier_deg` (a train; a gear pair stands
+    /// still), as `noncirc cad --format json`'s `instances`: JSON `[{name, part, at_mm,
+    /// angle_deg}]`.
+    #[wasm_bindgen(js_name = solidPlacements)]
+    pub fn solid_placements(&self, carrier_deg: f64) -> Result<String, JsError> {
+        to_json(&self.solids_at(carrier_deg)?.instances)
+    }
+
+    /// `assembly.json` as `noncirc cad --carrier-deg θ` writes it (the same bytes).
+    #[wasm_bindgen(js_name = solidManifest)]
+    pub fn solid_manifest(&self, carrier_deg: f64) -> Result<String, JsError> {
+        let assembly = self.solids_at(carrier_deg)?;
+        serde_json::to_string_pretty(&assembly.manifest(1e-3)).map_err(js_error)
+    }
+
+    /// The solids with every copy placed at `carrier_deg` (a gear pair stands still).
+    fn solids_at(&self, carrier_deg: f64) -> Result<Assembly, JsError> {
+        let mut assembly = self.solids()?.clone();
+        let run = self
+            .teeth
+            .as_ref()
+            .ok_or_else(|| js_error("no teeth cut"))?;
+        let kin = self.evaluation.as_ref().and_then(|e| e.kinematics.as_ref());
+        if let (Some(_), Some(kin)) = (assembly.carrier_deg, kin) {
+            assembly.instances = assembly.train_instances(&self.scene, kin, run, carrier_deg);
+            assembly.carrier_deg = Some(carrier_deg);
+        }
+        Ok(assembly)
+    }
+
+    /// Part `part` as `noncirc cad` writes its STL (binary, chords within 1 µm).
+    #[wasm_bindgen(js_name = solidStl)]
+    pub fn solid_stl(&self, part: usize) -> Result<Vec<u8>, JsError> {
+        let p = (self.solids()?.parts.get(part)).ok_or_else(|| js_error("no such part"))?;
+        let tris = stl::triangles(p, 1e-3).map_err(js_error)?;
+        Ok(stl::binary(&p.name, &tris))
     }
 
     /// The toothed gears as `noncirc teeth --export` writes them (assembled at carrier
