@@ -272,6 +272,11 @@ def test_bad_dimensions_are_refused_naming_the_field_and_nothing_is_written(tmp_
         assert done.returncode == 2, (assignment, done.returncode, done.stderr)
         assert field in done.stderr, done.stderr
         assert not out.exists()
+    for flag, value in [("--tolerance-mm", "20"), ("--tolerance-mm", "0"), ("--carrier-deg", "nan")]:
+        out = tmp_path / flag
+        done = run("cad", "two-arm", flag, value, "--out", str(out))
+        assert done.returncode == 2 and flag in done.stderr, done.stderr
+        assert not out.exists()
 
 
 def test_python_writes_what_the_cli_writes(cad, tmp_path):

@@ -91,6 +91,22 @@ pub struct Export {
     pub assembly: Option<Assembly>,
 }
 
+/// The coarsest fit of the outlines the solids take (mm): beyond it the lines and arcs
+/// would change the teeth by more than their checks' clearances.
+pub const TOLERANCE_MAX_MM: f64 = 0.05;
+
+/// Checks a fit tolerance (mm) named `name`: above 0, at most [`TOLERANCE_MAX_MM`].
+pub fn check_tolerance(name: &str, tolerance_mm: f64) -> Result<()> {
+    if tolerance_mm > 0.0 && tolerance_mm <= TOLERANCE_MAX_MM {
+        return Ok(());
+    }
+    Err(misfit(
+        name,
+        tolerance_mm,
+        format!("above 0, at most {TOLERANCE_MAX_MM} mm (a coarser fit would change the teeth)"),
+    ))
+}
+
 /// Cuts the scene's teeth at carrier angle `carrier_deg` (degrees), builds the solids and
 /// writes the files of `formats` into `dir` (`noncirc cad`, Python's `noncirc.cad`). Teeth
 /// that cannot be cut, a `[cad]` dimension that does not fit or a bad argument is an error
@@ -103,13 +119,7 @@ pub fn export(
     dir: &std::path::Path,
     force: bool,
 ) -> Result<Export> {
-    if !(tolerance_mm > 0.0 && tolerance_mm.is_finite()) {
-        return Err(misfit(
-            "tolerance_mm",
-            tolerance_mm,
-            "a positive number of mm".into(),
-        ));
-    }
+    check_tolerance("tolerance_mm", tolerance_mm)?;
     if !carrier_deg.is_finite() {
         return Err(noncirc_core::Error::NonFinite {
             name: "carrier_deg".into(),

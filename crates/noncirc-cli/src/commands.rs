@@ -131,13 +131,7 @@ pub(crate) fn cad(args: CadArgs) -> Result<(), Box<dyn Error>> {
         })
         .collect();
     // The library names its own arguments; here they are flags.
-    if !(args.tolerance_mm > 0.0 && args.tolerance_mm.is_finite()) {
-        return Err(Box::new(noncirc::core::Error::OutOfRange {
-            name: "--tolerance-mm".into(),
-            value: args.tolerance_mm,
-            expected: "a positive number of mm".into(),
-        }));
-    }
+    noncirc::solids::check_tolerance("--tolerance-mm", args.tolerance_mm)?;
     if !args.carrier_deg.is_finite() {
         return Err(Box::new(noncirc::core::Error::NonFinite {
             name: "--carrier-deg".into(),
