@@ -236,12 +236,14 @@ fn every_number_of_a_scene_is_a_parameter() {
         // `train.arms` is left out of a scene file while it is the paper's 3, so that
         // three-arm scenes (and their checkpoints' fingerprints) read as before; so is the
         // `[gear.teeth]` table while every tooth setting is the default.
-        // The `[dynamics]` table likewise while it is the default.
+        // The `[dynamics]` and `[cad]` tables likewise while they are the default.
         let teeth = noncirc_core::ToothSpec::default();
         let dynamics = serde_json::to_value(noncirc_core::DynamicsSpec::default()).unwrap();
+        let cad = serde_json::to_value(noncirc_core::CadSpec::default()).unwrap();
         for p in &paths {
             let expected = match p.as_str() {
                 p if p.starts_with("dynamics.") => dynamics[&p["dynamics.".len()..]].as_f64(),
+                p if p.starts_with("cad.") => cad[&p["cad.".len()..]].as_f64(),
                 "train.arms" => Some(3.0),
                 "gear.teeth.pressure_angle_deg" => Some(teeth.pressure_angle_deg),
                 "gear.teeth.addendum" => Some(teeth.addendum),
