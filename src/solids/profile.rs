@@ -12,25 +12,15 @@ pub struct Profile {
     pub holes: Vec<Vec<Piece>>,
 }
 
-/// The arc of piece `i` of `loop_`: its end, and for an arc its midpoint.
-pub fn ends(loop_: &[Piece], i: usize) -> (Vec2, Vec2, Option<Vec2>) {
-    let p = loop_[i];
-    let end = loop_[(i + 1) % loop_.len()].start;
-    let mid = (p.bulge != 0.0).then(|| arc_midpoint(p.start, end, p.bulge));
-    (p.start, end, mid)
-}
-
-/// The midpoint of the arc from `a` to `b` with `bulge` (DXF's: positive counter-clockwise):
-/// the sagitta `bulge·|b − a|/2` to the right of the chord.
-pub fn arc_midpoint(a: Vec2, b: Vec2, bulge: f64) -> Vec2 {
-    let d = b - a;
-    (a + b) * 0.5 + Vec2::new(d.y, -d.x) * (0.5 * bulge)
+/// Where piece `i` of `loop_` starts and ends.
+pub fn ends(loop_: &[Piece], i: usize) -> (Vec2, Vec2) {
+    (loop_[i].start, loop_[(i + 1) % loop_.len()].start)
 }
 
 /// Points along piece `i` of `loop_` from its start (included) to its end (excluded), an
 /// arc divided so that no chord is farther than `tol` (mm) from it.
 pub fn points_along(loop_: &[Piece], i: usize, tol: f64, out: &mut Vec<Vec2>) {
-    let (a, b, _) = ends(loop_, i);
+    let (a, b) = ends(loop_, i);
     out.push(a);
     let bulge = loop_[i].bulge;
     if bulge == 0.0 {
@@ -62,7 +52,7 @@ pub fn arc_centre(a: Vec2, b: Vec2, bulge: f64) -> Vec2 {
 pub fn area(loop_: &[Piece]) -> f64 {
     (0..loop_.len())
         .map(|i| {
-            let (a, b, _) = ends(loop_, i);
+            let (a, b) = ends(loop_, i);
             let bulge = loop_[i].bulge;
             let mut s = 0.5 * a.cross(b);
             if bulge != 0.0 {

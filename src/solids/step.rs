@@ -25,7 +25,8 @@ use truck_modeling::{
 fn arc(a: Vec2, b: Vec2, bulge: f64) -> NurbsCurve<Vector4> {
     let swept = 4.0 * bulge.atan();
     let k = (swept.abs() / FRAC_PI_2).ceil().max(1.0) as usize;
-    let (c, u) = (arc_centre(a, b, bulge), a - arc_centre(a, b, bulge));
+    let c = arc_centre(a, b, bulge);
+    let u = a - c;
     let point = |i: usize| match i {
         0 => a,
         i if i == k => b,
@@ -65,7 +66,7 @@ pub fn extrude(profile: &Profile, thickness: f64, name: &str) -> Result<Solid> {
         (0..n)
             .map(|i| {
                 let (v, w) = (&vertices[i], &vertices[(i + 1) % n]);
-                let (a, b, _) = ends(loop_, i);
+                let (a, b) = ends(loop_, i);
                 match loop_[i].bulge {
                     0.0 => builder::line(v, w),
                     bulge => Edge::new(v, w, Curve::NurbsCurve(arc(a, b, bulge))),
@@ -87,13 +88,18 @@ fn text(s: &str) -> String {
     format!("'{}'", s.replace('\'', "''"))
 }
 
-/// A real in STEP's form (a decimal point always).
+/// A real in STEP's form: a decimal point always (`12.0`, `1.E-07`), the shortest digits
+/// that read back as `x`.
 fn real(x: f64) -> String {
     let s = format!("{x:?}");
-    if s.contains('.') || s.contains('e') || s.contains('E') {
-        s.replace('e', "E")
-    } else {
-        format!("{s}.")
+    let (mantissa, exponent) = match s.split_once('e') {
+        Some((m, e)) => (m, Some(e)),
+        None => (s.as_str(), None),
+    };
+    let point = if mantissa.contains('.') { "" } else { "." };
+    match exponent {
+        Some(e) => format!("{mantissa}{point}E{e}"),
+        None => format!("{mantissa}{point}"),
     }
 }
 
@@ -321,4 +327,22 @@ pub fn assembly_file(asm: &Assembly) -> Result<String> {
         &format!("noncirc assembly {}", asm.name),
         e,
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::real;
+
+    #[test]
+    fn reals_have_a_decimal_point_and_read_back() {
+        for (x, text) in [
+            (12.0, "12.0"),
+            (1e-7, "1.E-7"),
+            (-3.5e-17, "-3.5E-17"),
+            (0.1, "0.1"),
+        ] {
+            assert_eq!(real(x), text);
+            assert_eq!(real(x).replace(".E", ".0E").parse::<f64>().unwrap(), x);
+        }
+    }
 }
