@@ -6,7 +6,7 @@ use noncirc::dynamics::{dynamics_from, report_from, strength_from};
 use noncirc::fit::{fit_measure_rows, parse_target, target_toml};
 use noncirc::report::{check_finite, EvaluationReport};
 use noncirc::scene_file::{apply_overrides, apply_values, parse_scene, BUILTIN};
-use noncirc::solids::{stl, Assembly};
+use noncirc::solids::{stl, Assembly, Instance};
 use noncirc::teeth::TeethRun;
 use serde::Serialize;
 use std::sync::Arc;
@@ -24,8 +24,9 @@ pub struct Design {
     evaluation: Option<Evaluation>,
     /// The design's toothed gears once cut ([`Design::cut_teeth`]); a change drops them.
     teeth: Option<TeethRun>,
-    /// The solids of the 3D view once made ([`Design::solid_parts`]); a change drops them.
-    solids: Option<Assembly>,
+    /// The solids of the 3D view once made ([`Design::solid_parts`]) and the teeth they
+    /// were cut from; a change drops them.
+    solids: Option<(Assembly, TeethRun)>,
 }
 
 /// A free parameter of the scene's search space with its current value.
@@ -459,28 +460,27 @@ impl Design {
     #[wasm_bindgen(js_name = dropTeeth)]
     pub fn drop_teeth(&mut self) {
         self.teeth = None;
-        self.solids = None;
     }
 
-    /// The solids of `noncirc cad` for the 3D view (the teeth cut first where they are not
-    /// yet; lines and arcs within 1 µm as the CLI's): each part's name and thickness, as
-    /// JSON `[{name, thickness_mm, volume_mm3}]`. An error says why the teeth cannot be cut
-    /// or which `[cad]` dimension does not fit.
+    /// The solids of `noncirc cad` for the 3D view (the teeth cut as `noncirc teeth` cuts
+    /// them, or the ones already cut; lines and arcs within 1 µm as the CLI's): each part's
+    /// name, thickness and volume, as JSON `[{name, thickness_mm, volume_mm3}]`. An error
+    /// says why the teeth cannot be cut or which `[cad]` dimension does not fit.
     #[wasm_bindgen(js_name = solidParts)]
     pub fn solid_parts(&mut self) -> Result<String, JsError> {
-        if self.teeth.is_none() {
-            self.cut_teeth()?;
-        }
-        let run = self.teeth.as_ref().expect("cut above");
-        let assembly = Assembly::from_run(&self.scene, run, 1e-3).map_err(js_error)?;
+        let run = match &self.teeth {
+            Some(run) => run.clone(),
+            None => TeethRun::from_scene(&self.scene, 0.0).map_err(js_error)?,
+        };
+        let assembly = Assembly::from_run(&self.scene, &run, 1e-3).map_err(js_error)?;
         let parts: Vec<_> = (assembly.parts.iter().zip(assembly.volumes()))
             .map(|(p, v)| serde_json::json!({ "name": p.name, "thickness_mm": p.thickness_mm, "volume_mm3": v }))
             .collect();
-        self.solids = Some(assembly);
+        self.solids = Some((assembly, run));
         to_json(&parts)
     }
 
-    fn solids(&self) -> Result<&Assembly, JsError> {
+    fn solids(&self) -> Result<&(Assembly, TeethRun), JsError> {
         (self.solids.as_ref()).ok_or_else(|| js_error("the solids are not made yet"))
     }
 
@@ -488,7 +488,7 @@ impl Design {
     /// the right-hand rule), its arcs divided within `chord_mm`.
     #[wasm_bindgen(js_name = solidMesh)]
     pub fn solid_mesh(&self, part: usize, chord_mm: f64) -> Result<Vec<f32>, JsError> {
-        let p = (self.solids()?.parts.get(part)).ok_or_else(|| js_error("no such part"))?;
+        let p = (self.solids()?.0.parts.get(part)).ok_or_else(|| js_error("no such part"))?;
         let tris = stl::triangles(p, chord_mm).map_err(js_error)?;
         Ok(tris.iter().flatten().flatten().map(|&x| x as f32).collect())
     }
@@ -498,35 +498,34 @@ impl Design {
     /// angle_deg}]`.
     #[wasm_bindgen(js_name = solidPlacements)]
     pub fn solid_placements(&self, carrier_deg: f64) -> Result<String, JsError> {
-        to_json(&self.solids_at(carrier_deg)?.instances)
+        to_json(&self.placements_at(carrier_deg)?)
     }
 
-    /// `assembly.json` as `noncirc cad --carrier-deg θ` writes it (the same bytes).
+    /// `assembly.json` as `noncirc cad --carrier-deg θ` writes it.
     #[wasm_bindgen(js_name = solidManifest)]
     pub fn solid_manifest(&self, carrier_deg: f64) -> Result<String, JsError> {
-        let assembly = self.solids_at(carrier_deg)?;
+        let mut assembly = self.solids()?.0.clone();
+        if assembly.carrier_deg.is_some() {
+            assembly.instances = self.placements_at(carrier_deg)?;
+            assembly.carrier_deg = Some(carrier_deg);
+        }
         serde_json::to_string_pretty(&assembly.manifest(1e-3)).map_err(js_error)
     }
 
-    /// The solids with every copy placed at `carrier_deg` (a gear pair stands still).
-    fn solids_at(&self, carrier_deg: f64) -> Result<Assembly, JsError> {
-        let mut assembly = self.solids()?.clone();
-        let run = self
-            .teeth
-            .as_ref()
-            .ok_or_else(|| js_error("no teeth cut"))?;
+    /// Every copy placed at `carrier_deg` (a gear pair stands still).
+    fn placements_at(&self, carrier_deg: f64) -> Result<Vec<Instance>, JsError> {
+        let (assembly, run) = self.solids()?;
         let kin = self.evaluation.as_ref().and_then(|e| e.kinematics.as_ref());
-        if let (Some(_), Some(kin)) = (assembly.carrier_deg, kin) {
-            assembly.instances = assembly.train_instances(&self.scene, kin, run, carrier_deg);
-            assembly.carrier_deg = Some(carrier_deg);
-        }
-        Ok(assembly)
+        Ok(match (assembly.carrier_deg, kin) {
+            (Some(_), Some(kin)) => assembly.train_instances(&self.scene, kin, run, carrier_deg),
+            _ => assembly.instances.clone(),
+        })
     }
 
     /// Part `part` as `noncirc cad` writes its STL (binary, chords within 1 µm).
     #[wasm_bindgen(js_name = solidStl)]
     pub fn solid_stl(&self, part: usize) -> Result<Vec<u8>, JsError> {
-        let p = (self.solids()?.parts.get(part)).ok_or_else(|| js_error("no such part"))?;
+        let p = (self.solids()?.0.parts.get(part)).ok_or_else(|| js_error("no such part"))?;
         let tris = stl::triangles(p, 1e-3).map_err(js_error)?;
         Ok(stl::binary(&p.name, &tris))
     }
