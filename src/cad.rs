@@ -17,6 +17,12 @@ pub struct Piece {
     pub bulge: f64,
 }
 
+/// The radius of the arc across a chord of `chord` (mm) with `bulge` (not 0): the half
+/// chord over the sine of half the included angle, `chord·(1 + bulge²)/(4·|bulge|)`.
+pub fn arc_radius(chord: f64, bulge: f64) -> f64 {
+    chord * (1.0 + bulge * bulge) / (4.0 * bulge.abs())
+}
+
 /// The circle through three points, if they are not collinear.
 fn circle(a: Vec2, b: Vec2, c: Vec2) -> Option<(Vec2, f64)> {
     let (ab, ac) = (b - a, c - a);
@@ -518,8 +524,7 @@ pub fn svg(outlines: &[Placed], marks: &[Vec2]) -> String {
             if p.bulge == 0.0 {
                 let _ = write!(d, "L {bx:.6} {by:.6} ");
             } else {
-                let chord = (b - a).hypot();
-                let r = chord * (1.0 + p.bulge * p.bulge) / (4.0 * p.bulge.abs());
+                let r = arc_radius((b - a).hypot(), p.bulge);
                 // y flips in SVG: a counter-clockwise arc in the model sweeps clockwise.
                 let sweep = u8::from(p.bulge < 0.0);
                 let _ = write!(d, "A {r:.6} {r:.6} 0 0 {sweep} {bx:.6} {by:.6} ");

@@ -107,6 +107,18 @@ pub fn check_tolerance(name: &str, tolerance_mm: f64) -> Result<()> {
     ))
 }
 
+/// Checks a carrier angle (degrees) named `name`: a finite number.
+pub fn check_carrier(name: &str, carrier_deg: f64) -> Result<()> {
+    if carrier_deg.is_finite() {
+        return Ok(());
+    }
+    Err(noncirc_core::Error::NonFinite {
+        name: name.into(),
+        value: carrier_deg,
+    }
+    .into())
+}
+
 /// Cuts the scene's teeth at carrier angle `carrier_deg` (degrees), builds the solids and
 /// writes the files of `formats` into `dir` (`noncirc cad`, Python's `noncirc.cad`). Teeth
 /// that cannot be cut, a `[cad]` dimension that does not fit or a bad argument is an error
@@ -120,13 +132,7 @@ pub fn export(
     force: bool,
 ) -> Result<Export> {
     check_tolerance("tolerance_mm", tolerance_mm)?;
-    if !carrier_deg.is_finite() {
-        return Err(noncirc_core::Error::NonFinite {
-            name: "carrier_deg".into(),
-            value: carrier_deg,
-        }
-        .into());
-    }
+    check_carrier("carrier_deg", carrier_deg)?;
     let run = TeethRun::from_scene(scene, carrier_deg)?;
     let failures = run.failures();
     let failed_checks = run.failed_checks();
@@ -296,12 +302,16 @@ impl Assembly {
                 }
             })
             .collect();
-        let name = match run.carrier_deg {
+        // A train's motion: its plates, arms and pushers, and where every copy stands.
+        let kin = match run.carrier_deg {
+            Some(_) => Some(scene.kinematics(&scene.resolution)?),
+            None => None,
+        };
+        let name = match &kin {
             None => "gear_pair",
-            Some(_) => {
+            Some(kin) => {
                 // The train: the carrier's side plates in its own frame (the axles at
                 // carrier angle 0), each arm from its planet's axle to its tip, a pusher.
-                let kin = scene.kinematics(&scene.resolution)?;
                 let mut axles = vec![Vec2::ZERO];
                 for k in 0..kin.arms() {
                     let st = kin.state_at(-kin.arm_lag(k));
@@ -366,12 +376,9 @@ impl Assembly {
             instances: Vec::new(),
             carrier_deg: run.carrier_deg,
         };
-        assembly.instances = match run.carrier_deg {
-            None => assembly.gear_instances(&run.layout, b + spec.axial_gap_mm),
-            Some(theta) => {
-                let kin = scene.kinematics(&scene.resolution)?;
-                assembly.train_instances(scene, &kin, run, theta)
-            }
+        assembly.instances = match (&kin, run.carrier_deg) {
+            (Some(kin), Some(theta)) => assembly.train_instances(scene, kin, run, theta),
+            _ => assembly.gear_instances(&run.layout, b + spec.axial_gap_mm),
         };
         Ok(assembly)
     }

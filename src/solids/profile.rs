@@ -1,6 +1,6 @@
 //! Closed plane profiles of lines and arcs, with holes: what each part is extruded from.
 
-use crate::cad::Piece;
+use crate::cad::{arc_radius, Piece};
 use noncirc_core::Vec2;
 use std::f64::consts::PI;
 
@@ -27,13 +27,12 @@ pub fn points_along(loop_: &[Piece], i: usize, tol: f64, out: &mut Vec<Vec2>) {
         return;
     }
     let swept = 4.0 * bulge.atan();
-    let chord = (b - a).hypot2().sqrt();
-    let r = chord / (2.0 * (0.5 * swept).sin().abs());
+    let r = arc_radius((b - a).hypot2().sqrt(), bulge);
     // A chord of angle φ lies r(1 − cos(φ/2)) from its arc.
     let step = 2.0 * (1.0 - (tol / r).min(1.0)).acos();
     let n = (swept.abs() / step.max(1e-9)).ceil().max(1.0) as usize;
     let centre = arc_centre(a, b, bulge);
-    let (u, v) = (a - centre, Vec2::new(-(a - centre).y, (a - centre).x));
+    let (u, v) = (a - centre, (a - centre).turn_90());
     for k in 1..n {
         let phi = swept * k as f64 / n as f64;
         out.push(centre + u * phi.cos() + v * phi.sin());
@@ -44,7 +43,7 @@ pub fn points_along(loop_: &[Piece], i: usize, tol: f64, out: &mut Vec<Vec2>) {
 pub fn arc_centre(a: Vec2, b: Vec2, bulge: f64) -> Vec2 {
     let d = b - a;
     // The centre lies on the chord's bisector, (1 − bulge²)/(4·bulge) chords to its left.
-    (a + b) * 0.5 + Vec2::new(-d.y, d.x) * ((1.0 - bulge * bulge) / (4.0 * bulge))
+    (a + b) * 0.5 + d.turn_90() * ((1.0 - bulge * bulge) / (4.0 * bulge))
 }
 
 /// The area a closed run of pieces encloses (mm², positive counter-clockwise): the
@@ -57,8 +56,7 @@ pub fn area(loop_: &[Piece]) -> f64 {
             let mut s = 0.5 * a.cross(b);
             if bulge != 0.0 {
                 let swept = 4.0 * bulge.atan();
-                let chord = (b - a).hypot2().sqrt();
-                let r = chord / (2.0 * (0.5 * swept).sin().abs());
+                let r = arc_radius((b - a).hypot2().sqrt(), bulge);
                 s += 0.5 * r * r * (swept - swept.sin());
             }
             s

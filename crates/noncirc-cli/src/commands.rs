@@ -132,12 +132,7 @@ pub(crate) fn cad(args: CadArgs) -> Result<(), Box<dyn Error>> {
         .collect();
     // The library names its own arguments; here they are flags.
     noncirc::solids::check_tolerance("--tolerance-mm", args.tolerance_mm)?;
-    if !args.carrier_deg.is_finite() {
-        return Err(Box::new(noncirc::core::Error::NonFinite {
-            name: "--carrier-deg".into(),
-            value: args.carrier_deg,
-        }));
-    }
+    noncirc::solids::check_carrier("--carrier-deg", args.carrier_deg)?;
     let done = match noncirc::solids::export(
         &scene,
         args.carrier_deg,
