@@ -4,7 +4,7 @@
 
 use noncirc_core::{
     analyse, saltelli_points, sobol_indices, Evaluator, Measure, Measured, Scene, SceneKind,
-    SceneProblem, SobolIndices, ToleranceReport, Tolerances, REPORTED_QUANTILES,
+    SceneProblem, SobolIndices, ToleranceReport, Unreliable, Tolerances, REPORTED_QUANTILES,
 };
 use serde::Serialize;
 
@@ -74,6 +74,17 @@ fn num(x: f64) -> String {
     }
 }
 
+/// What `picking_admissible` means in a tolerance analysis of a scene whose tray the
+/// trajectory places, against `placed`, its value in `noncirc evaluate` (mm).
+pub fn picking_admissible_note(placed: f64) -> String {
+    format!(
+        "picking_admissible here: the tray bolted where the nominal design puts it, the tip's \
+         reach into pots twice the tray depth counted too; `noncirc evaluate` places the tray \
+         at each design's own picking point, where the reach holds by construction, and reads \
+         {placed:.3} mm for this design"
+    )
+}
+
 /// The analysis as a table.
 pub fn robustness_table(r: &Robustness) -> String {
     use std::fmt::Write;
@@ -99,6 +110,9 @@ pub fn robustness_table(r: &Robustness) -> String {
     );
     if let Some(d) = rep.tray_distance_mm {
         let _ = writeln!(t, "tray surface fixed at {d:.3} mm from the carrier axis");
+    }
+    if let Some(placed) = rep.picking_admissible_placed_mm {
+        let _ = writeln!(t, "{}", picking_admissible_note(placed));
     }
     let q = REPORTED_QUANTILES.map(|q| format!("q{}", q * 100.0));
     let _ = writeln!(
@@ -180,6 +194,8 @@ pub struct OutputIndices {
     pub unit: &'static str,
     #[serde(flatten)]
     pub indices: SobolIndices,
+    /// What makes these indices unreadable at the samples taken (empty when nothing).
+    pub unreliable: Vec<Unreliable>,
 }
 
 /// Global sensitivity of a scene's outputs over its search box.
@@ -200,6 +216,9 @@ pub struct Sensitivity {
     pub outputs: Vec<OutputIndices>,
     /// Outputs that no base point computed (e.g. a branch gap on a one-branch path).
     pub skipped: Vec<String>,
+    /// Base points that would read every output's indices to ±0.05 (a power of two), when
+    /// some output's are unreliable at `base_samples`; `None` when all are readable.
+    pub base_samples_needed: Option<usize>,
     /// The designs in parameter values, one row per design in SALib's order.
     #[serde(skip)]
     pub x: Vec<Vec<f64>>,
@@ -316,12 +335,18 @@ pub fn sensitivity(
             Ok(indices) => out.push(OutputIndices {
                 name: measure.name(),
                 unit: measure.unit(),
+                unreliable: indices.unreliable(),
                 indices,
             }),
             Err(_) => skipped.push(measure.name()),
         }
     }
+    let base_samples_needed = (out.iter())
+        .filter(|o| !o.unreliable.is_empty())
+        .map(|o| o.indices.base_samples_needed(base_samples))
+        .max();
     Ok(Sensitivity {
+        base_samples_needed,
         scene: scene.name.clone(),
         base_samples,
         evaluations: points.len(),
@@ -413,6 +438,63 @@ pub fn sensitivity_table(s: &Sensitivity) -> String {
             t,
             "\nnot computed at any base point: {}",
             s.skipped.join(", ")
+        );
+    }
+    t.push_str(&unreliable_text(s));
+    t
+}
+
+/// The warning for indices that cannot be read at the samples taken, output by output
+/// (empty when every output's can).
+pub fn unreliable_text(s: &Sensitivity) -> String {
+    use std::fmt::Write;
+    let Some(needed) = s.base_samples_needed else {
+        return String::new();
+    };
+    let labels: Vec<String> = s.parameters.iter().map(parameter_label).collect();
+    let flagged: Vec<&OutputIndices> = (s.outputs.iter())
+        .filter(|o| !o.unreliable.is_empty())
+        .collect();
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "\nwarning: the indices of {} of {} outputs cannot be read at {} base points. About \
+         {needed} base points (--base-samples {needed}{}) would read them to ±{}{}:",
+        flagged.len(),
+        s.outputs.len(),
+        s.base_samples,
+        if needed > 65_536 {
+            "; above the most, 65536: a smaller --box-scale or fewer free parameters"
+        } else {
+            ""
+        },
+        noncirc_core::READABLE_HALF_WIDTH,
+        if (flagged.iter()).any(|o| o.indices.rows_used < noncirc_core::FEWEST_ROWS) {
+            format!(
+                " (a first step where fewer than {} were used: the intervals there tell the \
+                 rest)",
+                noncirc_core::FEWEST_ROWS
+            )
+        } else {
+            String::new()
+        }
+    );
+    for o in flagged {
+        let reasons: Vec<String> = (o.unreliable.iter())
+            .filter(|u| !matches!(u, Unreliable::FewRows { .. }))
+            .map(|u| u.describe(&labels))
+            .collect();
+        let few = if o.indices.rows_used < noncirc_core::FEWEST_ROWS {
+            ", too few"
+        } else {
+            ""
+        };
+        let _ = writeln!(
+            t,
+            "  {} ({} used{few}): {}",
+            o.name,
+            o.indices.rows_used,
+            reasons.join("; ")
         );
     }
     t

@@ -124,7 +124,7 @@ fn sobol_indices_do_not_depend_on_the_thread_count_and_are_consistent() {
     let k = one.parameters.len();
     assert_eq!(one.evaluations, 128 * (k + 2));
     // A total index holds the first-order one: within their 95 % intervals, but for about
-    // one cell in twenty (Jansen's first-order estimator is noisy where the index is small).
+    // one cell in twenty (the 95 % intervals miss one in twenty).
     let (mut cells, mut outside) = (0, Vec::new());
     for o in &one.outputs {
         for i in 0..k {
@@ -151,4 +151,62 @@ fn sobol_indices_do_not_depend_on_the_thread_count_and_are_consistent() {
     }
     assert!(sensitivity(&scene, 128, 50, 0.0, 1).is_err());
     assert!(sensitivity(&scene, 1, 50, 0.25, 1).is_err());
+}
+
+/// At 16 base points nothing can be read, and every output says so, in the table and the
+/// report, with a count of base points that would use enough of them.
+#[test]
+fn too_few_samples_are_flagged_with_the_samples_that_would_do() {
+    let scene = load_scene(None).unwrap();
+    let few = sensitivity(&scene, 16, 50, 0.25, 2).unwrap();
+    assert!(few.outputs.iter().all(|o| !o.unreliable.is_empty()));
+    let needed = few.base_samples_needed.unwrap();
+    assert!(needed.is_power_of_two() && needed >= 128, "{needed}");
+    let table = noncirc::robustness::sensitivity_table(&few);
+    assert!(
+        table.contains(&format!(
+            "the indices of {n} of {n} outputs cannot be read at 16 base points. About \
+             {needed} base points (--base-samples {needed}",
+            n = few.outputs.len()
+        )),
+        "{table}"
+    );
+    // At 1024 the objectives' indices all read to ±0.1.
+    let enough = sensitivity(&scene, 1024, 50, 0.25, 2).unwrap();
+    for o in enough.outputs.iter().take(scene.objectives.len()) {
+        assert_eq!(o.unreliable, vec![], "{}", o.name);
+    }
+}
+
+/// One name, one meaning: with the tray placed by the path, the analysis's
+/// `picking_admissible` is taken against the bolted tray (the tip's reach counted too) and
+/// reported beside evaluate's, which the report carries under its own name; with the
+/// tray fixed by the scene the two are one margin, and the report carries no second one.
+#[test]
+fn picking_admissible_of_the_bolted_tray_is_told_from_evaluates() {
+    let scene = load_scene(None).unwrap();
+    let eval = noncirc::core::Evaluator::new().evaluate(&scene).unwrap();
+    let placed = eval.objective(ObjectiveKind::PickingAdmissible).unwrap().value;
+    let r = robustness(&scene, false).unwrap();
+    assert_eq!(r.report.picking_admissible_placed_mm, Some(placed));
+    let fixed = (r.report.objectives.iter())
+        .find(|o| o.objective == ObjectiveKind::PickingAdmissible)
+        .unwrap();
+    // The reach into pots twice the tray depth is one tray depth: the bolted margin.
+    assert!((fixed.nominal_value - scene.agronomy.tray_depth_mm).abs() < 1e-9);
+    assert!(placed > fixed.nominal_value);
+    let table = noncirc::robustness::robustness_table(&r);
+    assert!(table.contains(&format!("reads {placed:.3} mm for this design")), "{table}");
+
+    let mut bolted = scene.clone();
+    bolted.agronomy.tray_distance_mm = r.report.tray_distance_mm;
+    bolted.agronomy.tray_depth_mm *= 2.0;
+    let eval = noncirc::core::Evaluator::new().evaluate(&bolted).unwrap();
+    let r = robustness(&bolted, false).unwrap();
+    assert_eq!(r.report.picking_admissible_placed_mm, None);
+    let fixed = (r.report.objectives.iter())
+        .find(|o| o.objective == ObjectiveKind::PickingAdmissible)
+        .unwrap();
+    let evaluated = eval.objective(ObjectiveKind::PickingAdmissible).unwrap().value;
+    assert!((fixed.nominal_value - evaluated).abs() < 1e-9);
 }

@@ -206,4 +206,7 @@ def sensitivity(
     scaled by `box_scale` about the design (`noncirc sensitivity`), in SALib's layout:
     `problem`, `X` and `Y` in SALib's sample order (`calc_second_order=False`), `outputs`,
     `indices[name]` with `S1`, `S1_conf`, `ST`, `ST_conf`, and those as (outputs, k)
-    arrays."""
+    arrays. First order by Saltelli (2010), total by Jansen: SALib's estimators, the same
+    numbers on the same samples. `unreliable[name]` lists why an output's indices cannot
+    be read at `base_samples` (dicts with `kind`), `base_samples_needed` how many base
+    points would read every index to ±0.1; a `RuntimeWarning` says both."""

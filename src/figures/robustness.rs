@@ -69,8 +69,14 @@ impl Figure for MarginsFigure<'_> {
             }
             let top = counts.iter().copied().max().unwrap_or(1).max(1) as f64 * 1.15;
             let [p_lo, p_hi] = o.probability_ci95;
+            // The analysis bolts a tray the path places: this is another margin than
+            // evaluate's (the table's note says how).
+            let fixed = (o.objective == noncirc_core::ObjectiveKind::PickingAdmissible
+                && r.picking_admissible_placed_mm.is_some())
+            .then_some(" (tray fixed)")
+            .unwrap_or_default();
             let caption = format!(
-                "{}: P(met) = {:.3} ({p_lo:.4}–{p_hi:.4})",
+                "{}{fixed}: P(met) = {:.3} ({p_lo:.4}–{p_hi:.4})",
                 o.objective.label(),
                 o.probability
             );
@@ -158,8 +164,10 @@ impl Figure for SensitivityFigure<'_> {
     fn size(&self) -> (u32, u32) {
         let s = self.sensitivity;
         (
-            300 + 60 * s.parameters.len() as u32,
-            160 + 22 * s.outputs.len() as u32,
+            // The cells, the outputs' names, the colour bar (110 px).
+            410 + 60 * s.parameters.len() as u32,
+            // A line more for the note on unreliable indices.
+            160 + 22 * s.outputs.len() as u32 + 24 * s.base_samples_needed.is_some() as u32,
         )
     }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
@@ -174,6 +182,11 @@ impl Figure for SensitivityFigure<'_> {
             s.box_scale, s.evaluations
         );
         let area = root.titled(&title, (FONT, 18)).map_err(err)?;
+        let (area, note_area) = match s.base_samples_needed {
+            Some(_) => area.split_vertically(area.dim_in_pixel().1.saturating_sub(24)),
+            None => area.split_vertically(area.dim_in_pixel().1),
+        };
+        let (area, bar_area) = area.split_horizontally(area.dim_in_pixel().0.saturating_sub(110));
         let chart = ChartBuilder::on(&area)
             .margin(10)
             .margin_right(20)
@@ -192,25 +205,28 @@ impl Figure for SensitivityFigure<'_> {
             let y = (m - 1 - row) as f64;
             let cy = ys.start + ((row as f64 + 0.5) * cell_h) as i32 - y0;
             let token = format!("_{}", o.unit.replace('/', "_"));
-            let label = if o.name.ends_with(&token) {
+            let mut label = if o.name.ends_with(&token) {
                 o.name.clone()
             } else {
                 format!("{} ({})", o.name, o.unit)
             };
+            let flagged = !o.unreliable.is_empty();
+            if flagged {
+                label.push_str(" †");
+            }
             area.draw(&Text::new(
                 label,
                 (xs.start - x0 - 8, cy),
-                TextStyle::from((FONT, 12)).pos(Pos::new(HPos::Right, VPos::Center)),
+                TextStyle::from((FONT, 12))
+                    .color(if flagged { &WARNING_RED } else { &BLACK })
+                    .pos(Pos::new(HPos::Right, VPos::Center)),
             ))
             .map_err(err)?;
             for i in 0..k {
                 let v = o.indices.total[i].clamp(0.0, 1.0);
-                // White at 0 to deep blue at 1.
-                let shade = |c: f64| (255.0 - v * (255.0 - c)).round() as u8;
-                let colour = RGBColor(shade(8.0), shade(48.0), shade(107.0));
                 plot.draw(&Rectangle::new(
                     [(i as f64, y), (i as f64 + 1.0, y + 1.0)],
-                    colour.filled(),
+                    index_colour(v).filled(),
                 ))
                 .map_err(err)?;
                 if o.indices.total[i] >= 0.05 {
@@ -245,6 +261,69 @@ impl Figure for SensitivityFigure<'_> {
             TextStyle::from((FONT, 12)).pos(Pos::new(HPos::Center, VPos::Top)),
         ))
         .map_err(err)?;
+        colour_bar(&bar_area, (ys.start - y0, ys.end - y0))?;
+        if let Some(needed) = s.base_samples_needed {
+            note_area
+                .draw(&Text::new(
+                    format!(
+                        "† indices not readable at {} base points (the table's warning says \
+                         why): about {needed} would read them to ±{}",
+                        s.base_samples,
+                        noncirc_core::READABLE_HALF_WIDTH
+                    ),
+                    (10, 4),
+                    TextStyle::from((FONT, 13)).color(&WARNING_RED),
+                ))
+                .map_err(err)?;
+        }
         Ok(())
     }
+}
+
+/// Dark red of the notes on unreliable indices.
+const WARNING_RED: RGBColor = RGBColor(178, 24, 43);
+
+/// A total index's colour: white at 0 to deep blue at 1.
+fn index_colour(v: f64) -> RGBColor {
+    let shade = |c: f64| (255.0 - v * (255.0 - c)).round() as u8;
+    RGBColor(shade(8.0), shade(48.0), shade(107.0))
+}
+
+/// The heat map's colour bar, between the cells' top and bottom `rows` (pixels in `area`).
+fn colour_bar<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, rows: (i32, i32)) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let (top, bottom) = (rows.0.max(20), rows.1);
+    let (left, width) = (16, 20);
+    let steps = 100;
+    for j in 0..steps {
+        let v = (j as f64 + 0.5) / steps as f64;
+        let y = |t: f64| bottom - ((bottom - top) as f64 * t).round() as i32;
+        area.draw(&Rectangle::new(
+            [(left, y(j as f64 / steps as f64)), (left + width, y((j + 1) as f64 / steps as f64))],
+            index_colour(v).filled(),
+        ))
+        .map_err(err)?;
+    }
+    area.draw(&Rectangle::new([(left, top), (left + width, bottom)], BLACK))
+        .map_err(err)?;
+    for t in [0.0, 0.25, 0.5, 0.75, 1.0] {
+        let y = bottom - ((bottom - top) as f64 * t).round() as i32;
+        area.draw(&PathElement::new(vec![(left + width, y), (left + width + 4, y)], BLACK))
+            .map_err(err)?;
+        area.draw(&Text::new(
+            format!("{t:.2}"),
+            (left + width + 7, y),
+            TextStyle::from((FONT, 12)).pos(Pos::new(HPos::Left, VPos::Center)),
+        ))
+        .map_err(err)?;
+    }
+    area.draw(&Text::new(
+        "S_T",
+        (left + width / 2, top - 6),
+        TextStyle::from((FONT, 13)).pos(Pos::new(HPos::Center, VPos::Bottom)),
+    ))
+    .map_err(err)?;
+    Ok(())
 }

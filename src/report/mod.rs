@@ -436,6 +436,14 @@ impl EvaluationReport {
             if let Some(why) = &e.picking_refused {
                 out += &format!("  a machine cannot pick there: {why}\n");
             }
+            if e.picking_check.reach_mm.is_none() {
+                out += &format!(
+                    "tray surface placed at this design's picking point, {:.3} mm from the \
+                     carrier axis (`noncirc robustness` bolts it there and counts the tip's \
+                     reach into the pots too: its picking_admissible may read less)\n",
+                    e.picking_check.tray_surface_mm
+                );
+            }
             let gap =
                 |g: Option<f64>| g.map_or("none (one extreme)".into(), |g| format!("{g:.2} mm"));
             out += &format!(

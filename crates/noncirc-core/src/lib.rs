@@ -126,7 +126,9 @@ pub use robustness::{
     ObjectiveSpread, RobustScore, SampleOutcome, ToleranceReport, ToleranceSamples, WorstCase,
     REPORTED_QUANTILES,
 };
-pub use sensitivity::{saltelli_points, sobol_indices, SobolIndices};
+pub use sensitivity::{
+    saltelli_points, sobol_indices, SobolIndices, Unreliable, FEWEST_ROWS, READABLE_HALF_WIDTH,
+};
 pub use tolerance::{Spread, Tolerances};
 
 // Search: the scene's problem and its checkpoints; the optimiser (solvers, executor)

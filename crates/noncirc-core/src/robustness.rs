@@ -451,6 +451,12 @@ pub struct ToleranceReport {
     pub objectives: Vec<ObjectiveSpread>,
     /// The tray distance the samples were evaluated against (mm).
     pub tray_distance_mm: Option<f64>,
+    /// Where the scene places the tray by the trajectory, the analysis bolts it where the
+    /// nominal design puts it and `picking_admissible` here counts the tip's reach into
+    /// pots twice the tray depth too; this is the design's `picking_admissible` as
+    /// `noncirc evaluate` reads it, the tray placed at its own picking point (mm). `None`
+    /// when the scene fixes the tray (the two agree) or has no picking point.
+    pub picking_admissible_placed_mm: Option<f64>,
 }
 
 /// Analyses `scene`'s design under its tolerances at `resolution`: the samples (with the
@@ -515,6 +521,9 @@ pub fn analyse(
         least_margin_quantiles: REPORTED_QUANTILES.map(|q| quantile_of_sorted(&least, q)),
         objectives,
         tray_distance_mm: deviated.scene().agronomy.tray_distance_mm,
+        picking_admissible_placed_mm: (scene.agronomy.tray_distance_mm.is_none())
+            .then(|| placed.events.map(|e| e.check.margin_mm()))
+            .flatten(),
     };
     Ok((report, outcomes))
 }

@@ -1,7 +1,10 @@
-//! Global sensitivity: first-order and total Sobol indices by Saltelli's sampling and
-//! Jansen's estimators, with bootstrap confidence intervals. The points and the outputs are
-//! laid out as SALib's `sobol.sample(..., calc_second_order=False)` lays them out, so its
-//! users can run `SALib.analyze.sobol` on the same outputs (docs/robustness.md).
+//! Global sensitivity: first-order and total Sobol indices by Saltelli's sampling, the
+//! first-order estimator of Saltelli et al. (2010) and Jansen's total estimator (the pair
+//! SALib uses, and the pair that paper recommends), with bootstrap confidence intervals and
+//! a check of whether the indices can be read at the samples taken. The points and the
+//! outputs are laid out as SALib's `sobol.sample(..., calc_second_order=False)` lays them
+//! out, so its users can run `SALib.analyze.sobol` on the same outputs and get the same
+//! indices (docs/robustness.md).
 
 use crate::error::{Error, Result};
 use crate::robustness::sobol;
@@ -62,8 +65,9 @@ pub struct SobolIndices {
     pub rows_used: usize,
 }
 
-/// The output blocks `(A, B, AB_i)` of the base points in `rows` (indices into the base).
-fn indices_on(y: &[f64], k: usize, rows: &[usize]) -> (Vec<f64>, Vec<f64>, f64) {
+/// The output blocks `(A, B, AB_i)` of the base points in `rows` (indices into the base),
+/// with `centre` the mean of every output of the base points used.
+fn indices_on(y: &[f64], k: usize, rows: &[usize], centre: f64) -> (Vec<f64>, Vec<f64>, f64) {
     let step = k + 2;
     let m = rows.len() as f64;
     let a = |j: usize| y[j * step];
@@ -78,21 +82,26 @@ fn indices_on(y: &[f64], k: usize, rows: &[usize]) -> (Vec<f64>, Vec<f64>, f64) 
     let mut first = vec![0.0; k];
     let mut total = vec![0.0; k];
     if var > 0.0 {
-        // Jansen: V_i = V − ½E[(f(B) − f(A_B^i))²], V_Ti = ½E[(f(A) − f(A_B^i))²]. One pass
-        // over the rows, each row's block read whole (its k + 2 outputs lie together); every
-        // parameter's sums still add the rows in their order.
-        let (mut d_first, mut d_total) = (vec![0.0; k], vec![0.0; k]);
+        // Saltelli (2010): V_i = E[f(B)(f(A_B^i) − f(A))]; Jansen: V_Ti = ½E[(f(A) −
+        // f(A_B^i))²]. Jansen's first order, V − ½E[(f(B) − f(A_B^i))²], subtracts two
+        // estimates of nearly the same size: for an inert parameter it scatters about 0 by
+        // the sampling error of V (its ΣS1 drifted above 1), where Saltelli's is exactly 0
+        // (f(A_B^i) = f(A)). Its spread grows with the output's mean, so f(B) is taken about
+        // the mean of all outputs, as SALib standardises them (the expectation is the same:
+        // E[f(A_B^i) − f(A)] = 0). One pass over the rows, each row's block read whole (its k + 2
+        // outputs lie together); every parameter's sums add the rows in their order.
+        let (mut v_first, mut d_total) = (vec![0.0; k], vec![0.0; k]);
         for &j in rows {
             let block = &y[j * step..(j + 1) * step];
             let (a, b) = (block[0], block[k + 1]);
             let abs = &block[1..=k];
-            for ((df, dt), &ab) in d_first.iter_mut().zip(&mut d_total).zip(abs) {
-                *df += (b - ab).powi(2);
+            for ((vf, dt), &ab) in v_first.iter_mut().zip(&mut d_total).zip(abs) {
+                *vf += (b - centre) * (ab - a);
                 *dt += (a - ab).powi(2);
             }
         }
         for i in 0..k {
-            first[i] = 1.0 - d_first[i] / (2.0 * m * var);
+            first[i] = v_first[i] / (m * var);
             total[i] = d_total[i] / (2.0 * m * var);
         }
     }
@@ -123,14 +132,16 @@ pub fn sobol_indices(y: &[f64], k: usize, bootstrap: usize, seed: u64) -> Result
             expected: "at least 2 (the model refused the others)".into(),
         });
     }
-    let (first, total, variance) = indices_on(y, k, &rows);
+    let centre = rows.iter().flat_map(|&j| &y[j * step..(j + 1) * step]).sum::<f64>()
+        / (rows.len() * step) as f64;
+    let (first, total, variance) = indices_on(y, k, &rows, centre);
     let mut rng = Rng::new(seed);
     let (mut s1, mut st) = (vec![Vec::new(); k], vec![Vec::new(); k]);
     for _ in 0..bootstrap {
         let resample: Vec<usize> = (0..rows.len())
             .map(|_| rows[rng.below(rows.len())])
             .collect();
-        let (f, t, _) = indices_on(y, k, &resample);
+        let (f, t, _) = indices_on(y, k, &resample, centre);
         for i in 0..k {
             s1[i].push(f[i]);
             st[i].push(t[i]);
@@ -152,6 +163,149 @@ pub fn sobol_indices(y: &[f64], k: usize, bootstrap: usize, seed: u64) -> Result
         variance,
         rows_used: rows.len(),
     })
+}
+
+/// The 95 % half-width an index should be read to: `±0.1`, one decimal.
+pub const READABLE_HALF_WIDTH: f64 = 0.1;
+
+/// Fewest base points whose bootstrap intervals are taken at their word.
+pub const FEWEST_ROWS: usize = 100;
+
+/// How far past its interval an index must be to be flagged: closer than this it reads
+/// as its bound at two decimals.
+const MATERIAL: f64 = 0.01;
+
+/// Why one output's indices cannot be read at the samples taken: each names something the
+/// true indices cannot do (`0 ≤ S_i ≤ S_Ti`, `ΣS_i ≤ 1`) beyond the intervals, or intervals
+/// too wide or too few points to trust. Parameters are indices into the box's parameters.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Unreliable {
+    /// Fewer than [`FEWEST_ROWS`] base points had every output.
+    FewRows { used: usize },
+    /// The most negative first-order index, below zero beyond its interval.
+    NegativeFirst {
+        parameter: usize,
+        first: f64,
+        conf: f64,
+    },
+    /// The first-order index furthest above its total, beyond the two intervals.
+    FirstAboveTotal {
+        parameter: usize,
+        first: f64,
+        total: f64,
+    },
+    /// The first-order indices sum above 1 beyond their intervals' sum.
+    FirstSumAboveOne { sum: f64 },
+    /// The widest interval, wider than ±[`READABLE_HALF_WIDTH`].
+    WideInterval { parameter: usize, half_width: f64 },
+}
+
+impl Unreliable {
+    /// One line for a reader, with the parameters' `labels`.
+    pub fn describe(&self, labels: &[String]) -> String {
+        let name = |i: &usize| labels.get(*i).map_or("?", String::as_str);
+        match self {
+            Self::FewRows { used } => format!(
+                "{used} base points used, fewer than {FEWEST_ROWS}: the intervals themselves \
+                 are rough"
+            ),
+            Self::NegativeFirst {
+                parameter,
+                first,
+                conf,
+            } => format!(
+                "S1 of {} = {first:.3} ± {conf:.3}, below 0 beyond its interval",
+                name(parameter)
+            ),
+            Self::FirstAboveTotal {
+                parameter,
+                first,
+                total,
+            } => format!(
+                "S1 of {} = {first:.3} above its S_T = {total:.3} beyond their intervals",
+                name(parameter)
+            ),
+            Self::FirstSumAboveOne { sum } => {
+                format!("the first-order indices sum to {sum:.2}, above 1 beyond their intervals")
+            }
+            Self::WideInterval {
+                parameter,
+                half_width,
+            } => format!(
+                "widest interval ±{half_width:.3} ({}), above ±{READABLE_HALF_WIDTH}",
+                name(parameter)
+            ),
+        }
+    }
+}
+
+impl SobolIndices {
+    /// What makes these indices unreadable (empty when none): at most one entry of each
+    /// kind, the worst.
+    pub fn unreliable(&self) -> Vec<Unreliable> {
+        let mut out = Vec::new();
+        if self.rows_used < FEWEST_ROWS {
+            out.push(Unreliable::FewRows {
+                used: self.rows_used,
+            });
+        }
+        let k = self.first.len();
+        let worst = |score: &dyn Fn(usize) -> f64| {
+            (0..k)
+                .filter(|&i| score(i) > 0.0)
+                .max_by(|&a, &b| score(a).total_cmp(&score(b)))
+        };
+        if let Some(i) = worst(&|i| -(self.first[i] + self.first_conf[i]) - MATERIAL) {
+            out.push(Unreliable::NegativeFirst {
+                parameter: i,
+                first: self.first[i],
+                conf: self.first_conf[i],
+            });
+        }
+        if let Some(i) = worst(&|i| {
+            self.first[i] - self.total[i] - self.first_conf[i] - self.total_conf[i] - MATERIAL
+        }) {
+            out.push(Unreliable::FirstAboveTotal {
+                parameter: i,
+                first: self.first[i],
+                total: self.total[i],
+            });
+        }
+        let sum: f64 = self.first.iter().sum();
+        if sum - self.first_conf.iter().sum::<f64>() > 1.0 + MATERIAL {
+            out.push(Unreliable::FirstSumAboveOne { sum });
+        }
+        if let Some(i) = worst(&|i| {
+            self.first_conf[i].max(self.total_conf[i]) - READABLE_HALF_WIDTH
+        }) {
+            out.push(Unreliable::WideInterval {
+                parameter: i,
+                half_width: self.first_conf[i].max(self.total_conf[i]),
+            });
+        }
+        out
+    }
+
+    /// Base points that would read every index to ±[`READABLE_HALF_WIDTH`], from these
+    /// indices taken at `base_samples`: the intervals narrow as one over the root of the
+    /// points. With fewer than [`FEWEST_ROWS`] base points used the intervals are not
+    /// trusted, and the count is the one that would use that many (a first step: the
+    /// intervals at it tell the rest). A power of two (Sobol sequences balance at powers
+    /// of two), at least `base_samples`.
+    pub fn base_samples_needed(&self, base_samples: usize) -> usize {
+        let n = base_samples as f64;
+        let needed = if self.rows_used < FEWEST_ROWS {
+            n * FEWEST_ROWS as f64 / self.rows_used.max(1) as f64
+        } else {
+            let widest = (self.first_conf.iter().chain(&self.total_conf))
+                .fold(0.0_f64, |w, &c| w.max(c));
+            n * (widest / READABLE_HALF_WIDTH).powi(2)
+        };
+        (needed.ceil().min(1e12) as usize)
+            .max(base_samples)
+            .next_power_of_two()
+    }
 }
 
 #[cfg(test)]
@@ -190,23 +344,96 @@ mod tests {
             // The intervals are informative, not vacuous.
             assert!(s.first_conf[i] < 0.1 && s.total_conf[i] < 0.1, "{s:?}");
         }
-        // An inert parameter's total index is exactly 0 (its column changes nothing).
-        assert_eq!(s.total[3], 0.0);
+        // An inert parameter's indices are exactly 0 (its column changes nothing).
+        assert_eq!((s.first[3], s.total[3]), (0.0, 0.0));
+        // Nothing impossible, every interval within ±0.1 (the widest, S1 of a1, ±0.06).
+        assert_eq!(s.unreliable(), vec![]);
+        assert_eq!(s.base_samples_needed(1024), 1024);
     }
 
-    /// Ishigami's function, the standard test with interactions: closed-form indices
-    /// (a = 7, b = 0.1 on [−π, π]³): S = (0.3139, 0.4424, 0), ST = (0.5576, 0.4424, 0.2437).
-    #[test]
-    fn ishigami_indices_converge_to_their_closed_form() {
+    fn ishigami(n: usize, seed: u64) -> SobolIndices {
         use std::f64::consts::PI;
-        let points = saltelli_points(3, 4096, 11).unwrap();
+        let points = saltelli_points(3, n, seed).unwrap();
         let y: Vec<f64> = (points.iter())
             .map(|p| {
                 let x: Vec<f64> = p.iter().map(|u| -PI + 2.0 * PI * u).collect();
                 x[0].sin() + 7.0 * x[1].sin().powi(2) + 0.1 * x[2].powi(4) * x[0].sin()
             })
             .collect();
-        let s = sobol_indices(&y, 3, 100, 1).unwrap();
+        sobol_indices(&y, 3, 100, 1).unwrap()
+    }
+
+    /// At 16 base points Ishigami's indices are noise, and the check says so: too few
+    /// rows, intervals far wider than ±0.1. The count it gives first is the one with
+    /// enough rows (128); the intervals there give the count that narrows them, and at it
+    /// every interval is within ±0.1 and nothing is flagged.
+    #[test]
+    fn few_samples_are_flagged_with_the_samples_that_would_do() {
+        let s = ishigami(16, 11);
+        let flags = s.unreliable();
+        assert!(flags.contains(&Unreliable::FewRows { used: 16 }), "{flags:?}");
+        let widest = flags.iter().find_map(|f| match f {
+            Unreliable::WideInterval { half_width, .. } => Some(*half_width),
+            _ => None,
+        });
+        assert!(widest.unwrap() > 0.2, "{flags:?}");
+        assert_eq!(s.base_samples_needed(16), 128);
+        let step = ishigami(128, 11);
+        assert!(!step.unreliable().is_empty());
+        let needed = step.base_samples_needed(128);
+        assert!(needed.is_power_of_two() && needed >= 256, "{needed}");
+        let enough = ishigami(needed, 11);
+        assert_eq!(enough.unreliable(), vec![], "at {needed}");
+        let labels: Vec<String> = ["x1", "x2", "x3"].map(String::from).into();
+        assert!(flags[0].describe(&labels).starts_with("16 base points used"));
+    }
+
+    /// Each kind is raised by indices that break its rule, naming the worst parameter.
+    #[test]
+    fn impossible_indices_are_named() {
+        let s = SobolIndices {
+            first: vec![-0.3, 0.9, 0.8],
+            first_conf: vec![0.2, 0.02, 0.02],
+            total: vec![0.1, 0.5, 0.85],
+            total_conf: vec![0.02, 0.02, 0.02],
+            variance: 1.0,
+            rows_used: 500,
+        };
+        let flags = s.unreliable();
+        assert_eq!(
+            flags,
+            vec![
+                Unreliable::NegativeFirst {
+                    parameter: 0,
+                    first: -0.3,
+                    conf: 0.2
+                },
+                Unreliable::FirstAboveTotal {
+                    parameter: 1,
+                    first: 0.9,
+                    total: 0.5
+                },
+                Unreliable::FirstSumAboveOne { sum: 1.4000000000000001 },
+                Unreliable::WideInterval {
+                    parameter: 0,
+                    half_width: 0.2
+                },
+            ]
+        );
+        let labels: Vec<String> = ["γ0", "β0", "S"].map(String::from).into();
+        assert_eq!(
+            flags[1].describe(&labels),
+            "S1 of β0 = 0.900 above its S_T = 0.500 beyond their intervals"
+        );
+        // ±0.2 is twice ±0.1: four times the points.
+        assert_eq!(s.base_samples_needed(500), 2048);
+    }
+
+    /// Ishigami's function, the standard test with interactions: closed-form indices
+    /// (a = 7, b = 0.1 on [−π, π]³): S = (0.3139, 0.4424, 0), ST = (0.5576, 0.4424, 0.2437).
+    #[test]
+    fn ishigami_indices_converge_to_their_closed_form() {
+        let s = ishigami(4096, 11);
         let (first, total) = ([0.3139, 0.4424, 0.0], [0.5576, 0.4424, 0.2437]);
         for i in 0..3 {
             assert!(

@@ -69,17 +69,19 @@ fn observed<T: Send>(
     }
 }
 
-/// The search settings a call's keywords give (the algorithm by name).
-/// A `RuntimeWarning` at the user's call of `noncirc.optimise`, past the package's wrapper.
-fn warn(py: Python<'_>, message: String) -> PyResult<()> {
+/// A `RuntimeWarning` at the user's call: `stack_level` 1 for a function of the native
+/// module called directly, 2 past one of the package's wrappers (`noncirc.optimise`).
+pub(crate) fn warn(py: Python<'_>, message: String, stack_level: i32) -> PyResult<()> {
     let message = std::ffi::CString::new(message).map_err(internal)?;
     PyErr::warn(
         py,
         &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
         &message,
-        2,
+        stack_level,
     )
 }
+
+/// The search settings a call's keywords give (the algorithm by name).
 
 fn search_settings(
     algorithm: Option<&str>,
@@ -167,6 +169,7 @@ pub(crate) fn optimise<'py>(
         warn(
             py,
             format!("noncirc.optimise: {failure} (the search went on)"),
+            2,
         )?;
     }
     let summary = outcome.summary();
@@ -182,7 +185,7 @@ pub(crate) fn optimise<'py>(
                 missed.join(", ")
             }
         );
-        warn(py, message)?;
+        warn(py, message, 2)?;
     }
     let out = summary_dict(py, &summary)?;
     let names = outcome.problem.names();

@@ -55,7 +55,10 @@ pub(crate) fn dynamics<'py>(py: Python<'py>, scene: &Scene) -> Result<Bound<'py,
 /// SALib's layout: `problem` (num_vars, names, bounds), `X` (N (k + 2), k) and `Y`
 /// (N (k + 2), outputs) in SALib's sample order, `outputs`, and per output `indices[name]`
 /// a dict of `S1`, `S1_conf`, `ST`, `ST_conf` arrays; `S1` etc. also as (outputs, k)
-/// arrays. The report's other fields as the CLI's JSON gives them.
+/// arrays. The report's other fields as the CLI's JSON gives them, among them each
+/// `base_samples_needed`, and `unreliable[name]`, a list of dicts (`kind`, and the
+/// numbers it names; empty when the output's indices can be read); where some indices cannot be read
+/// at `base_samples`, a `RuntimeWarning` says which and how many base points would do.
 #[pyfunction]
 #[pyo3(signature = (scene, *, base_samples = 1024, bootstrap = 100, box_scale = 0.25, threads = None))]
 pub(crate) fn sensitivity<'py>(
@@ -71,6 +74,20 @@ pub(crate) fn sensitivity<'py>(
     let r = py.allow_threads(|| {
         noncirc::robustness::sensitivity(&s, base_samples, bootstrap, box_scale, threads)
     })?;
+    if r.base_samples_needed.is_some() {
+        crate::search::warn(
+            py,
+            noncirc::robustness::unreliable_text(&r).trim().to_string(),
+            1,
+        )?;
+    }
+    if r.base_samples_needed.is_some() {
+        crate::search::warn(
+            py,
+            noncirc::robustness::unreliable_text(&r).trim().to_string(),
+            1,
+        )?;
+    }
     let value = serde_json::to_value(&r).map_err(internal)?;
     let out = json_to_py(py, &value)?
         .into_bound(py)
@@ -103,6 +120,12 @@ pub(crate) fn sensitivity<'py>(
         "outputs",
         r.outputs.iter().map(|o| o.name.clone()).collect::<Vec<_>>(),
     )?;
+    let unreliable = PyDict::new(py);
+    for o in &r.outputs {
+        let value = serde_json::to_value(&o.unreliable).map_err(internal)?;
+        unreliable.set_item(&o.name, json_to_py(py, &value)?)?;
+    }
+    out.set_item("unreliable", unreliable)?;
     let indices = PyDict::new(py);
     let table = |f: fn(&noncirc::core::SobolIndices) -> &Vec<f64>| {
         numpy::ndarray::Array2::from_shape_fn((r.outputs.len(), k), |(o, i)| {
