@@ -1,21 +1,33 @@
 //! A batch of designs reduced to their numbers: for each row of parameter values, the
-//! fitness, the objectives and the chosen measures (Python's `evaluate_batch`). No
-//! trajectory outlives its row. The benchmarks time this same code.
+//! fitness, the objectives, the chosen measures and, when asked, the tip's path (Python's
+//! `evaluate_batch`). No other part of a trajectory outlives its row. The benchmarks time
+//! this same code.
 
 use crate::search::map_batch;
 use noncirc_core::{
     Evaluator, Fitness, Measure, Measured, ObjectiveValue, Resolution, Scene, SceneProblem,
 };
 
-/// One row's objectives and measures (`None` where the scene does not compute one), or
-/// the error that refused the design.
-pub type RowOutcome = std::result::Result<(Vec<ObjectiveValue>, Vec<Option<f64>>), String>;
+/// One design's numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RowValues {
+    pub objectives: Vec<ObjectiveValue>,
+    /// The chosen measures (`None` where the scene does not compute one).
+    pub measures: Vec<Option<f64>>,
+    /// The tip of arm I at each of the resolution's samples of a carrier turn, from
+    /// carrier angle 0 (mm, the carrier's frame), when [`BatchRows::with_tip_paths`] asked.
+    pub tip_path: Option<Vec<[f64; 2]>>,
+}
+
+/// One row's numbers, or the error that refused the design.
+pub type RowOutcome = std::result::Result<RowValues, String>;
 
 /// The rows of a batch of one problem at one resolution, with the measures to return.
 pub struct BatchRows<'a> {
     problem: &'a SceneProblem,
     resolution: &'a Resolution,
     measures: &'a [Measure],
+    tip_paths: bool,
 }
 
 impl<'a> BatchRows<'a> {
@@ -28,7 +40,13 @@ impl<'a> BatchRows<'a> {
             problem,
             resolution,
             measures,
+            tip_paths: false,
         }
+    }
+
+    /// The rows keep the tip's path too (`samples_per_turn` points each).
+    pub fn with_tip_paths(self, tip_paths: bool) -> Self {
+        Self { tip_paths, ..self }
     }
 
     /// Evaluates one row with a worker's evaluator and scene to edit.
@@ -39,8 +57,16 @@ impl<'a> BatchRows<'a> {
         let outcome = outcome
             .map(|eval| {
                 let on = Measured::new(&eval, scratch);
-                let values = self.measures.iter().map(|m| m.value(&on)).collect();
-                (eval.objectives, values)
+                let measures = self.measures.iter().map(|m| m.value(&on)).collect();
+                let tip_path = (self.tip_paths)
+                    .then(|| eval.kinematics.as_ref())
+                    .flatten()
+                    .map(|kin| kin.tips().iter().map(|&p| p.into()).collect());
+                RowValues {
+                    objectives: eval.objectives,
+                    measures,
+                    tip_path,
+                }
             })
             .map_err(|e| e.to_string());
         (fitness, outcome)
@@ -98,8 +124,9 @@ mod tests {
         // travel and the runner-up gaps).
         let valid: Vec<_> = one.iter().filter_map(|(_, o)| o.as_ref().ok()).collect();
         assert!(!valid.is_empty());
-        for (_, values) in valid {
-            for (m, v) in measures.iter().zip(values) {
+        for row in valid {
+            assert_eq!(row.tip_path, None);
+            for (m, v) in measures.iter().zip(&row.measures) {
                 let optional = [
                     "box_travel_mm",
                     "picking_branch_gap_mm",
@@ -112,5 +139,42 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The tip paths are the evaluations' own: each row's path is `evaluate`'s trajectory
+    /// of that design, point for point, on any thread count.
+    #[test]
+    fn tip_paths_are_each_designs_trajectory() {
+        let scene = load_scene(Some("paper-search")).unwrap();
+        let problem = SceneProblem::new(&scene).unwrap();
+        let resolution = scene.resolution;
+        let mut rng = Rng::new(5);
+        let rows: Vec<Vec<f64>> = (0..12)
+            .map(|_| problem.decode(&rng.point(problem.dim())))
+            .collect();
+        let batch = BatchRows::new(&problem, &resolution, &[]).with_tip_paths(true);
+        let pool = crate::search::thread_pool(2).unwrap();
+        let out = batch.run(Some(&pool), &rows);
+        let mut checked = 0;
+        for (x, (_, outcome)) in rows.iter().zip(&out) {
+            let mut design = scene.clone();
+            problem.apply(&problem.encode(x), &mut design);
+            let alone = Evaluator::new().evaluate(&design);
+            match (outcome, alone) {
+                (Ok(row), Ok(eval)) => {
+                    let path = row.tip_path.as_ref().unwrap();
+                    let tips = eval.kinematics.as_ref().unwrap().tips();
+                    assert_eq!(path.len(), resolution.samples_per_turn);
+                    assert_eq!(path.len(), tips.len());
+                    for (p, t) in path.iter().zip(tips) {
+                        assert_eq!(*p, <[f64; 2]>::from(*t));
+                    }
+                    checked += 1;
+                }
+                (Err(_), Err(_)) => {}
+                (a, b) => panic!("batch {a:?} vs alone {:?}", b.map(|_| ())),
+            }
+        }
+        assert!(checked >= 3, "{checked} valid designs");
     }
 }

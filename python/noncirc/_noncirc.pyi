@@ -89,11 +89,13 @@ def evaluate_batch(
     threads: Optional[int] = None,
     measures: Union[None, str, list[str]] = None,
     progress: Optional[Callable[[dict[str, Any]], Any]] = None,
+    trajectories: bool = False,
 ) -> dict[str, Any]:
     """An (n, d) batch in parallel, GIL released: values, violations, cv, goals, valid,
     errors and the measures (those read at no cost by default, "all", a list, `[]` for
-    none). `x` is anything `np.asarray(x, dtype=float64)` accepts; another shape is an
-    error naming it. `progress(info)` after every piece of rows (evaluations, total)."""
+    none); with `trajectories`, the tip paths (n, samples_per_turn, 2) in mm. `x` is
+    anything `np.asarray(x, dtype=float64)` accepts; another shape is an error naming it.
+    `progress(info)` after every piece of rows (evaluations, total)."""
 
 def optimise(
     scene: Optional[Scene] = None,

@@ -63,6 +63,7 @@ def evaluate_batch(
     threads: Optional[int] = None,
     measures: Union[None, str, Sequence[str]] = None,
     progress: Optional[Callable[[dict[str, Any]], Any]] = None,
+    trajectories: bool = False,
 ) -> Batch:
     """An (n, d) batch of designs (columns: `scene.free_parameters()`), in parallel with
     the GIL released; Ctrl-C stops it within one piece of 4 096 rows (about 0.1 s). `x`
@@ -73,8 +74,11 @@ def evaluate_batch(
     time, the gearbox's overlap `gear_overlap_mm`, which costs several designs' time, and
     the dynamics at working speed (`input_torque_peak_nm` …, docs/dynamics.md), about ten
     designs' time; the teeth's safety factors (`bending_safety`, `contact_safety`) only by
-    name, as they cut the teeth (tenths of a second a design); a list names them; `[]` returns none. `progress(info)` is called after every piece
-    (info: `evaluations` done so far, `total`)."""
+    name, as they cut the teeth (tenths of a second a design); a list names them; `[]`
+    returns none. `trajectories=True` returns each design's tip path too, as
+    `Batch.trajectories` (n, samples_per_turn, 2) in mm (16 bytes a point: at most 2 GB,
+    refused above). `progress(info)` is called after every piece (info: `evaluations` done
+    so far, `total`)."""
     names = measures if measures is None or isinstance(measures, str) else list(measures)
     raw = _noncirc.evaluate_batch(
         scene,
@@ -84,6 +88,7 @@ def evaluate_batch(
         threads=threads,
         measures=names,
         progress=progress,
+        trajectories=trajectories,
     )
     parameter_names = [p[0] for p in scene.free_parameters()]
     return Batch._from_raw(raw, parameter_names, np.asarray(x, dtype=np.float64))

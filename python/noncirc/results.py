@@ -220,11 +220,16 @@ class Batch:
     errors: list[Optional[str]]
     """None, or why the model refused the design."""
     samples_per_turn: int
+    trajectories: Optional[np.ndarray] = None
+    """(n, samples_per_turn, 2) with `evaluate_batch(..., trajectories=True)`: each design's
+    tip path of arm I over one carrier turn from carrier angle 0, in mm in the carrier's
+    frame (x horizontal, y up; `evaluate`'s `trajectory`); NaN rows for a refused design.
+    None when not asked for."""
 
     @staticmethod
     def _from_raw(raw: dict[str, Any], parameter_names: list[str], x: np.ndarray) -> Batch:
         fields = {f.name for f in dataclasses.fields(Batch)} - {"parameter_names", "x"}
-        return Batch(parameter_names=parameter_names, x=x, **{k: raw[k] for k in fields})
+        return Batch(parameter_names=parameter_names, x=x, **{k: raw.get(k) for k in fields})
 
     @property
     def feasible(self) -> np.ndarray:

@@ -111,6 +111,29 @@ def test_batch_rows_equal_single_evaluations():
                 assert np.isnan(r.value(name)[i])
 
 
+def test_batch_trajectories_are_each_designs_tip_path():
+    scene, x = paper_batch(30, seed=4)
+    x[2, 0] = -5.0  # refused: a NaN path
+    r = evaluate_batch(scene, x, trajectories=True, samples_per_turn=90)
+    assert r.trajectories.shape == (30, 90, 2) and r.trajectories.dtype == np.float64
+    assert not r.valid[2] and np.isnan(r.trajectories[2]).all()
+    names = [p[0] for p in scene.free_parameters()]
+    checked = 0
+    for i in np.flatnonzero(r.valid)[:5]:
+        s = scene.with_set("resolution.samples_per_turn", "90")
+        for name, v in zip(names, x[i]):
+            s = s.with_set(name, repr(float(v)))
+        np.testing.assert_array_equal(r.trajectories[i], evaluate(s).trajectory)
+        checked += 1
+    assert checked == 5
+    assert np.isfinite(r.trajectories[r.valid]).all()
+    # Not asked: None, and no memory spent.
+    assert evaluate_batch(scene, x[:3]).trajectories is None
+    # More than 2 GB of paths is refused before any design is evaluated, naming the flag.
+    with pytest.raises(NoncircError, match=r"trajectories=True for 1100000 designs .* 2\.1 GB"):
+        evaluate_batch(scene, np.zeros((1_100_000, 17)), trajectories=True)
+
+
 @pytest.mark.parametrize(
     "bad, message",
     [

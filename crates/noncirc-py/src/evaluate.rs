@@ -7,7 +7,7 @@ use crate::scene::Scene;
 use noncirc::batch::BatchRows;
 use noncirc::core::{Evaluator, Measure, Measured, Scalar, SceneProblem};
 use noncirc::report::measure_rows;
-use numpy::ndarray::{Array1, Array2};
+use numpy::ndarray::{Array1, Array2, Array3};
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -161,12 +161,18 @@ pub(crate) fn measures(py: Python<'_>) -> Result<Bound<'_, PyDict>> {
 /// the default resolution (18 µs a design).
 const ROWS_PER_SIGNAL_CHECK: usize = 4096;
 
+/// The largest array of tip paths `evaluate_batch(trajectories=True)` makes (bytes): 2 GB,
+/// a million designs at 120 samples a turn.
+const MOST_TRAJECTORY_BYTES: f64 = 2e9;
+
 /// Evaluates an `(n, d)` float64 array of designs (columns: `scene.free_parameters()`), in
 /// parallel with the GIL released. Returns arrays: `values`, `violations`,
-/// `normalised_violations` (n, k), `cv` (n,), `goals` (n, g), `valid` (n,) and `errors`.
-/// `progress(info)` is called after every piece of rows (info: evaluations, total).
+/// `normalised_violations` (n, k), `cv` (n,), `goals` (n, g), `valid` (n,) and `errors`;
+/// with `trajectories`, `trajectories` (n, samples_per_turn, 2), each design's tip path in
+/// mm (NaN rows for refused designs). `progress(info)` is called after every piece of rows
+/// (info: evaluations, total).
 #[pyfunction]
-#[pyo3(signature = (scene, x, *, samples_per_turn = None, closure_rel_tol = None, threads = None, measures = None, progress = None))]
+#[pyo3(signature = (scene, x, *, samples_per_turn = None, closure_rel_tol = None, threads = None, measures = None, progress = None, trajectories = false))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate_batch<'py>(
     py: Python<'py>,
@@ -177,6 +183,7 @@ pub(crate) fn evaluate_batch<'py>(
     threads: Option<usize>,
     measures: Option<&Bound<'py, PyAny>>,
     progress: Option<&Bound<'py, PyAny>>,
+    trajectories: bool,
 ) -> Result<Bound<'py, PyDict>> {
     let problem = SceneProblem::new(&scene.inner)?;
     // The measures to return besides the objectives. By default those read from the
@@ -236,6 +243,18 @@ pub(crate) fn evaluate_batch<'py>(
             shape[1]
         )));
     }
+    let res = resolution(&scene.inner, samples_per_turn, closure_rel_tol)?;
+    let path_bytes = shape[0] as f64 * res.samples_per_turn as f64 * 16.0;
+    if trajectories && path_bytes > MOST_TRAJECTORY_BYTES {
+        return Err(parameter(format!(
+            "trajectories=True for {} designs at {} samples per turn would take {:.1} GB \
+             (at most {:.0} GB): evaluate them in pieces, or at fewer samples_per_turn",
+            shape[0],
+            res.samples_per_turn,
+            path_bytes / 1e9,
+            MOST_TRAJECTORY_BYTES / 1e9
+        )));
+    }
     let rows: Vec<Vec<f64>> = {
         let view = array.readonly();
         let a = view.as_array();
@@ -252,11 +271,10 @@ pub(crate) fn evaluate_batch<'py>(
             rows[i][j]
         )));
     }
-    let res = resolution(&scene.inner, samples_per_turn, closure_rel_tol)?;
     let pool = pool(threads)?;
     let k = scene.inner.objectives.len();
     let g = problem.goals();
-    let batch = BatchRows::new(&problem, &res, &measures);
+    let batch = BatchRows::new(&problem, &res, &measures).with_tip_paths(trajectories);
     // In pieces, with a check for Ctrl-C between two: a large batch answers it within a
     // piece's time (about 0.1 s on one core) instead of at its end. `progress` hears of
     // each piece after that check, so no piece is reported after an interrupt.
@@ -279,6 +297,8 @@ pub(crate) fn evaluate_batch<'py>(
     let mut cv = Array1::zeros(n);
     let mut valid = Array1::from_elem(n, false);
     let mut measured = Array2::from_elem((n, measures.len()), f64::NAN);
+    let samples = res.samples_per_turn;
+    let mut paths = trajectories.then(|| Array3::from_elem((n, samples, 2), f64::NAN));
     let errors = PyList::empty(py);
     for (i, (fitness, outcome)) in results.into_iter().enumerate() {
         cv[i] = fitness.cv;
@@ -286,12 +306,24 @@ pub(crate) fn evaluate_batch<'py>(
             goals[[i, j]] = *v;
         }
         match outcome {
-            Ok((objectives, measure_values)) => {
+            Ok(row) => {
                 valid[i] = true;
-                for (j, v) in measure_values.iter().enumerate() {
+                for (j, v) in row.measures.iter().enumerate() {
                     measured[[i, j]] = v.unwrap_or(f64::NAN);
                 }
-                for (j, o) in objectives.iter().enumerate() {
+                if let (Some(paths), Some(path)) = (&mut paths, &row.tip_path) {
+                    if path.len() != samples {
+                        return Err(internal(format!(
+                            "design {i}'s path has {} points, not {samples}",
+                            path.len()
+                        )));
+                    }
+                    for (j, p) in path.iter().enumerate() {
+                        paths[[i, j, 0]] = p[0];
+                        paths[[i, j, 1]] = p[1];
+                    }
+                }
+                for (j, o) in row.objectives.iter().enumerate() {
                     values[[i, j]] = o.value;
                     violations[[i, j]] = o.violation;
                     normalised[[i, j]] =
@@ -352,5 +384,8 @@ pub(crate) fn evaluate_batch<'py>(
     )?;
     out.set_item("measures", measured.into_pyarray(py))?;
     out.set_item("samples_per_turn", res.samples_per_turn)?;
+    if let Some(paths) = paths {
+        out.set_item("trajectories", paths.into_pyarray(py))?;
+    }
     Ok(out)
 }
