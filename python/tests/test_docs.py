@@ -6,6 +6,7 @@ their comments promise is checked on what they print."""
 import re
 import subprocess
 import sys
+import textwrap
 from pathlib import Path
 
 import pytest
@@ -16,7 +17,10 @@ DOCS = [DOC, REPO / "docs" / "robustness.md", REPO / "docs" / "cad.md"]
 
 
 def blocks(doc: Path = DOC) -> list[str]:
-    return re.findall(r"```python\n(.*?)```", doc.read_text(), re.S)
+    """The doc's Python blocks, those indented under a list item dedented as a reader
+    copies them."""
+    found = re.findall(r"^( *)```python\n(.*?)^\1```", doc.read_text(), re.S | re.M)
+    return [textwrap.dedent(body) for _, body in found]
 
 
 def block_with(text: str) -> str:
