@@ -62,14 +62,22 @@ if command -v rustup >/dev/null; then
 fi
 
 if [ -f python/pyproject.toml ]; then
-  stage "Python package (maturin + pytest)"
+  stage "Python package (the abi3 wheel built, installed with pip, tested)"
   VENV=.venv
   [ -x "$VENV/bin/python" ] || python3 -m venv "$VENV"
   "$VENV/bin/python" -m pip install --quiet --upgrade pip
   "$VENV/bin/python" -m pip install --quiet -r python/requirements-dev.txt
-  (cd python && ../"$VENV"/bin/maturin develop --release --quiet)
+  # As a user installs it (README): the wheel, not the source tree. The tests import the
+  # installed package; a build left in python/noncirc by `maturin develop` is moved aside.
+  WHEELS=$(mktemp -d)
+  (cd python && ../"$VENV"/bin/maturin build --release --strip --quiet --out "$WHEELS")
+  "$VENV/bin/python" -m pip install --quiet --force-reinstall --no-deps "$WHEELS"/noncirc-*-abi3-*.whl
+  rm -rf "$WHEELS"
+  PY="$PWD/$VENV/bin/python"
+  (cd /tmp && "$PY" -c \
+    'import noncirc, sys; assert "site-packages" in noncirc.__file__, noncirc.__file__; print("testing the installed wheel:", noncirc.__file__)')
   cargo build --release --quiet -p noncirc-cli # the teeth peers' tests run the CLI
-  "$VENV/bin/python" -m pytest python/tests -q
+  "$VENV/bin/python" -m pytest python/tests -q -p no:cacheprovider
 
   stage "examples/: the papers' figures (as PNG and PDF) and a multi-objective study"
   EXAMPLES_OUT=$(mktemp -d)
