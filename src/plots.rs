@@ -277,19 +277,20 @@ pub fn sweep_figures(
             .collect::<std::collections::BTreeSet<_>>(),
     );
     let mut files = Vec::new();
-    let x_desc = match (noncirc_core::field(param), noncirc_core::symbol(param)) {
-        (Some(f), Some(symbol)) if !f.unit.is_empty() => format!("{param}, {symbol} ({})", f.unit),
-        (Some(f), None) if !f.unit.is_empty() => format!("{param} ({})", f.unit),
-        (_, Some(symbol)) => format!("{param}, {symbol}"),
-        _ => param.to_string(),
+    // The papers' symbol with its unit (β0 (°)); the scene's path only where there is none.
+    let symbol = noncirc_core::symbol(param).unwrap_or_else(|| param.to_string());
+    let x_desc = match noncirc_core::field(param) {
+        Some(f) if !f.unit.is_empty() => format!("{symbol} ({})", f.unit),
+        _ => symbol.clone(),
     };
     for name in &names {
         // Its unit (objectives are measures too), and an objective's admissible range.
         let unit = noncirc_core::Measure::parse(name).map_or("", |m| m.unit());
         let kind = (noncirc_core::ObjectiveKind::ALL.iter()).find(|k| k.name() == name);
         let band = kind.map(|k| k.bounds(&scene.bounds));
+        let label = kind.map_or(name.clone(), |k| k.label().to_string());
         let series = vec![(
-            name.clone(),
+            label.clone(),
             rows.iter()
                 .filter_map(|r| {
                     let v = r.objectives.get(name).or_else(|| r.measures.get(name));
@@ -299,12 +300,12 @@ pub fn sweep_figures(
         )];
         files.extend(save(
             &LinesFigure {
-                title: format!("{name} against {param}"),
+                title: format!("{label} against {symbol}"),
                 x_desc: x_desc.clone(),
                 y_desc: if unit.is_empty() {
-                    name.clone()
+                    label.clone()
                 } else {
-                    format!("{name} ({unit})")
+                    format!("{label} ({unit})")
                 },
                 series,
                 points_only: false,
@@ -329,13 +330,13 @@ pub fn sweep_figures(
                 .chain(kin.tips().first())
                 .map(|&t| t.into())
                 .collect();
-            series.push((format!("{param} = {:.3}", r.value), pts));
+            series.push((format!("{symbol} = {:.3}", r.value), pts));
         }
     }
     if !series.is_empty() {
         files.extend(save(
             &LinesFigure {
-                title: format!("Tip trajectory as {param} varies"),
+                title: format!("Tip trajectory as {symbol} varies"),
                 x_desc: "x (mm)".into(),
                 y_desc: "y (mm)".into(),
                 series,

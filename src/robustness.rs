@@ -4,7 +4,7 @@
 
 use noncirc_core::{
     analyse, saltelli_points, sobol_indices, Evaluator, Measure, Measured, Scene, SceneKind,
-    SceneProblem, SobolIndices, ToleranceReport, Unreliable, Tolerances, REPORTED_QUANTILES,
+    SceneProblem, SobolIndices, ToleranceReport, Tolerances, Unreliable, REPORTED_QUANTILES,
 };
 use serde::Serialize;
 

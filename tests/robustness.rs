@@ -186,7 +186,10 @@ fn too_few_samples_are_flagged_with_the_samples_that_would_do() {
 fn picking_admissible_of_the_bolted_tray_is_told_from_evaluates() {
     let scene = load_scene(None).unwrap();
     let eval = noncirc::core::Evaluator::new().evaluate(&scene).unwrap();
-    let placed = eval.objective(ObjectiveKind::PickingAdmissible).unwrap().value;
+    let placed = eval
+        .objective(ObjectiveKind::PickingAdmissible)
+        .unwrap()
+        .value;
     let r = robustness(&scene, false).unwrap();
     assert_eq!(r.report.picking_admissible_placed_mm, Some(placed));
     let fixed = (r.report.objectives.iter())
@@ -196,7 +199,10 @@ fn picking_admissible_of_the_bolted_tray_is_told_from_evaluates() {
     assert!((fixed.nominal_value - scene.agronomy.tray_depth_mm).abs() < 1e-9);
     assert!(placed > fixed.nominal_value);
     let table = noncirc::robustness::robustness_table(&r);
-    assert!(table.contains(&format!("reads {placed:.3} mm for this design")), "{table}");
+    assert!(
+        table.contains(&format!("reads {placed:.3} mm for this design")),
+        "{table}"
+    );
 
     let mut bolted = scene.clone();
     bolted.agronomy.tray_distance_mm = r.report.tray_distance_mm;
@@ -207,6 +213,9 @@ fn picking_admissible_of_the_bolted_tray_is_told_from_evaluates() {
     let fixed = (r.report.objectives.iter())
         .find(|o| o.objective == ObjectiveKind::PickingAdmissible)
         .unwrap();
-    let evaluated = eval.objective(ObjectiveKind::PickingAdmissible).unwrap().value;
+    let evaluated = eval
+        .objective(ObjectiveKind::PickingAdmissible)
+        .unwrap()
+        .value;
     assert!((fixed.nominal_value - evaluated).abs() < 1e-9);
 }

@@ -84,14 +84,19 @@ impl LegendPlace {
         (x_label, y_label): (u32, u32),
     ) -> (u32, u32) {
         (
-            w.saturating_sub(2 * margin + y_label + self.right).max(100),
+            w.saturating_sub(margin + margin.max(LAST_TICK_HALF) + y_label + self.right)
+                .max(100),
             h.saturating_sub(2 * margin + x_label + self.below).max(100),
         )
     }
 }
 
-/// A chart builder on `area` with `margin` px all round, the room for its legend at
-/// `place`, and `(x, y)` label areas (px).
+/// Half the widest x tick label a chart ends on (px): six characters at 13 px.
+const LAST_TICK_HALF: u32 = 24;
+
+/// A chart builder on `area` with `margin` px all round (on the right at least
+/// [`LAST_TICK_HALF`]), the room for its legend at `place`, and `(x, y)` label areas (px).
+
 fn chart_on<'a, 'b, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     margin: u32,
@@ -101,7 +106,8 @@ fn chart_on<'a, 'b, DB: DrawingBackend>(
     let mut builder = ChartBuilder::on(area);
     builder
         .margin(margin)
-        .margin_right(margin + place.right)
+        // Room for half the last x tick label ("60000"), centred on the plot's right edge.
+        .margin_right(margin.max(LAST_TICK_HALF) + place.right)
         .margin_bottom(margin + place.below)
         .x_label_area_size(x_label)
         .y_label_area_size(y_label);

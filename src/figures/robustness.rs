@@ -76,7 +76,7 @@ impl Figure for MarginsFigure<'_> {
             .then_some(" (tray fixed)")
             .unwrap_or_default();
             let caption = format!(
-                "{}{fixed}: P(met) = {:.3} ({p_lo:.4}–{p_hi:.4})",
+                "{}{fixed}: P = {:.3} ({p_lo:.4}–{p_hi:.4})",
                 o.objective.label(),
                 o.probability
             );
@@ -301,17 +301,26 @@ where
         let v = (j as f64 + 0.5) / steps as f64;
         let y = |t: f64| bottom - ((bottom - top) as f64 * t).round() as i32;
         area.draw(&Rectangle::new(
-            [(left, y(j as f64 / steps as f64)), (left + width, y((j + 1) as f64 / steps as f64))],
+            [
+                (left, y(j as f64 / steps as f64)),
+                (left + width, y((j + 1) as f64 / steps as f64)),
+            ],
             index_colour(v).filled(),
         ))
         .map_err(err)?;
     }
-    area.draw(&Rectangle::new([(left, top), (left + width, bottom)], BLACK))
-        .map_err(err)?;
+    area.draw(&Rectangle::new(
+        [(left, top), (left + width, bottom)],
+        BLACK,
+    ))
+    .map_err(err)?;
     for t in [0.0, 0.25, 0.5, 0.75, 1.0] {
         let y = bottom - ((bottom - top) as f64 * t).round() as i32;
-        area.draw(&PathElement::new(vec![(left + width, y), (left + width + 4, y)], BLACK))
-            .map_err(err)?;
+        area.draw(&PathElement::new(
+            vec![(left + width, y), (left + width + 4, y)],
+            BLACK,
+        ))
+        .map_err(err)?;
         area.draw(&Text::new(
             format!("{t:.2}"),
             (left + width + 7, y),

@@ -50,8 +50,9 @@ pub(crate) struct SceneArgs {
     /// each figure's own. Text keeps its size, so a smaller figure reads larger.
     #[arg(long, value_name = "WxH")]
     pub(crate) figure_size: Option<String>,
-    /// Resolution of the PNG figures (dots per inch; 300 for print).
-    #[arg(long, default_value_t = 96)]
+    /// Resolution of the PNG figures (dots per inch; 300, for print, by default; 96 for a
+    /// screen).
+    #[arg(long, default_value_t = 300)]
     pub(crate) dpi: u32,
 }
 

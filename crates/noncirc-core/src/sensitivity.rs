@@ -132,7 +132,10 @@ pub fn sobol_indices(y: &[f64], k: usize, bootstrap: usize, seed: u64) -> Result
             expected: "at least 2 (the model refused the others)".into(),
         });
     }
-    let centre = rows.iter().flat_map(|&j| &y[j * step..(j + 1) * step]).sum::<f64>()
+    let centre = rows
+        .iter()
+        .flat_map(|&j| &y[j * step..(j + 1) * step])
+        .sum::<f64>()
         / (rows.len() * step) as f64;
     let (first, total, variance) = indices_on(y, k, &rows, centre);
     let mut rng = Rng::new(seed);
@@ -276,9 +279,9 @@ impl SobolIndices {
         if sum - self.first_conf.iter().sum::<f64>() > 1.0 + MATERIAL {
             out.push(Unreliable::FirstSumAboveOne { sum });
         }
-        if let Some(i) = worst(&|i| {
-            self.first_conf[i].max(self.total_conf[i]) - READABLE_HALF_WIDTH
-        }) {
+        if let Some(i) =
+            worst(&|i| self.first_conf[i].max(self.total_conf[i]) - READABLE_HALF_WIDTH)
+        {
             out.push(Unreliable::WideInterval {
                 parameter: i,
                 half_width: self.first_conf[i].max(self.total_conf[i]),
@@ -298,8 +301,8 @@ impl SobolIndices {
         let needed = if self.rows_used < FEWEST_ROWS {
             n * FEWEST_ROWS as f64 / self.rows_used.max(1) as f64
         } else {
-            let widest = (self.first_conf.iter().chain(&self.total_conf))
-                .fold(0.0_f64, |w, &c| w.max(c));
+            let widest =
+                (self.first_conf.iter().chain(&self.total_conf)).fold(0.0_f64, |w, &c| w.max(c));
             n * (widest / READABLE_HALF_WIDTH).powi(2)
         };
         (needed.ceil().min(1e12) as usize)
@@ -371,7 +374,10 @@ mod tests {
     fn few_samples_are_flagged_with_the_samples_that_would_do() {
         let s = ishigami(16, 11);
         let flags = s.unreliable();
-        assert!(flags.contains(&Unreliable::FewRows { used: 16 }), "{flags:?}");
+        assert!(
+            flags.contains(&Unreliable::FewRows { used: 16 }),
+            "{flags:?}"
+        );
         let widest = flags.iter().find_map(|f| match f {
             Unreliable::WideInterval { half_width, .. } => Some(*half_width),
             _ => None,
@@ -385,7 +391,9 @@ mod tests {
         let enough = ishigami(needed, 11);
         assert_eq!(enough.unreliable(), vec![], "at {needed}");
         let labels: Vec<String> = ["x1", "x2", "x3"].map(String::from).into();
-        assert!(flags[0].describe(&labels).starts_with("16 base points used"));
+        assert!(flags[0]
+            .describe(&labels)
+            .starts_with("16 base points used"));
     }
 
     /// Each kind is raised by indices that break its rule, naming the worst parameter.
@@ -413,7 +421,9 @@ mod tests {
                     first: 0.9,
                     total: 0.5
                 },
-                Unreliable::FirstSumAboveOne { sum: 1.4000000000000001 },
+                Unreliable::FirstSumAboveOne {
+                    sum: 1.4000000000000001
+                },
                 Unreliable::WideInterval {
                     parameter: 0,
                     half_width: 0.2
