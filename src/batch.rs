@@ -58,9 +58,8 @@ impl<'a> BatchRows<'a> {
             .map(|eval| {
                 let on = Measured::new(&eval, scratch);
                 let measures = self.measures.iter().map(|m| m.value(&on)).collect();
-                let tip_path = (self.tip_paths)
-                    .then(|| eval.kinematics.as_ref())
-                    .flatten()
+                let tip_path = (eval.kinematics.as_ref())
+                    .filter(|_| self.tip_paths)
                     .map(|kin| kin.tips().iter().map(|&p| p.into()).collect());
                 RowValues {
                     objectives: eval.objectives,

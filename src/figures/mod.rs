@@ -96,7 +96,6 @@ const LAST_TICK_HALF: u32 = 24;
 
 /// A chart builder on `area` with `margin` px all round (on the right at least
 /// [`LAST_TICK_HALF`]), the room for its legend at `place`, and `(x, y)` label areas (px).
-
 fn chart_on<'a, 'b, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     margin: u32,

@@ -71,10 +71,13 @@ impl Figure for MarginsFigure<'_> {
             let [p_lo, p_hi] = o.probability_ci95;
             // The analysis bolts a tray the path places: this is another margin than
             // evaluate's (the table's note says how).
-            let fixed = (o.objective == noncirc_core::ObjectiveKind::PickingAdmissible
-                && r.picking_admissible_placed_mm.is_some())
-            .then_some(" (tray fixed)")
-            .unwrap_or_default();
+            let fixed = if o.objective == noncirc_core::ObjectiveKind::PickingAdmissible
+                && r.picking_admissible_placed_mm.is_some()
+            {
+                " (tray fixed)"
+            } else {
+                ""
+            };
             let caption = format!(
                 "{}{fixed}: P = {:.3} ({p_lo:.4}–{p_hi:.4})",
                 o.objective.label(),

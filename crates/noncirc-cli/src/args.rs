@@ -366,7 +366,8 @@ pub(crate) enum Command {
     /// docs/robustness.md
     Robustness(RobustnessArgs),
     /// First-order and total Sobol indices of every objective and trajectory measure over
-    /// the scene's search box (Saltelli sampling, Jansen estimators, bootstrap intervals).
+    /// the scene's search box (Saltelli sampling, SALib's estimators, bootstrap intervals),
+    /// with a warning naming the indices that cannot be read at the samples taken.
     /// docs/robustness.md
     Sensitivity(SensitivityArgs),
     /// Two arms against three: for each arm count, the least speed of the tip relative to

@@ -82,7 +82,6 @@ pub(crate) fn warn(py: Python<'_>, message: String, stack_level: i32) -> PyResul
 }
 
 /// The search settings a call's keywords give (the algorithm by name).
-
 fn search_settings(
     algorithm: Option<&str>,
     budget: Option<u64>,
