@@ -49,6 +49,14 @@ impl Figure for ObjectivesFigure<'_> {
                 (None, Some(u)) => (-1.5, 0.0, (o.value - u) / (scale * 10.0)),
                 (None, None) => (-1.5, 2.5, 0.0),
             };
+            // A value beyond the row's scale is pinned to its end, with an arrow saying so.
+            let off_scale = if x > 2.45 {
+                Some("off scale →")
+            } else if x < -1.45 {
+                Some("← off scale")
+            } else {
+                None
+            };
             let x = x.clamp(-1.45, 2.45);
             chart
                 .draw_series(std::iter::once(Rectangle::new(
@@ -67,6 +75,22 @@ impl Figure for ObjectivesFigure<'_> {
                     colour.filled(),
                 )))
                 .map_err(err)?;
+            if let Some(cue) = off_scale {
+                let (at, pos) = if x > 0.0 {
+                    (x - 0.04, HPos::Right)
+                } else {
+                    (x + 0.04, HPos::Left)
+                };
+                chart
+                    .draw_series(std::iter::once(Text::new(
+                        cue,
+                        (at, y),
+                        TextStyle::from((FONT, 12))
+                            .color(&colour)
+                            .pos(Pos::new(pos, VPos::Center)),
+                    )))
+                    .map_err(err)?;
+            }
             let unit = o.kind.unit();
             let status = if o.violation == 0.0 {
                 "met".to_string()
