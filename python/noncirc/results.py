@@ -229,7 +229,8 @@ class Batch:
     @staticmethod
     def _from_raw(raw: dict[str, Any], parameter_names: list[str], x: np.ndarray) -> Batch:
         fields = {f.name for f in dataclasses.fields(Batch)} - {"parameter_names", "x"}
-        return Batch(parameter_names=parameter_names, x=x, **{k: raw.get(k) for k in fields})
+        # `trajectories` is there only when asked for (its default: None).
+        return Batch(parameter_names=parameter_names, x=x, **{k: raw[k] for k in fields if k in raw})
 
     @property
     def feasible(self) -> np.ndarray:

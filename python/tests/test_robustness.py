@@ -45,6 +45,8 @@ def test_indices_that_cannot_be_read_warn_and_say_how_many_samples_would_do():
     scene = noncirc.Scene.builtin("paper")
     with pytest.warns(RuntimeWarning, match=r"cannot be read at 16 base points\. About (\d+) base points") as w:
         s = noncirc.sensitivity(scene, base_samples=16, bootstrap=50, threads=2)
+    assert len([x for x in w if x.category is RuntimeWarning]) == 1
+    assert w[0].filename == __file__  # at the user's call, not inside the package
     needed = s["base_samples_needed"]
     assert needed >= 128 and needed & (needed - 1) == 0
     assert f"--base-samples {needed}" in str(w[0].message)

@@ -86,10 +86,11 @@ fn indices_on(y: &[f64], k: usize, rows: &[usize], centre: f64) -> (Vec<f64>, Ve
         // f(A_B^i))²]. Jansen's first order, V − ½E[(f(B) − f(A_B^i))²], subtracts two
         // estimates of nearly the same size: for an inert parameter it scatters about 0 by
         // the sampling error of V (its ΣS1 drifted above 1), where Saltelli's is exactly 0
-        // (f(A_B^i) = f(A)). Its spread grows with the output's mean, so f(B) is taken about
-        // the mean of all outputs, as SALib standardises them (the expectation is the same:
-        // E[f(A_B^i) − f(A)] = 0). One pass over the rows, each row's block read whole (its k + 2
-        // outputs lie together); every parameter's sums add the rows in their order.
+        // (f(A_B^i) = f(A)). Its spread grows with the output's mean, so f(B) is taken
+        // about the mean of all outputs, as SALib standardises them (the expectation is
+        // the same: E[f(A_B^i) − f(A)] = 0). One pass over the rows, each row's block read
+        // whole (its k + 2 outputs lie together); every parameter's sums add the rows in
+        // their order.
         let (mut v_first, mut d_total) = (vec![0.0; k], vec![0.0; k]);
         for &j in rows {
             let block = &y[j * step..(j + 1) * step];

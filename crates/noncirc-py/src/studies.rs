@@ -55,10 +55,10 @@ pub(crate) fn dynamics<'py>(py: Python<'py>, scene: &Scene) -> Result<Bound<'py,
 /// SALib's layout: `problem` (num_vars, names, bounds), `X` (N (k + 2), k) and `Y`
 /// (N (k + 2), outputs) in SALib's sample order, `outputs`, and per output `indices[name]`
 /// a dict of `S1`, `S1_conf`, `ST`, `ST_conf` arrays; `S1` etc. also as (outputs, k)
-/// arrays. The report's other fields as the CLI's JSON gives them, among them each
-/// `base_samples_needed`, and `unreliable[name]`, a list of dicts (`kind`, and the
-/// numbers it names; empty when the output's indices can be read); where some indices cannot be read
-/// at `base_samples`, a `RuntimeWarning` says which and how many base points would do.
+/// arrays. The report's other fields as the CLI's JSON gives them, among them
+/// `base_samples_needed`; and `unreliable[name]`, a list of dicts (`kind`, and the numbers
+/// it names; empty when the output's indices can be read). Where some indices cannot be
+/// read at `base_samples`, one `RuntimeWarning` says which and how many base points would do.
 #[pyfunction]
 #[pyo3(signature = (scene, *, base_samples = 1024, bootstrap = 100, box_scale = 0.25, threads = None))]
 pub(crate) fn sensitivity<'py>(
@@ -74,13 +74,6 @@ pub(crate) fn sensitivity<'py>(
     let r = py.allow_threads(|| {
         noncirc::robustness::sensitivity(&s, base_samples, bootstrap, box_scale, threads)
     })?;
-    if r.base_samples_needed.is_some() {
-        crate::search::warn(
-            py,
-            noncirc::robustness::unreliable_text(&r).trim().to_string(),
-            1,
-        )?;
-    }
     if r.base_samples_needed.is_some() {
         crate::search::warn(
             py,
