@@ -248,6 +248,10 @@ fn outputs(scene: &Scene) -> Vec<Measure> {
         .collect()
 }
 
+/// The narrowest box the sensitivity samples, as a share of the search box: a millionth
+/// of each width, still far above the model's own resolution (closure to 1e-9 relative).
+pub const MIN_BOX_SCALE: f64 = 1e-6;
+
 /// First-order and total Sobol indices of every output of `scene` over its search box
 /// (`search.free`, or the default space) scaled by `box_scale` about the scene's design
 /// (1: the whole box; 0.1: a tenth of each width, inside the box), from `base_samples`
@@ -260,9 +264,11 @@ pub fn sensitivity(
     box_scale: f64,
     threads: usize,
 ) -> Result<Sensitivity> {
-    if !(box_scale > 0.0 && box_scale <= 1.0) {
+    if !(MIN_BOX_SCALE..=1.0).contains(&box_scale) {
         return Err(Error::Input(format!(
-            "box scale = {box_scale}: expected above 0, at most 1 (a share of the search box)"
+            "box scale (--box-scale, box_scale) = {box_scale:e}: expected {MIN_BOX_SCALE:e} to 1, \
+             a share of the search box (below it the designs differ by less than the model \
+             resolves, and every index would read as noise or 0)"
         )));
     }
     if bootstrap > 10_000 {

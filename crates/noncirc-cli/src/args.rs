@@ -437,8 +437,8 @@ pub(crate) struct SensitivityArgs {
     /// Bootstrap resamples for the confidence intervals.
     #[arg(long, default_value_t = 100)]
     pub(crate) bootstrap: usize,
-    /// The box's share of the search box's widths, about the scene's design (1: the whole
-    /// search box, where the model refuses about a third of the designs).
+    /// The box's share of the search box's widths, about the scene's design, 1e-6 to 1 (1:
+    /// the whole search box, where the model refuses about a third of the designs).
     #[arg(long, default_value_t = 0.25)]
     pub(crate) box_scale: f64,
     /// Worker threads (default: all cores). Results do not depend on it.
