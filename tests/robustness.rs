@@ -151,8 +151,13 @@ fn sobol_indices_do_not_depend_on_the_thread_count_and_are_consistent() {
     }
     assert!(sensitivity(&scene, 128, 50, 0.0, 1).is_err());
     // A box too narrow to resolve is refused by name, not read as indices of 0.
-    let e = sensitivity(&scene, 16, 10, 1e-300, 1).unwrap_err().to_string();
-    assert!(e.contains("box scale (--box-scale, box_scale) = 1e-300"), "{e}");
+    let e = sensitivity(&scene, 16, 10, 1e-300, 1)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("box scale (--box-scale, box_scale) = 1e-300"),
+        "{e}"
+    );
     assert!(sensitivity(&scene, 16, 10, 1.0 + 1e-12, 1).is_err());
     assert!(sensitivity(&scene, 16, 10, f64::NAN, 1).is_err());
     assert!(sensitivity(&scene, 16, 10, 1e-6, 1).is_ok());
