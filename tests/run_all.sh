@@ -68,7 +68,8 @@ if [ -f python/pyproject.toml ]; then
   "$VENV/bin/python" -m pip install --quiet --upgrade pip
   "$VENV/bin/python" -m pip install --quiet -r python/requirements-dev.txt
   # As a user installs it (README): the wheel, not the source tree. The tests import the
-  # installed package; a build left in python/noncirc by `maturin develop` is moved aside.
+  # installed package (python/ is not on their path, so a build `maturin develop` left in
+  # python/noncirc is not what they test; the check below says where it comes from).
   WHEELS=$(mktemp -d)
   (cd python && ../"$VENV"/bin/maturin build --release --strip --quiet --out "$WHEELS")
   "$VENV/bin/python" -m pip install --quiet --force-reinstall --no-deps "$WHEELS"/noncirc-*-abi3-*.whl
