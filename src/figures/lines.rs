@@ -53,14 +53,16 @@ impl Figure for LinesFigure {
             |lo: f64, hi: f64, f: f64| ((hi - lo) * f).max(0.01 * lo.abs().max(hi.abs())).max(1e-9);
         let (dx, dy) = (pad(x0, x1, 0.05), pad(y0, y1, 0.08));
         let band_label = "admissible range";
+        // The title over the whole figure (over the chart alone it was centred beside the
+        // legend, and a long one ran off the left edge).
+        let area = root.titled(&self.title, (FONT, 20)).map_err(err)?;
         let place = legend_place(
             (self.series.iter().map(|(n, _)| n.as_str()))
                 .chain(self.band.is_some().then_some(band_label)),
             12,
-            root.dim_in_pixel(),
+            area.dim_in_pixel(),
         );
-        let mut chart = chart_on(root, 12, place, (40, 60))
-            .caption(&self.title, (FONT, 20))
+        let mut chart = chart_on(&area, 12, place, (40, 60))
             .build_cartesian_2d(x0 - dx..x1 + dx, y0 - dy..y1 + dy)
             .map_err(err)?;
         chart
@@ -106,7 +108,7 @@ impl Figure for LinesFigure {
                 entries.push((name.clone(), Swatch::Line(colour, 2)));
             }
         }
-        draw_legend(root, chart.plotting_area(), &entries, 12, place)?;
+        draw_legend(&area, chart.plotting_area(), &entries, 12, place)?;
         Ok(())
     }
 }
