@@ -97,15 +97,20 @@ mod tests {
     use crate::scene_file::load_scene;
     use noncirc_core::{MeasureCost, Rng};
 
+    /// `n` designs drawn uniformly from `problem`'s box with `seed`.
+    fn random_rows(problem: &SceneProblem, n: usize, seed: u64) -> Vec<Vec<f64>> {
+        let mut rng = Rng::new(seed);
+        (0..n)
+            .map(|_| problem.decode(&rng.point(problem.dim())))
+            .collect()
+    }
+
     #[test]
     fn rows_are_the_same_on_one_and_two_threads_and_the_default_measures_cost_nothing() {
         let scene = load_scene(Some("paper-search")).unwrap();
         let problem = SceneProblem::new(&scene).unwrap();
         let resolution = scene.resolution;
-        let mut rng = Rng::new(3);
-        let rows: Vec<Vec<f64>> = (0..40)
-            .map(|_| problem.decode(&rng.point(problem.dim())))
-            .collect();
+        let rows = random_rows(&problem, 40, 3);
         let measures = Measure::batch_default();
         assert!(measures.iter().all(|m| m.cost() == MeasureCost::Read));
         assert!(!measures.iter().any(|m| m.name() == "gear_overlap_mm"));
@@ -147,10 +152,7 @@ mod tests {
         let scene = load_scene(Some("paper-search")).unwrap();
         let problem = SceneProblem::new(&scene).unwrap();
         let resolution = scene.resolution;
-        let mut rng = Rng::new(5);
-        let rows: Vec<Vec<f64>> = (0..12)
-            .map(|_| problem.decode(&rng.point(problem.dim())))
-            .collect();
+        let rows = random_rows(&problem, 12, 5);
         let batch = BatchRows::new(&problem, &resolution, &[]).with_tip_paths(true);
         let pool = crate::search::thread_pool(2).unwrap();
         let out = batch.run(Some(&pool), &rows);

@@ -76,7 +76,7 @@ fn num(x: f64) -> String {
 
 /// What `picking_admissible` means in a tolerance analysis of a scene whose tray the
 /// trajectory places, against `placed`, its value in `noncirc evaluate` (mm).
-pub fn picking_admissible_note(placed: f64) -> String {
+fn picking_admissible_note(placed: f64) -> String {
     format!(
         "picking_admissible here: the tray bolted where the nominal design puts it, the tip's \
          reach into pots twice the tray depth counted too; `noncirc evaluate` places the tray \

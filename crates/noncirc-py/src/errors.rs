@@ -143,6 +143,18 @@ pub(crate) fn internal(e: impl std::fmt::Display) -> Error {
     )))
 }
 
+/// A `RuntimeWarning` at the user's call: `stack_level` 1 for a function of the native
+/// module called directly, 2 past one of the package's wrappers (`noncirc.optimise`).
+pub(crate) fn warn(py: Python<'_>, message: String, stack_level: i32) -> PyResult<()> {
+    let message = std::ffi::CString::new(message).map_err(internal)?;
+    PyErr::warn(
+        py,
+        &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
+        &message,
+        stack_level,
+    )
+}
+
 /// A scene error raised by a call (`Scene.with_set('key', value)`): its message without the
 /// CLI's `--set key=value:`, after the call's own name.
 pub(crate) fn call_error(e: SceneFileError, call: &str) -> Error {

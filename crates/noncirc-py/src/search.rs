@@ -2,7 +2,7 @@
 //! (an observer of the core's executor), and the island model's migrants.
 
 use crate::convert::summary_dict;
-use crate::errors::{internal, invalid, parameter, Result};
+use crate::errors::{internal, invalid, parameter, warn, Result};
 use crate::scene::Scene;
 use noncirc::core::{Algorithm, Control, Observer, SearchState};
 use noncirc::search::{RunOptions, SearchSettings};
@@ -67,18 +67,6 @@ fn observed<T: Send>(
         Some(e) => Err(e.into()),
         None => Ok(outcome),
     }
-}
-
-/// A `RuntimeWarning` at the user's call: `stack_level` 1 for a function of the native
-/// module called directly, 2 past one of the package's wrappers (`noncirc.optimise`).
-pub(crate) fn warn(py: Python<'_>, message: String, stack_level: i32) -> PyResult<()> {
-    let message = std::ffi::CString::new(message).map_err(internal)?;
-    PyErr::warn(
-        py,
-        &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
-        &message,
-        stack_level,
-    )
 }
 
 /// The search settings a call's keywords give (the algorithm by name).

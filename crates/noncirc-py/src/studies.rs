@@ -75,7 +75,7 @@ pub(crate) fn sensitivity<'py>(
         noncirc::robustness::sensitivity(&s, base_samples, bootstrap, box_scale, threads)
     })?;
     if r.base_samples_needed.is_some() {
-        crate::search::warn(
+        crate::errors::warn(
             py,
             noncirc::robustness::unreliable_text(&r).trim().to_string(),
             1,
