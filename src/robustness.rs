@@ -266,7 +266,7 @@ pub fn sensitivity(
 ) -> Result<Sensitivity> {
     if !(MIN_BOX_SCALE..=1.0).contains(&box_scale) {
         return Err(Error::Input(format!(
-            "box scale (--box-scale, box_scale) = {box_scale:e}: expected {MIN_BOX_SCALE:e} to 1, \
+            "box scale (--box-scale, box_scale) = {box_scale:?}: expected {MIN_BOX_SCALE:e} to 1, \
              a share of the search box (below it the designs differ by less than the model \
              resolves, and every index would read as noise or 0)"
         )));

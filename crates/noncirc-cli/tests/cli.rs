@@ -395,7 +395,7 @@ fn robustness_and_sensitivity_report_and_name_what_they_refuse() {
             &["robustness", "--set", "tolerances.beta0_deg={sigma=-1}"][..],
             "tolerances.beta0_deg.sigma",
         ),
-        (&["sensitivity", "--box-scale", "2"][..], "box scale = 2"),
+        (&["sensitivity", "--box-scale", "2"][..], "box_scale) = 2.0: expected"),
         (&["sensitivity", "--base-samples", "1"][..], "base samples"),
         (
             &[
