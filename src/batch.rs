@@ -5,13 +5,16 @@
 
 use crate::search::map_batch;
 use noncirc_core::{
-    Evaluator, Fitness, Measure, Measured, ObjectiveValue, Resolution, Scene, SceneProblem,
+    ConstraintValue, Evaluator, Fitness, Measure, Measured, ObjectiveValue, Resolution, Scene,
+    SceneProblem,
 };
 
 /// One design's numbers.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RowValues {
     pub objectives: Vec<ObjectiveValue>,
+    /// The scene's `search.constraints`, scored.
+    pub constraints: Vec<ConstraintValue>,
     /// The chosen measures (`None` where the scene does not compute one).
     pub measures: Vec<Option<f64>>,
     /// The tip of arm I at each of the resolution's samples of a carrier turn, from
@@ -63,6 +66,7 @@ impl<'a> BatchRows<'a> {
                     .map(|kin| kin.tips().iter().map(|&p| p.into()).collect());
                 RowValues {
                     objectives: eval.objectives,
+                    constraints: eval.constraints,
                     measures,
                     tip_path,
                 }

@@ -4,11 +4,11 @@
 //! resolution, kept only if it stays feasible and fits better.
 
 use crate::files::{create_dir, json_text, read_limited, toml_text, write_file};
-use crate::report::ObjectiveRow;
+use crate::report::{requirement_rows, RequirementRow};
 use crate::search::{map_batch, thread_pool, Outcome, RunOptions};
 use crate::{Error, Result};
 use noncirc_core::{
-    refine, scale, symbol, Error as CoreError, Evaluation, Evaluator, FitMeasure, FitReport, Goal,
+    refine, symbol, Error as CoreError, Evaluation, Evaluator, FitMeasure, FitReport, Goal,
     LocalReport, LocalSettings, Measure, Observer, PoseQuantity, ResidualBatch, Resolution, Scene,
     SceneProblem, Target, TargetKind,
 };
@@ -307,13 +307,9 @@ pub fn refine_search(
         }
         if let Some((candidate, eval)) = candidate {
             let cost = |e: &Evaluation| e.fit.as_ref().map_or(f64::INFINITY, |f| f.cost);
-            // Violations compared as the search does: each over its objective's scale.
+            // Violations compared as the search does: each over its scale.
             let bounds = &problem.base().bounds;
-            let violation = |e: &Evaluation| -> f64 {
-                (e.objectives.iter())
-                    .map(|o| o.violation / scale(o.kind, bounds))
-                    .sum()
-            };
+            let violation = |e: &Evaluation| e.normalised_violation(bounds);
             let better = best.as_ref().is_none_or(|(_, b)| {
                 let (new_v, old_v) = (violation(&eval), violation(b));
                 new_v < old_v || (new_v == old_v && cost(&eval) < cost(b))
@@ -418,7 +414,8 @@ pub struct FitSummary {
     pub measures: Vec<FitMeasureRow>,
     /// The fit in full: path distances, each pose's reading and errors, the cost.
     pub fit: Option<FitReport>,
-    pub objectives: Vec<ObjectiveRow>,
+    /// The objectives, then the search constraints.
+    pub objectives: Vec<RequirementRow>,
     pub design: Vec<DesignRow>,
     pub run: FitRun,
 }
@@ -552,9 +549,7 @@ impl FitOutcome {
             (Some(f), Some(t)) => fit_measure_rows(f, t),
             _ => Vec::new(),
         };
-        let objectives = eval.map_or(Vec::new(), |e| {
-            e.objectives.iter().map(ObjectiveRow::from).collect()
-        });
+        let objectives = eval.map_or(Vec::new(), requirement_rows);
         let (lower, upper) = problem.bounds();
         let design = match &self.best {
             Some((scene, _)) => (problem.names().into_iter().enumerate())

@@ -8,7 +8,7 @@
 
 use crate::files::{create_dir, json_text, toml_text, write_file};
 use crate::fit::{fit_scene, FitOptions, FitOutcome, FitRun};
-use crate::report::ObjectiveRow;
+use crate::report::{requirement_rows, RequirementRow};
 use crate::scene_file::apply_overrides;
 use crate::search::RunOptions;
 use crate::teeth::{Advice, TeethRun};
@@ -439,10 +439,10 @@ pub struct RepairSummary {
     pub scene: String,
     /// Every objective met and the teeth cut and mesh.
     pub repaired: bool,
-    /// The given design's objectives.
-    pub before: Vec<ObjectiveRow>,
+    /// The given design's objectives, then its search constraints.
+    pub before: Vec<RequirementRow>,
     /// The repaired design's.
-    pub after: Vec<ObjectiveRow>,
+    pub after: Vec<RequirementRow>,
     /// The free parameters' changes, largest (in % of the box) first.
     pub changes: Vec<Change>,
     /// Hausdorff distance of the repaired tip path from the given one (mm).
@@ -471,7 +471,6 @@ impl RepairOutcome {
     pub fn summary(&self) -> RepairSummary {
         let problem = &self.problem;
         let (lower, upper) = problem.bounds();
-        let rows = |e: &Evaluation| e.objectives.iter().map(ObjectiveRow::from).collect();
         let r = self.repaired.as_ref();
         let mut changes: Vec<Change> = match r {
             Some(r) => (problem.names().into_iter().enumerate())
@@ -516,8 +515,8 @@ impl RepairOutcome {
         RepairSummary {
             scene: self.original.name.clone(),
             repaired: self.works(),
-            before: rows(&self.before),
-            after: r.map_or(Vec::new(), |r| rows(&r.evaluation)),
+            before: requirement_rows(&self.before),
+            after: r.map_or(Vec::new(), |r| requirement_rows(&r.evaluation)),
             changes,
             path_hausdorff_mm: r.map(|r| r.fit.path_hausdorff_mm),
             path_rms_mm: r.map(|r| r.fit.path_rms_mm),
@@ -569,7 +568,7 @@ impl RepairSummary {
         );
         out += "objective                      before     after  unit\n";
         for (b, a) in self.before.iter().zip(&self.after) {
-            let mark = |o: &ObjectiveRow| if o.violation > 0.0 { "✗" } else { " " };
+            let mark = |o: &RequirementRow| if o.violation > 0.0 { "✗" } else { " " };
             out += &format!(
                 "  {:<26} {:>9.3}{} {:>9.3}{} {}\n",
                 b.name,

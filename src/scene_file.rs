@@ -459,6 +459,9 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
         search
             .entry("confirm_with_teeth")
             .or_insert(serde_json::Value::Bool(false));
+        search
+            .entry("constraints")
+            .or_insert(serde_json::Value::Array(Vec::new()));
     }
     if let Some(gear) = tree.get_mut("gear").and_then(|g| g.as_object_mut()) {
         // The paper's train: `--set gear.second_curve={…}` makes it a train of two pairs.

@@ -129,7 +129,10 @@ pub fn markdown() -> String {
            maximised), an objective's name (its margin, maximised: `module` is reported as \
            `module_mm`), `picking_tip_speed` (m/s, minimised), `box_travel` (mm, minimised, \
            transplanter scenes), and `min:NAME` or `max:NAME` of any measure \
-           (`noncirc measures` lists them).\n\n**Algorithms** (`search.algorithm`):";
+           (`noncirc measures` lists them).\n\n**Constraints** (`search.constraints`): \
+           `NAME <= VALUE` or `NAME >= VALUE` of any measure (`noncirc measures`), the value \
+           in its unit: `picking_height_mm <= -90`, `loop_width_mm <= 50`.\n\n\
+           **Algorithms** (`search.algorithm`):";
     for (i, a) in Algorithm::ALL.iter().enumerate() {
         let _ = write!(md, "{} `{}`", if i == 0 { "" } else { "," }, a.name());
     }

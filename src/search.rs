@@ -14,6 +14,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use crate::files::{create_dir, json_text, read_limited, toml_text, write_atomic, write_file};
+use crate::report::RequirementRow;
 use crate::{Error, Result};
 
 /// Most designs per parallel piece of a batch of `len` on `threads` ([`map_batch`] passes
@@ -608,7 +609,8 @@ pub struct Summary {
     pub algorithm: &'static str,
     pub seed: u64,
     pub threads: usize,
-    /// Whether the reported design meets every objective at the scene's (default) resolution.
+    /// Whether the reported design meets every objective and search constraint at the
+    /// scene's (default) resolution.
     pub feasible: bool,
     /// The reported design's parameters, written in the scene's order (`radii_mm[2]` before
     /// `radii_mm[10]`, the curve before the train).
@@ -616,6 +618,8 @@ pub struct Summary {
     pub best: BTreeMap<String, f64>,
     pub violations: BTreeMap<String, f64>,
     pub objectives: BTreeMap<String, f64>,
+    /// The reported design's search constraints (`search.constraints`), in the scene's order.
+    pub constraints: Vec<RequirementRow>,
     pub evaluations: u64,
     pub confirmations: u64,
     pub first_feasible_evaluations: Option<u64>,
@@ -629,12 +633,27 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// The objectives the reported design misses, in the paper's order.
-    pub fn missed(&self) -> Vec<&'static str> {
-        (noncirc_core::ObjectiveKind::ALL.iter())
+    /// The objectives the reported design misses, in the paper's order, then the search
+    /// constraints it misses, as written.
+    pub fn missed(&self) -> Vec<String> {
+        let objectives = (noncirc_core::ObjectiveKind::ALL.iter())
             .map(|k| k.name())
             .filter(|name| self.violations.get(*name).is_some_and(|&v| v > 0.0))
-            .collect()
+            .map(String::from);
+        let constraints = (self.constraints.iter())
+            .filter(|c| c.violation != 0.0)
+            .map(|c| c.label.clone());
+        objectives.chain(constraints).collect()
+    }
+
+    /// What a feasible design meets: "every objective", and "and search constraint" when
+    /// the scene has some.
+    pub fn requirements(&self) -> &'static str {
+        if self.constraints.is_empty() {
+            "every objective"
+        } else {
+            "every objective and search constraint"
+        }
     }
 
     /// The summary of a search's `state` on `problem`, with its `confirmed` designs; the
@@ -652,6 +671,7 @@ impl Summary {
         let mut best = BTreeMap::new();
         let mut violations = BTreeMap::new();
         let mut objectives = BTreeMap::new();
+        let mut constraints = Vec::new();
         let mut feasible = false;
         if let Some(c) = state.reported() {
             for (name, x) in problem.names().iter().zip(problem.decode(&c.u)) {
@@ -668,6 +688,7 @@ impl Summary {
                 violations.insert(o.kind.name().to_string(), o.violation);
                 objectives.insert(o.kind.name().to_string(), o.value);
             }
+            constraints = eval.constraints.iter().map(RequirementRow::from).collect();
         }
         Summary {
             scene: base.name.clone(),
@@ -678,6 +699,7 @@ impl Summary {
             best,
             violations,
             objectives,
+            constraints,
             evaluations: state.evaluations,
             confirmations: state.confirmations,
             first_feasible_evaluations: state.first_feasible_at,

@@ -422,15 +422,18 @@ function show(out, except) {
     (r.centre_distance_mm ? `, centre distance ${r.centre_distance_mm.toFixed(3)} mm` : '');
 }
 
-/** The gauges: built once per set of objectives, then updated in place. */
+/** The gauges, the objectives' then the search constraints': built once per set of
+ *  them, then updated in place. */
 function drawGauges(report) {
   const box = $('gauges');
-  const names = report.objectives.map((o) => o.name).join();
+  const constraints = report.constraints ?? [];
+  const rows = [...report.objectives, ...constraints];
+  const names = rows.map((o) => o.label).join();
   if (box.dataset.names !== names) {
     box.replaceChildren();
-    for (const o of report.objectives) {
+    for (const [k, o] of rows.entries()) {
       const g = document.createElement('div');
-      g.dataset.objective = o.name;
+      if (k < report.objectives.length) g.dataset.objective = o.name; else g.dataset.constraint = o.label;
       g.innerHTML = `<div class="head"><span>${o.label}</span><span><b class="value-text"></b> ${o.unit} <span class="unit bound"></span> <span class="verdict"></span></span></div>
         <div class="bar" role="meter" aria-label="${o.label}"><div class="ok"></div><div class="value"></div><span class="offscale" aria-hidden="true"></span></div>
         <div class="margin unit"></div>`;
@@ -439,8 +442,18 @@ function drawGauges(report) {
     box.dataset.names = names;
   }
   let met = 0;
-  report.objectives.forEach((o, k) => {
+  rows.forEach((o, k) => {
     const ok = o.violation === 0;
+    // A constrained measure the design does not have arrives as null (NaN in JSON).
+    if (o.value === null) {
+      const g = box.children[k];
+      g.className = 'gauge missed';
+      g.querySelector('.value-text').textContent = '—';
+      g.querySelector('.bound').textContent = o.upper !== null ? `≤ ${o.upper}` : `≥ ${o.lower}`;
+      g.querySelector('.verdict').textContent = 'missed';
+      g.querySelector('.margin').textContent = 'the design has no such value';
+      return;
+    }
     met += ok;
     const lo = o.lower ?? null, hi = o.upper ?? null;
     // The bar spans the bounds with room either side; a one-sided bound gets a span from it.
@@ -468,8 +481,12 @@ function drawGauges(report) {
       (off ? `, off the bar's scale (${off === 'low' ? 'below' : 'above'})` : '');
   });
   const v = $('verdict');
-  v.textContent = `${met} of ${report.objectives.length} met`;
-  v.className = met === report.objectives.length ? 'met' : 'missed';
+  v.textContent = `${met} of ${rows.length} met` + (constraints.length ? ` (${constraints.length} constraint${constraints.length > 1 ? 's' : ''})` : '');
+  v.className = met === rows.length ? 'met' : 'missed';
+  const field = $('constraints');
+  if (document.activeElement !== field && !field.classList.contains('invalid')) {
+    field.value = constraints.map((c) => c.label).join('; ');
+  }
 }
 
 function drawPolar(view) {
@@ -1229,6 +1246,11 @@ function wire() {
     const key = ev.key.toLowerCase();
     if (key === 'z' && !ev.shiftKey) { ev.preventDefault(); step(state.undo, state.redo); }
     if (key === 'y' || (key === 'z' && ev.shiftKey)) { ev.preventDefault(); step(state.redo, state.undo); }
+  });
+  // The constraints as one line, `;` between two, applied when complete (Enter or leaving).
+  $('constraints').addEventListener('change', (ev) => {
+    const list = ev.target.value.split(';').map((c) => c.trim()).filter((c) => c !== '');
+    if (apply(`search.constraints=${JSON.stringify(list)}`, ev.target)) commit();
   });
   $('curve-kind').addEventListener('change', (ev) => { if (apply(`gear.curve.kind="${ev.target.value}"`, ev.target)) commit(); });
   $('carrier').addEventListener('input', (ev) => { state.carrier = +ev.target.value; drawMechanism(); });

@@ -52,6 +52,7 @@ fn scenes() -> Vec<noncirc_core::Scene> {
             "gear.teeth.cutter={kind=\"shaper\",teeth=12}",
             "gear.module.teeth=40",
             "search.confirm_with_teeth=true",
+            "search.constraints=[\"loop_width_mm <= 50\"]",
             "agronomy.tray_distance_mm=120",
             "moving_box.speed_ratio=3",
             "dynamics.planting_force_n=8",

@@ -600,3 +600,67 @@ fn a_robust_search_is_the_same_on_one_and_two_threads_and_after_a_resume() {
     assert!(fingerprint(&resumed.state) == fingerprint(&one.state));
     std::fs::remove_dir_all(dir).ok();
 }
+
+/// Any measure bounds a search (`search.constraints`): every algorithm's reported design
+/// meets a bound that the unconstrained search's design misses, and the summary and
+/// `evaluate` read the same value.
+#[test]
+fn a_constraint_on_any_measure_holds_in_every_algorithm() {
+    use noncirc::core::{Constraint, Evaluator, Measure, Measured};
+    // The paper-search scene, 12 000 evaluations, seed 1.
+    let search = |algorithm: Algorithm, constraints: Vec<Constraint>| {
+        let mut scene = load_scene(Some("paper-search")).unwrap();
+        SearchSettings {
+            algorithm: Some(algorithm),
+            budget: Some(12_000),
+            seed: Some(1),
+            ..SearchSettings::default()
+        }
+        .apply(&mut scene)
+        .unwrap();
+        scene.search.constraints = constraints;
+        run(&scene, &options(2, None, None, None)).unwrap()
+    };
+    let free = search(Algorithm::De, Vec::new());
+    let (scene, eval) = free.confirmed.best.clone().unwrap();
+    let eval = eval.unwrap();
+    assert_eq!(
+        eval.total_violation(),
+        0.0,
+        "the unconstrained search is feasible"
+    );
+    let measure = Measure::parse("loop_width_mm").unwrap();
+    let width = measure.value(&Measured::new(&eval, &scene)).unwrap();
+    // A loop at least 3 mm narrower than the unconstrained design's.
+    let constraint = Constraint {
+        measure,
+        bound: (width - 3.0).floor(),
+        at_most: true,
+    };
+    assert!(
+        width > constraint.bound,
+        "the unconstrained design misses it"
+    );
+    for algorithm in [
+        Algorithm::De,
+        Algorithm::Guided,
+        Algorithm::Cmaes,
+        Algorithm::Nsga2,
+        Algorithm::Nsga3,
+    ] {
+        let out = search(algorithm, vec![constraint]);
+        let summary = out.summary();
+        let reading = &summary.constraints[0];
+        assert_eq!(reading.label, constraint.text());
+        assert!(
+            reading.value <= constraint.bound && reading.violation == 0.0,
+            "{algorithm:?}: {reading:?}"
+        );
+        // Feasible means every objective and the constraint met.
+        let objectives_met = summary.violations.values().all(|&v| v == 0.0);
+        assert_eq!(summary.feasible, objectives_met, "{algorithm:?}");
+        let (best, _) = out.confirmed.best.as_ref().unwrap();
+        let again = Evaluator::new().evaluate(best).unwrap();
+        assert_eq!(again.constraints[0].value, reading.value, "{algorithm:?}");
+    }
+}

@@ -67,6 +67,8 @@ class Scene:
         """The search space `(name, lower, upper)`: the columns of `evaluate_batch`'s x."""
     def goal_names(self) -> list[str]: ...
     def objective_names(self) -> list[str]: ...
+    def constraint_names(self) -> list[str]:
+        """The search constraints (`search.constraints`) as written: `picking_height_mm <= -90`."""
 
 def evaluate(
     scene: Scene, *, samples_per_turn: Optional[int] = None, closure_rel_tol: Optional[float] = None
@@ -91,7 +93,8 @@ def evaluate_batch(
     progress: Optional[Callable[[dict[str, Any]], Any]] = None,
     trajectories: bool = False,
 ) -> dict[str, Any]:
-    """An (n, d) batch in parallel, GIL released: values, violations, cv, goals, valid,
+    """An (n, d) batch in parallel, GIL released: values, violations, the constraints'
+    values and normalised violations, cv, goals, valid,
     errors and the measures (those read at no cost by default, "all", a list, `[]` for
     none); with `trajectories`, the tip paths (n, samples_per_turn, 2) in mm. `x` is
     anything `np.asarray(x, dtype=float64)` accepts; another shape is an error naming it.

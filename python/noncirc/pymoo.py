@@ -1,7 +1,8 @@
 """A vectorised pymoo `Problem` made from a scene, so any pymoo algorithm can search it.
 
-The objectives' normalised violations are pymoo inequality constraints (`G <= 0` is met;
-pymoo sums them the same way noncirc does), and the scene's search goals are `F` as
+The objectives' normalised violations, then the scene's search constraints'
+(`search.constraints`), are pymoo inequality constraints (`G <= 0` is met; pymoo sums
+them the same way noncirc does), and the scene's search goals are `F` as
 noncirc's own searches rank them: all minimised, a maximised goal negated, an objective's
 margin divided by its scale. `scene.goal_names()` names the quantities, and
 `SceneProblem.goal_values(res.X)` gives them in their units.
@@ -33,7 +34,7 @@ class SceneProblem(Problem):
         super().__init__(
             n_var=len(params),
             n_obj=len(scene.goal_names()),
-            n_ieq_constr=len(scene.objective_names()),
+            n_ieq_constr=len(scene.objective_names()) + len(scene.constraint_names()),
             xl=np.array([p[1] for p in params]),
             xu=np.array([p[2] for p in params]),
         )
@@ -47,7 +48,7 @@ class SceneProblem(Problem):
             measures=[],  # only the goals and constraints: the fastest batch
         )
         out["F"] = result["goals"]
-        out["G"] = result["normalised_violations"]
+        out["G"] = np.hstack([result["normalised_violations"], result["constraint_normalised_violations"]])
 
     def goal_values(self, x) -> np.ndarray:
         """The goals of designs `x` (one row per design: pymoo's `res.X`, `res.opt.get("X")`)

@@ -51,6 +51,11 @@ def _plain(value: Any) -> Any:
     return value
 
 
+def _number(value: Optional[float], missing: float) -> float:
+    """A number from JSON, where NaN and infinities arrive as null: `missing` then."""
+    return missing if value is None else value
+
+
 @dataclass(frozen=True)
 class Objective:
     """One agronomic objective of a design: its value, bounds and how far it is from them,
@@ -90,12 +95,14 @@ class Evaluation:
 
     samples_per_turn: int
     feasible: bool
-    """Whether every objective is met."""
+    """Whether every objective and search constraint is met."""
     total_violation: float
-    """Sum of the objectives' violations, each in its own unit."""
+    """Sum of the objectives' and the constraints' violations, each in its own unit."""
     centre_distance_mm: float
     objectives: dict[str, Objective]
     """By name, in the paper's order."""
+    constraints: dict[str, ConstraintReading]
+    """The scene's search constraints (`search.constraints`), keyed as written."""
     events: Optional[dict[str, Any]]
     """Picking and planting: carrier angles, attitudes (deg), the picking window, the tip
     speed (m/s), branch gaps (mm) and the picking check; None without a three-arm train."""
@@ -128,6 +135,7 @@ class Evaluation:
     def _from_raw(raw: dict[str, Any]) -> Evaluation:
         objectives = {name: Objective(name=name, **o) for name, o in raw["objectives"].items()}
         measures = {name: Quantity(**m) for name, m in raw["measures"].items()}
+        constraints = {text: ConstraintReading(constraint=text, **c) for text, c in raw["constraints"].items()}
         arrays = [
             "carrier_deg",
             "trajectory",
@@ -145,6 +153,7 @@ class Evaluation:
             total_violation=raw["total_violation"],
             centre_distance_mm=raw["centre_distance_mm"],
             objectives=objectives,
+            constraints=constraints,
             events=raw.get("events"),
             sections=raw.get("sections"),
             measures=measures,
@@ -199,8 +208,15 @@ class Batch:
     """(n, k) how far outside its bounds, in its unit (0 when met)."""
     normalised_violations: np.ndarray
     """(n, k) violations divided by each objective's scale (docs/search.md)."""
+    constraint_names: list[str]
+    """The scene's search constraints as written (`picking_height_mm <= -90`)."""
+    constraint_values: np.ndarray
+    """(n, c) each constrained measure's value, in its unit (NaN where a design has none)."""
+    constraint_normalised_violations: np.ndarray
+    """(n, c) how far past its bound, over the constraint's scale (a tenth of the bound, at
+    least 1, in the measure's unit; 0 when met)."""
     cv: np.ndarray
-    """(n,) their sum: 0 for a feasible design."""
+    """(n,) the sum of both normalised violations: 0 for a feasible design."""
     goal_names: list[str]
     """The search goals as the quantities they are, named with their units (`module_mm`)."""
     goal_maximised: list[bool]
@@ -234,7 +250,7 @@ class Batch:
 
     @property
     def feasible(self) -> np.ndarray:
-        """(n,) True where the design is valid and meets every objective."""
+        """(n,) True where the design is valid and meets every objective and constraint."""
         return self.valid & (self.cv == 0)
 
     def value(self, name: str) -> np.ndarray:
@@ -252,7 +268,8 @@ class Batch:
 
     def to_pandas(self) -> pandas.DataFrame:
         """One row per design. Columns: the parameters, the objectives' values (named with
-        their unit: `picking_angle_deg`), the measures, `cv`, the goals' quantities (named
+        their unit: `picking_angle_deg`), the measures, the constrained measures (named by
+        their constraints: `picking_height_mm <= -90`), `cv`, the goals' quantities (named
         with their units: `module_mm`), `valid` and `error`."""
         pd = _pandas()
         columns: dict[str, Any] = {n: self.x[:, j] for j, n in enumerate(self.parameter_names)}
@@ -260,6 +277,8 @@ class Batch:
             columns[with_unit(n, u)] = self.values[:, j]
         for j, (n, u) in enumerate(zip(self.measure_names, self.measure_units)):
             columns[with_unit(n, u)] = self.measures[:, j]
+        for j, n in enumerate(self.constraint_names):
+            columns[n] = self.constraint_values[:, j]
         columns["cv"] = self.cv
         for j, n in enumerate(self.goal_names):
             columns[n] = self.goal_values[:, j]
@@ -279,6 +298,29 @@ class Goal:
     """Whether the search made it larger."""
     value: Optional[float]
     """The reported design's value, in `unit`."""
+
+
+@dataclass(frozen=True)
+class ConstraintReading:
+    """A search constraint (`search.constraints`) and the reported design's reading of it."""
+
+    constraint: str
+    """As written: `picking_height_mm <= -90`."""
+    measure: str
+    value: float
+    """The measure's value, in `unit` (NaN where the design has none)."""
+    unit: str
+    bound: float
+    at_most: bool
+    """True for `<=` (the measure at most `bound`), False for `>=`."""
+    violation: float
+    """How far past the bound, in `unit`: 0 when met (infinite without a value)."""
+    margin: float
+    """How far inside the bound, in `unit`: negative when missed."""
+
+    @property
+    def met(self) -> bool:
+        return self.violation == 0.0
 
 
 @dataclass(frozen=True)
@@ -310,6 +352,8 @@ class SearchResult:
     """Its objectives' values, each in its unit (`Scene.objective_names()` order)."""
     violations: dict[str, float]
     """Its objectives' violations, each in its unit."""
+    constraints: list[ConstraintReading]
+    """Its search constraints (`search.constraints`), in the scene's order."""
     evaluations: int
     confirmations: int
     first_feasible_evaluations: Optional[int]
@@ -341,13 +385,29 @@ class SearchResult:
             Design(parameters=ordered(d["parameters"], parameter_names), goals={g.name: v for g, v in zip(goals, d["goal_values"])}, cv=d["cv"])
             for d in raw["pareto"]
         ]
+        plain["constraints"] = [
+            ConstraintReading(
+                constraint=c["label"],
+                measure=c["name"],
+                value=_number(c["value"], float("nan")),
+                unit=c["unit"],
+                bound=c["upper"] if c["upper"] is not None else c["lower"],
+                at_most=c["upper"] is not None,
+                violation=_number(c["violation"], float("inf")),
+                margin=_number(c["margin"], float("nan")),
+            )
+            for c in raw["constraints"]
+        ]
         plain["best_scene"] = raw.get("best_scene")
         return SearchResult(**plain)
 
     @property
     def missed(self) -> list[str]:
-        """The objectives the reported design misses, in the paper's order."""
-        return [n for n, v in self.violations.items() if v > 0]
+        """The objectives the reported design misses, in the paper's order, then the search
+        constraints it misses, as written."""
+        return [n for n, v in self.violations.items() if v > 0] + [
+            c.constraint for c in self.constraints if not c.met
+        ]
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data (the best scene as its TOML text): JSON-ready."""

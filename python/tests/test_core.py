@@ -405,3 +405,23 @@ def test_the_package_docstring_example_runs():
 
     result = doctest.testmod(noncirc)
     assert result.attempted >= 4 and result.failed == 0
+
+
+def test_search_constraints_read_as_their_measures_in_evaluate_and_a_search():
+    scene = Scene.builtin("paper-search").with_set(
+        "search.constraints", '["picking_height_mm <= -90", "loop_width_mm >= 1000"]'
+    )
+    e = evaluate(scene)
+    height, width = e.constraints["picking_height_mm <= -90"], e.constraints["loop_width_mm >= 1000"]
+    assert height.value == e.measures["picking_height_mm"].value and height.at_most and height.bound == -90
+    assert height.met == (height.value <= -90)
+    assert not width.met and width.violation == pytest.approx(1000 - e.measures["loop_width_mm"].value, rel=1e-12)
+    assert not e.feasible
+    # A search cannot meet a metre-wide loop: its design is reported infeasible, and says why.
+    with pytest.warns(RuntimeWarning, match=r"every objective and search constraint \(the best misses .*loop_width_mm >= 1000"):
+        run = optimise(scene, budget=480, seed=3, progress=False)
+    assert not run.feasible
+    assert "loop_width_mm >= 1000" in run.missed
+    assert [c.constraint for c in run.constraints] == scene.constraint_names()
+    with pytest.raises(ValueError, match="loop_width_mm"):
+        Scene.builtin("paper-search").with_set("search.constraints", '["loop_widht_mm <= 50"]')

@@ -63,3 +63,24 @@ def test_a_run_that_ends_infeasible_says_so():
     with pytest.warns(RuntimeWarning, match="no feasible design"):
         message = summary(res)
     assert message.startswith("no feasible design")
+
+
+def test_search_constraints_are_pymoo_constraints_after_the_objectives():
+    # A bound on any measure: one more column of G, the constraint's normalised violation,
+    # read from the batch's constrained measure (picking height ≤ −95 mm; scale 9.5 mm).
+    scene = Scene.builtin("paper-search").with_set("search.constraints", '["picking_height_mm <= -95"]')
+    assert scene.constraint_names() == ["picking_height_mm <= -95"]
+    problem = SceneProblem(scene)
+    assert problem.n_ieq_constr == 10
+    x = problem.xl + np.random.default_rng(3).random((40, 17)) * (problem.xu - problem.xl)
+    out = problem.evaluate(x, return_as_dictionary=True)
+    core = evaluate_batch(scene, x, measures=["picking_height_mm"])
+    valid = core.valid
+    assert valid.sum() >= 20
+    height = core.value("picking_height_mm")
+    np.testing.assert_array_equal(core.constraint_values[valid, 0], height[valid])
+    expected = np.maximum(height + 95.0, 0.0) / 9.5
+    np.testing.assert_allclose(out["G"][valid, 9], expected[valid], rtol=0, atol=1e-12)
+    assert (out["G"][valid, 9] > 0).any() and (out["G"][valid, 9] == 0).any(), "both sides of the bound are sampled"
+    np.testing.assert_allclose(core.cv[valid], np.maximum(out["G"][valid], 0).sum(axis=1), rtol=1e-12)
+    assert np.array_equal(core.feasible, valid & (np.maximum(out["G"], 0).sum(axis=1) == 0))

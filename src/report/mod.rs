@@ -3,7 +3,9 @@
 use noncirc_core::GearSummary;
 use noncirc_core::SectionMeasures;
 use noncirc_core::{BoxReport, FitReport};
-use noncirc_core::{Evaluation, Evaluator, GearPair, ObjectiveValue, Result, Scene, SceneKind};
+use noncirc_core::{
+    ConstraintValue, Evaluation, Evaluator, GearPair, ObjectiveValue, Result, Scene, SceneKind,
+};
 use noncirc_core::{Events, PickingCheck};
 use noncirc_core::{Measure, MeasureCost, Measured};
 use serde::Serialize;
@@ -127,11 +129,13 @@ impl GearReport {
     }
 }
 
-/// One objective as reported: `{name, value, unit, lower, upper, violation}`.
+/// One objective or search constraint as reported: `{name, label, value, unit, lower, upper,
+/// violation, margin}` (the unit's; `violation` 0 when met, `margin` negative when missed).
+/// A constraint's name is its measure's, its label as written (`picking_height_mm <= -90`).
 #[derive(Debug, Clone, Serialize)]
-pub struct ObjectiveRow {
-    pub name: &'static str,
-    pub label: &'static str,
+pub struct RequirementRow {
+    pub name: String,
+    pub label: String,
     pub value: f64,
     pub unit: &'static str,
     pub lower: Option<f64>,
@@ -140,11 +144,11 @@ pub struct ObjectiveRow {
     pub margin: f64,
 }
 
-impl From<&ObjectiveValue> for ObjectiveRow {
+impl From<&ObjectiveValue> for RequirementRow {
     fn from(v: &ObjectiveValue) -> Self {
         Self {
-            name: v.kind.name(),
-            label: v.kind.label(),
+            name: v.kind.name().to_string(),
+            label: v.kind.label().to_string(),
             value: v.value,
             unit: v.kind.unit(),
             lower: v.lower,
@@ -153,6 +157,30 @@ impl From<&ObjectiveValue> for ObjectiveRow {
             margin: v.margin,
         }
     }
+}
+
+impl From<&ConstraintValue> for RequirementRow {
+    fn from(v: &ConstraintValue) -> Self {
+        let c = v.constraint;
+        let bound = Some(c.bound);
+        Self {
+            name: c.measure.name(),
+            label: c.text(),
+            value: v.value,
+            unit: c.measure.unit(),
+            lower: bound.filter(|_| !c.at_most),
+            upper: bound.filter(|_| c.at_most),
+            violation: v.violation,
+            margin: v.margin,
+        }
+    }
+}
+
+/// The evaluation's objectives, then its search constraints, as reported.
+pub fn requirement_rows(eval: &Evaluation) -> Vec<RequirementRow> {
+    (eval.objectives.iter().map(RequirementRow::from))
+        .chain(eval.constraints.iter().map(RequirementRow::from))
+        .collect()
 }
 
 /// One arm's picking and planting carrier angles (deg; paper Table 1).
@@ -272,7 +300,9 @@ pub struct EvaluationReport {
     pub events: Option<EventsRow>,
     /// The trajectory's sections in the order of motion (three-arm scenes).
     pub sections: Option<[SectionMeasures; 4]>,
-    pub objectives: Vec<ObjectiveRow>,
+    pub objectives: Vec<RequirementRow>,
+    /// The scene's `search.constraints`, each on its measure (empty without).
+    pub constraints: Vec<RequirementRow>,
     /// Every measure with its unit: objectives, events, shape, sections, box travel.
     pub measures: Vec<MeasureRow>,
     pub gear: Option<GearSummary>,
@@ -371,7 +401,8 @@ impl EvaluationReport {
             events: (eval.events.as_ref())
                 .map(|e| EventsRow::new(e, eval.kinematics.as_ref().map_or(3, |k| k.arms()))),
             sections: anatomy.as_ref().map(|a| a.sections),
-            objectives: eval.objectives.iter().map(ObjectiveRow::from).collect(),
+            objectives: eval.objectives.iter().map(RequirementRow::from).collect(),
+            constraints: eval.constraints.iter().map(RequirementRow::from).collect(),
             measures: measure_rows(&Measured::with_anatomy(eval, scene, anatomy)),
             gear: eval.gear,
             moving_box: eval.moving_box,
@@ -412,6 +443,10 @@ impl EvaluationReport {
             );
         }
         out += &objective_table(&self.objectives);
+        if !self.constraints.is_empty() {
+            out += "search constraints:\n";
+            out += &objective_table(&self.constraints);
+        }
         if let Some(why) = &self.strength_unavailable {
             out += &format!("  no tooth strength: {why}\n");
         }

@@ -1,7 +1,7 @@
 //! The reports as readable text: aligned tables, objective gauges, the search summary and
 //! sweeps, with names in the papers' order.
 
-use super::ObjectiveRow;
+use super::RequirementRow;
 use noncirc_core::BoxReport;
 
 /// Formats `(label, value)` rows as an aligned two-column table.
@@ -13,7 +13,7 @@ pub fn table(rows: &[(&str, String)]) -> String {
 }
 
 /// Objectives as gauge rows.
-pub fn objective_table(objectives: &[ObjectiveRow]) -> String {
+pub fn objective_table(objectives: &[RequirementRow]) -> String {
     let mut out = String::new();
     for o in objectives {
         let bounds = match (o.lower, o.upper) {
@@ -171,12 +171,13 @@ pub fn summary_table(s: &crate::search::Summary) -> String {
         (
             "result",
             if s.feasible {
-                "FEASIBLE: meets every objective".into()
+                format!("FEASIBLE: meets {}", s.requirements())
             } else {
                 let missed = s.missed();
                 format!(
-                    "NOT FEASIBLE: no design found meets every objective; the best misses {} \
+                    "NOT FEASIBLE: no design found meets {}; the best misses {} \
                      (a larger --budget, another --seed or --algorithm de|cmaes may find one)",
+                    s.requirements(),
                     if missed.is_empty() {
                         "them all (the model refused it)".to_string()
                     } else {
@@ -206,6 +207,15 @@ pub fn summary_table(s: &crate::search::Summary) -> String {
                 "  {k:<28} {v:>10.4}  {:>8.4}  {}\n",
                 s.violations.get(k).copied().unwrap_or(0.0),
                 kind.unit()
+            );
+        }
+    }
+    if !s.constraints.is_empty() {
+        out += "\nsearch constraints at the default resolution (value, violation, unit):\n";
+        for c in &s.constraints {
+            out += &format!(
+                "  {:<28} {:>10.4}  {:>8.4}  {}\n",
+                c.label, c.value, c.violation, c.unit
             );
         }
     }

@@ -302,6 +302,38 @@ test('the gauges read at a glance (colour, margin, off-scale arrows) and stay in
   }
 });
 
+test('constraints typed on one line become gauges with the CLI\'s values, count in the verdict, and go when cleared', async () => {
+  const field = page.locator('#constraints');
+  const before = await page.locator('#gauges .gauge').count();
+  await field.fill('picking_height_mm <= -90;  loop_width_mm >= 1000');
+  await field.press('Enter');
+  const report = await pageReport();
+  assert.deepEqual(report.constraints.map((c) => c.label), ['picking_height_mm <= -90', 'loop_width_mm >= 1000']);
+  const expected = cliJson('evaluate', sceneFile('constrained.toml', await pageScene()));
+  assertClose(report, expected, 1e-12);
+  assert.equal(await page.locator('#gauges .gauge').count(), before + 2);
+  for (const c of expected.constraints) {
+    const g = page.locator(`[data-constraint="${c.label}"]`);
+    assert.equal(Number(await g.locator('.value-text').textContent()), +c.value.toPrecision(4), c.label);
+    assert.equal((await g.getAttribute('class')).includes('missed'), c.violation > 0, c.label);
+  }
+  // No loop is a metre wide: that gauge is missed, and the verdict counts it.
+  assert.ok(expected.constraints[1].violation > 0);
+  const met = expected.objectives.filter((o) => o.violation === 0).length + expected.constraints.filter((c) => c.violation === 0).length;
+  assert.equal(await page.locator('#verdict').textContent(), `${met} of ${before + 2} met (2 constraints)`);
+  await page.locator('#judge').screenshot({ path: join(results, 'studio_constraints.png') });
+  // A misspelt name is refused beside the field, naming the nearest, and the design stays.
+  await field.fill('loop_widht_mm <= 50');
+  await field.press('Enter');
+  assert.match(await page.locator('#constraints ~ .msg').textContent(), /loop_width_mm/);
+  assert.equal((await pageReport()).constraints.length, 2);
+  await field.fill('');
+  await field.press('Enter');
+  assert.equal((await pageReport()).constraints.length, 0);
+  assert.equal(await page.locator('#gauges .gauge').count(), before);
+  assert.equal(await field.getAttribute('aria-invalid'), 'false');
+});
+
 test('a plot zooms around the pointer, pans when zoomed, reads out the point under it and shows it whole on a double click', async () => {
   const svg = page.locator('#mechanism');
   const full = await svg.getAttribute('viewBox');

@@ -395,7 +395,10 @@ fn robustness_and_sensitivity_report_and_name_what_they_refuse() {
             &["robustness", "--set", "tolerances.beta0_deg={sigma=-1}"][..],
             "tolerances.beta0_deg.sigma",
         ),
-        (&["sensitivity", "--box-scale", "2"][..], "box_scale) = 2.0: expected"),
+        (
+            &["sensitivity", "--box-scale", "2"][..],
+            "box_scale) = 2.0: expected",
+        ),
         (&["sensitivity", "--base-samples", "1"][..], "base samples"),
         (
             &[
@@ -906,4 +909,55 @@ fn a_built_in_s_name_means_the_built_in_and_compare_refuses_a_gear_scene() {
         "{stderr}"
     );
     std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn search_constraints_are_reported_by_evaluate_and_refused_by_name_where_unmeasurable() {
+    let run = |args: &[&str]| noncirc().args(args).output().unwrap();
+    let set = r#"search.constraints=["picking_height_mm <= -90", "loop_width_mm >= 1000"]"#;
+    let json = run(&["evaluate", "--set", set, "--format", "json"]);
+    assert_eq!(json.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    let measure = |name: &str| {
+        (v["measures"].as_array().unwrap().iter())
+            .find(|m| m["name"] == name)
+            .unwrap()["value"]
+            .as_f64()
+            .unwrap()
+    };
+    let c = v["constraints"].as_array().unwrap();
+    assert_eq!(c[0]["label"], "picking_height_mm <= -90");
+    assert_eq!(
+        c[0]["value"].as_f64().unwrap(),
+        measure("picking_height_mm")
+    );
+    assert_eq!(c[0]["upper"].as_f64().unwrap(), -90.0);
+    // No loop is a metre wide: missed, by its width's distance to 1000 mm, so the paper's
+    // design is infeasible under it.
+    let width = measure("loop_width_mm");
+    assert_eq!(c[1]["violation"].as_f64().unwrap(), 1000.0 - width);
+    assert_eq!(v["feasible"], false);
+    let table = run(&["evaluate", "--set", set]);
+    let text = String::from_utf8(table.stdout).unwrap();
+    assert!(
+        text.contains("search constraints:") && text.contains("loop_width_mm >= 1000"),
+        "{text}"
+    );
+    for (constraint, named) in [
+        ("box_travel_mm <= 3", "needs a moving box"),
+        ("path_rms_mm <= 1", "the scene has no [target]"),
+        ("loop_widht_mm <= 50", "loop_width_mm"),
+        ("loop_width_mm < 50", "NAME <= VALUE"),
+        ("loop_width_mm <= 1e999", "its bound"),
+    ] {
+        let set = format!(r#"search.constraints=["{constraint}"]"#);
+        let out = run(&["optimise", "--set", &set]);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{constraint}: {err}");
+        assert!(err.contains(named), "{constraint}: {err}");
+    }
+    let twice = r#"search.constraints=["loop_width_mm <= 50", "loop_width_mm <= 50"]"#;
+    let out = run(&["evaluate", "--set", twice]);
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(err.contains("listed twice"), "{err}");
 }

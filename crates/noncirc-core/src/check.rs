@@ -4,6 +4,7 @@
 //! lists); and the search settings.
 
 use crate::error::{finite, Error, Result};
+use crate::goal::Goal;
 use crate::objective_kind::ObjectiveKind;
 use crate::params::{pulled_values, Param};
 use crate::reference::{interval_checks, TABLES};
@@ -201,19 +202,8 @@ impl Scene {
             let name = goal.name();
             let problem = if self.search.goals[..i].contains(goal) {
                 format!("'{name}' is listed twice")
-            } else if goal.needs_moving_box() && self.kind != SceneKind::Transplanter {
-                format!("'{name}' needs a moving box: only a transplanter scene computes it")
-            } else if goal.needs_target() && self.target.is_none() {
-                format!("'{name}' measures the fit to a target: the scene has no [target]")
-            } else if let Some(slot) = goal
-                .pose_slot()
-                .filter(|&k| self.target.as_ref().is_some_and(|t| k >= t.poses.len()))
-            {
-                format!(
-                    "'{name}' reads key pose {}: the target has {}",
-                    slot + 1,
-                    self.target.as_ref().map_or(0, |t| t.poses.len())
-                )
+            } else if let Some(problem) = self.unmeasurable(*goal, &name) {
+                problem
             } else if goal.is_robust()
                 && !matches!(self.kind, SceneKind::Mechanism | SceneKind::Transplanter)
             {
@@ -223,6 +213,38 @@ impl Scene {
             };
             return Err(Error::BadList {
                 list: "search.goals",
+                problem,
+            });
+        }
+        let constraints = &self.search.constraints;
+        if constraints.len() > SearchSpec::MAX_CONSTRAINTS {
+            return Err(Error::OutOfRange {
+                name: "search.constraints (count)".into(),
+                value: constraints.len() as f64,
+                expected: format!("at most {}", SearchSpec::MAX_CONSTRAINTS),
+            });
+        }
+        for (i, c) in constraints.iter().enumerate() {
+            let text = c.text();
+            let as_goal = Goal::Measure {
+                measure: c.measure,
+                maximise: false,
+            };
+            let problem = if constraints[..i].contains(c) {
+                format!("'{text}' is listed twice")
+            } else if !matches!(self.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
+                format!(
+                    "'{text}' bounds a mechanism's measure: a three_arm or transplanter scene \
+                     has it (this one is {})",
+                    self.kind.name()
+                )
+            } else if let Some(problem) = self.unmeasurable(as_goal, &text) {
+                problem
+            } else {
+                continue;
+            };
+            return Err(Error::BadList {
+                list: "search.constraints",
                 problem,
             });
         }
@@ -247,5 +269,27 @@ impl Scene {
             });
         }
         Ok(())
+    }
+
+    /// Why this scene cannot compute `goal` (named `name` in the message), if it cannot:
+    /// a moving box it has not, a target it has not, a key pose its target has not.
+    fn unmeasurable(&self, goal: Goal, name: &str) -> Option<String> {
+        let poses = self.target.as_ref().map_or(0, |t| t.poses.len());
+        if goal.needs_moving_box() && self.kind != SceneKind::Transplanter {
+            Some(format!(
+                "'{name}' needs a moving box: only a transplanter scene computes it"
+            ))
+        } else if goal.needs_target() && self.target.is_none() {
+            Some(format!(
+                "'{name}' measures the fit to a target: the scene has no [target]"
+            ))
+        } else {
+            (goal.pose_slot().filter(|&k| k >= poses)).map(|slot| {
+                format!(
+                    "'{name}' reads key pose {}: the target has {poses}",
+                    slot + 1
+                )
+            })
+        }
     }
 }

@@ -36,6 +36,7 @@ mod teeth;
 mod agronomy;
 mod cad_spec;
 mod check;
+mod constraint;
 mod dynamics_spec;
 mod goal;
 mod measure;
@@ -53,6 +54,7 @@ mod accuracy;
 mod anatomy;
 mod dynamics;
 mod evaluation;
+mod evaluator;
 mod events;
 mod fit;
 mod flywheel;
@@ -72,6 +74,7 @@ mod serial;
 pub use agronomy::{Agronomy, Travel};
 pub use blank::Blank;
 pub use cad_spec::CadSpec;
+pub use constraint::{Constraint, ConstraintValue};
 pub use curve::{
     paper_control_points, CartesianCurve, CartesianKind, CurveSpec, Ellipse, Fourier,
     PeriodicSpline, PitchCurve, Polar,
@@ -116,7 +119,8 @@ pub use vec2::Vec2;
 // Evaluation and its accuracy.
 pub use accuracy::{observed_order, output_errors, ErrorRow};
 pub use error::{Error, Result};
-pub use evaluation::{Evaluation, Evaluator, GearSummary, PairGeometry, StageCounts};
+pub use evaluation::{Evaluation, GearSummary, PairGeometry};
+pub use evaluator::{Evaluator, StageCounts};
 pub use fit::{target_of, FitReport, PoseFit};
 pub use inverse::{invert, Branch, Condition, InverseOutcome, InverseSpec, Place};
 

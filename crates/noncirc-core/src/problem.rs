@@ -1,8 +1,9 @@
-//! A search problem made from a scene: free parameters with bounds, the objectives'
-//! violations as constraints, and goals to minimise.
+//! A search problem made from a scene: free parameters with bounds, the objectives' and
+//! the search constraints' violations as constraints, and goals to minimise.
 
 use crate::error::{Error, Result};
-use crate::evaluation::{Evaluation, Evaluator};
+use crate::evaluation::Evaluation;
+use crate::evaluator::Evaluator;
 use crate::goal::{Goal, GoalQuantity, INVALID_CV};
 use crate::measure_value::Measured;
 use crate::objective_kind::{scale, ObjectiveKind};
@@ -264,7 +265,8 @@ impl SceneProblem {
     }
 
     /// How many residuals [`SceneProblem::fit_residuals`] gives at `resolution`: the
-    /// target's ([`FitReport::residuals`](crate::fit::FitReport)), then one per objective.
+    /// target's ([`FitReport::residuals`](crate::fit::FitReport)), then one per objective
+    /// and one per constraint.
     pub fn fit_residual_count(&self, resolution: &Resolution) -> usize {
         let target = self.base.target.as_deref();
         let path = target
@@ -275,12 +277,12 @@ impl SceneProblem {
             .map(|p| 2 + p.attitude_deg.is_some() as usize + p.carrier_deg.is_some() as usize)
             .sum();
         let pulls = target.map_or(0, |t| t.design.len());
-        path + poses + pulls + self.base.objectives.len()
+        path + poses + pulls + self.base.objectives.len() + self.base.search.constraints.len()
     }
 
     /// The residuals of design `u` for a fit at `resolution`: the fit's to the scene's
-    /// target, then each objective's violation over its scale times [`VIOLATION_WEIGHT`]
-    /// (zero when met); and the design's fitness. A design the model refuses (or a scene
+    /// target, then each objective's and each constraint's violation over its scale times
+    /// [`VIOLATION_WEIGHT`] (zero when met); and the design's fitness. A design the model refuses (or a scene
     /// without a target) gives [`REFUSED_RESIDUAL`] for each.
     pub fn fit_residuals(
         &self,
@@ -298,6 +300,9 @@ impl SceneProblem {
                 r.extend(
                     (eval.objectives.iter())
                         .map(|o| VIOLATION_WEIGHT * o.violation / scale(o.kind, bounds)),
+                );
+                r.extend(
+                    (eval.constraints.iter()).map(|c| VIOLATION_WEIGHT * c.normalised_violation()),
                 );
                 (r.len() == count && r.iter().all(|x| x.is_finite())).then_some(r)
             })
@@ -328,12 +333,7 @@ impl SceneProblem {
     ) -> (Fitness, Result<Evaluation>) {
         match evaluator.evaluate_at(scratch, resolution) {
             Ok(eval) => {
-                let bounds = &scratch.bounds;
-                let cv = eval
-                    .objectives
-                    .iter()
-                    .map(|o| o.violation / scale(o.kind, bounds))
-                    .sum::<f64>();
+                let cv = eval.normalised_violation(&scratch.bounds);
                 let cv = if cv.is_finite() {
                     cv.min(INVALID_CV)
                 } else {
@@ -423,7 +423,7 @@ mod tests {
 
     #[test]
     fn a_goal_physical_value_is_the_objective_or_its_margin_in_its_unit() {
-        use crate::evaluation::Evaluator;
+        use crate::evaluator::Evaluator;
         let scene = Scene::default();
         let eval = Evaluator::new()
             .evaluate_at(&scene, &scene.resolution)
@@ -449,7 +449,7 @@ mod tests {
 
     #[test]
     fn the_fit_residuals_are_as_many_as_counted_with_poses_and_design_pulls() {
-        use crate::evaluation::Evaluator;
+        use crate::evaluator::Evaluator;
         let mut scene = Scene::default();
         let eval = Evaluator::new().evaluate(&scene).unwrap();
         let kin = eval.kinematics.unwrap();
@@ -472,6 +472,50 @@ mod tests {
                 r.iter().all(|x| *x != REFUSED_RESIDUAL),
                 "{samples}: refused"
             );
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+        /// Over random designs, a search constraint adds its normalised violation to the
+        /// fitness's and nothing else: the value is the measure's, read without it, and
+        /// the goals do not change.
+        #[test]
+        fn a_constraint_adds_its_normalised_violation_to_the_fitness(
+            u in proptest::collection::vec(0.0..1.0f64, 17),
+            bound in -130.0..-60.0f64,
+            at_most in proptest::bool::ANY,
+        ) {
+            use crate::constraint::Constraint;
+            use crate::measure::Measure;
+            use crate::measure_value::Measured;
+            let plain = Scene::default();
+            let measure = Measure::parse("picking_height_mm").unwrap();
+            let mut constrained = plain.clone();
+            let c = Constraint { measure, bound, at_most };
+            constrained.search.constraints = vec![c];
+            let (without, with) = (SceneProblem::new(&plain).unwrap(), SceneProblem::new(&constrained).unwrap());
+            proptest::prop_assert_eq!(without.dim(), u.len());
+            let res = plain.search.screening;
+            let mut evaluator = Evaluator::new();
+            let (f0, e0) = without.fitness(&u, &mut evaluator, &mut plain.clone(), &res);
+            let (f1, e1) = with.fitness(&u, &mut evaluator, &mut constrained.clone(), &res);
+            proptest::prop_assert_eq!(&f0.f, &f1.f);
+            match (e0, e1) {
+                (Some(e0), Some(e1)) => {
+                    let scene = without.scene_at(&u);
+                    let value = measure.value(&Measured::new(&e0, &scene)).unwrap();
+                    let reading = e1.constraints[0];
+                    proptest::prop_assert_eq!(reading.value, value);
+                    let past = if at_most { value - bound } else { bound - value };
+                    proptest::prop_assert_eq!(reading.violation, past.max(0.0));
+                    let expected = (f0.cv + past.max(0.0) / (0.1 * bound.abs()).max(1.0)).min(INVALID_CV);
+                    proptest::prop_assert!((f1.cv - expected).abs() <= 1e-12 * expected.max(1.0), "{} vs {}", f1.cv, expected);
+                    proptest::prop_assert_eq!(e1.total_violation() == 0.0, f1.cv == 0.0);
+                }
+                (None, None) => proptest::prop_assert_eq!(f1.cv, INVALID_CV),
+                _ => proptest::prop_assert!(false, "one evaluation refused, the other not"),
+            }
         }
     }
 }

@@ -11,7 +11,8 @@
 
 use crate::curve::{CurveSpec, TAU};
 use crate::error::{Error, Result};
-use crate::evaluation::{Evaluation, Evaluator};
+use crate::evaluation::Evaluation;
+use crate::evaluator::Evaluator;
 use crate::objective_kind::{scale, ObjectiveKind};
 use crate::planetary::Kinematics;
 use crate::resolution::Resolution;

@@ -2,6 +2,7 @@
 
 use crate::agronomy::Agronomy;
 use crate::cad_spec::CadSpec;
+use crate::constraint::Constraint;
 use crate::curve::{CurveSpec, PitchCurve};
 use crate::dynamics_spec::DynamicsSpec;
 use crate::error::{Error, Result};
@@ -124,6 +125,13 @@ pub struct SearchSpec {
     /// `least_margin`, `picking_tip_speed` and `box_travel` (minimised), `min:NAME` /
     /// `max:NAME` of any measure. Empty: `least_margin`.
     pub goals: Vec<Goal>,
+    /// Bounds on any measure that a design must meet beside the objectives, written
+    /// `NAME <= VALUE` or `NAME >= VALUE` (`picking_height_mm <= -90`): every search
+    /// counts a missed one as a missed objective, and every evaluation reports them. Left
+    /// out of a written scene while empty (a checkpoint written before they existed keeps
+    /// its scene's hash).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub constraints: Vec<Constraint>,
     /// Confirm the reported designs under the module rule `teeth` (their teeth cut and
     /// checked, `gear.module.teeth` teeth) while the search itself screens with the
     /// scene's own rule: the teeth's cost is paid once per reported design. Left out of a
@@ -137,6 +145,8 @@ impl SearchSpec {
     pub const MAX_POPULATION: usize = noncirc_search::MAX_POPULATION;
     /// Most free parameters (every number of the largest built-in scene is about 60).
     pub const MAX_FREE: usize = 1_000;
+    /// Most constraints (two bounds on each of the hundred or so measures).
+    pub const MAX_CONSTRAINTS: usize = 200;
 }
 
 impl Default for SearchSpec {
@@ -149,6 +159,7 @@ impl Default for SearchSpec {
             seed: 1,
             screening: Resolution::FAST,
             goals: Vec::new(),
+            constraints: Vec::new(),
             confirm_with_teeth: false,
         }
     }

@@ -3,7 +3,7 @@
 //! thread computed it, so a search gives the same result with this as with the CLI's
 //! parallel evaluator.
 
-use crate::evaluation::Evaluator;
+use crate::evaluator::Evaluator;
 use crate::problem::SceneProblem;
 use crate::scene::Scene;
 use noncirc_search::{BatchEvaluator, Fitness};

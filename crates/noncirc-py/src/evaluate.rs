@@ -42,6 +42,20 @@ pub(crate) fn evaluate<'py>(
         objectives.set_item(o.kind.name(), d)?;
     }
     out.set_item("objectives", objectives)?;
+    // The search constraints, keyed as written (`picking_height_mm <= -90`).
+    let constraints = PyDict::new(py);
+    for c in &eval.constraints {
+        let d = PyDict::new(py);
+        d.set_item("measure", c.constraint.measure.name())?;
+        d.set_item("value", c.value)?;
+        d.set_item("unit", c.constraint.measure.unit())?;
+        d.set_item("bound", c.constraint.bound)?;
+        d.set_item("at_most", c.constraint.at_most)?;
+        d.set_item("violation", c.violation)?;
+        d.set_item("margin", c.margin)?;
+        constraints.set_item(c.constraint.text(), d)?;
+    }
+    out.set_item("constraints", constraints)?;
     if let Some(e) = &eval.events {
         let d = PyDict::new(py);
         // The names that are measures' are the measures' own.
@@ -167,7 +181,9 @@ const MOST_TRAJECTORY_BYTES: f64 = 2e9;
 
 /// Evaluates an `(n, d)` float64 array of designs (columns: `scene.free_parameters()`), in
 /// parallel with the GIL released. Returns arrays: `values`, `violations`,
-/// `normalised_violations` (n, k), `cv` (n,), `goals` (n, g), `valid` (n,) and `errors`;
+/// `normalised_violations` (n, k), `constraint_values` and
+/// `constraint_normalised_violations` (n, c: `search.constraints`), `cv` (n,: the sum of
+/// both normalised violations), `goals` (n, g), `valid` (n,) and `errors`;
 /// with `trajectories`, `trajectories` (n, samples_per_turn, 2), each design's tip path in
 /// mm (NaN rows for refused designs). `progress(info)` is called after every piece of rows
 /// (info: evaluations, total).
@@ -273,6 +289,7 @@ pub(crate) fn evaluate_batch<'py>(
     }
     let pool = pool(threads)?;
     let k = scene.inner.objectives.len();
+    let c = scene.inner.search.constraints.len();
     let g = problem.goals();
     let batch = BatchRows::new(&problem, &res, &measures).with_tip_paths(trajectories);
     // In pieces, with a check for Ctrl-C between two: a large batch answers it within a
@@ -293,6 +310,8 @@ pub(crate) fn evaluate_batch<'py>(
     let mut values = Array2::from_elem((n, k), f64::NAN);
     let mut violations = Array2::from_elem((n, k), f64::NAN);
     let mut normalised = Array2::from_elem((n, k), noncirc::core::INVALID_CV);
+    let mut constraint_values = Array2::from_elem((n, c), f64::NAN);
+    let mut constraint_normalised = Array2::from_elem((n, c), noncirc::core::INVALID_CV);
     let mut goals = Array2::zeros((n, g));
     let mut cv = Array1::zeros(n);
     let mut valid = Array1::from_elem(n, false);
@@ -329,6 +348,13 @@ pub(crate) fn evaluate_batch<'py>(
                     normalised[[i, j]] =
                         o.violation / noncirc::core::scale(o.kind, &scene.inner.bounds);
                 }
+                for (j, v) in row.constraints.iter().enumerate() {
+                    constraint_values[[i, j]] = v.value;
+                    // Capped as the fitness is: a NaN measure's infinite violation stays
+                    // a number pymoo can sum.
+                    constraint_normalised[[i, j]] =
+                        v.normalised_violation().min(noncirc::core::INVALID_CV);
+                }
                 errors.append(py.None())?;
             }
             Err(e) => errors.append(e)?,
@@ -353,6 +379,17 @@ pub(crate) fn evaluate_batch<'py>(
     out.set_item("values", values.into_pyarray(py))?;
     out.set_item("violations", violations.into_pyarray(py))?;
     out.set_item("normalised_violations", normalised.into_pyarray(py))?;
+    out.set_item(
+        "constraint_names",
+        (scene.inner.search.constraints.iter())
+            .map(|c| c.text())
+            .collect::<Vec<_>>(),
+    )?;
+    out.set_item("constraint_values", constraint_values.into_pyarray(py))?;
+    out.set_item(
+        "constraint_normalised_violations",
+        constraint_normalised.into_pyarray(py),
+    )?;
     out.set_item("cv", cv.into_pyarray(py))?;
     let quantities = problem.goal_quantities();
     out.set_item(

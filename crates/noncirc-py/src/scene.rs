@@ -205,6 +205,14 @@ impl Scene {
             .collect()
     }
 
+    /// The search constraints (`search.constraints`) as written, in order:
+    /// `picking_height_mm <= -90`.
+    fn constraint_names(&self) -> Vec<String> {
+        (self.inner.search.constraints.iter())
+            .map(|c| c.text())
+            .collect()
+    }
+
     fn __reduce__(&self, py: Python<'_>) -> Result<(PyObject, (String,))> {
         let rebuild = py.get_type::<Scene>().getattr("from_json")?.unbind();
         Ok((rebuild, (self.to_json()?,)))

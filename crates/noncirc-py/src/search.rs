@@ -164,8 +164,9 @@ pub(crate) fn optimise<'py>(
         // Said, not only flagged: a run that found nothing must not pass for a result.
         let missed = summary.missed();
         let message = format!(
-            "noncirc.optimise: no design found meets every objective (the best misses {}); \
-             a larger budget, another seed or algorithm='de'|'cmaes' may find one",
+            "noncirc.optimise: no design found meets {} (the best misses {}); a larger \
+             budget, another seed or algorithm='de'|'cmaes' may find one",
+            summary.requirements(),
             if missed.is_empty() {
                 "all: the model refused it".to_string()
             } else {

@@ -125,6 +125,24 @@ pub(super) const FIELDS: &[Field] = &[
         number: None,
     },
     Field {
+        key: "search.constraints",
+        symbol: "",
+        unit: "",
+        range: Range::Rule(
+            "`NAME <= VALUE` or `NAME >= VALUE` of a measure (below), each once, at most 200; \
+             three-arm and transplanter scenes",
+        ),
+        meaning: "Bounds on any measure that a design must meet beside the objectives \
+                  (`picking_height_mm <= -90`): every search counts a missed one as a \
+                  missed objective, `evaluate` reports them (docs/search.md).",
+        refused: &[
+            "search.constraints=[\"loop_width_mm < 50\"]",
+            "search.constraints=[\"path_rms_mm <= 1\"]",
+            "search.constraints=[\"loop_width_mm <= 50\",\"loop_width_mm <= 50\"]",
+        ],
+        number: None,
+    },
+    Field {
         key: "search.confirm_with_teeth",
         symbol: "",
         unit: "",

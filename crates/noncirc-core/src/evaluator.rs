@@ -1,0 +1,417 @@
+//! Staged evaluation: pitch curve → closure → kinematics → each objective (and the moving
+//! box apart), then the search constraints. A scene runs only the stages its outputs
+//! need; counters prove it.
+
+use crate::curve::PitchCurve;
+use crate::error::{Error, Result};
+use crate::events::events;
+use crate::fit::fit_report;
+use crate::gear::GearPair;
+use crate::gear::ModuleReading;
+use crate::measure_value::Measured;
+use crate::moving_box::evaluate_box_with;
+use crate::objective_kind::ObjectiveKind;
+use crate::objectives::{objective_value, ObjectiveValue};
+use crate::params::pulled_values;
+use crate::planetary::Kinematics;
+use crate::quadrature::SpectralIntegrator;
+use crate::resolution::Resolution;
+use crate::scene::{Scene, SceneKind};
+use crate::strength::train_strength;
+use crate::target::{PreparedTarget, Target};
+use crate::teeth::{TeethReport, ToothedPair};
+use serde::Serialize;
+use std::sync::Arc;
+
+use crate::evaluation::{Evaluation, GearSummary, PairGeometry};
+
+/// How many times each stage ran.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct StageCounts {
+    pub pitch_curve: u64,
+    pub closure: u64,
+    pub kinematics: u64,
+    pub events: u64,
+    /// Per objective, in `ObjectiveKind::ALL` order.
+    pub objectives: [u64; 11],
+    pub moving_box: u64,
+    /// Toothed pairs cut and checked (the module rule `teeth`).
+    pub teeth: u64,
+    /// Fits to the scene's target measured.
+    pub fit: u64,
+    /// Strength checks (dynamics at working speed, teeth cut, stresses) run for the
+    /// objectives `bending_safety` and `contact_safety`.
+    pub strength: u64,
+}
+
+/// Runs scenes through the stages they need, counting each stage. Keep one per thread:
+/// it holds the planned FFTs that repeated evaluations reuse.
+#[derive(Debug, Clone, Default)]
+pub struct Evaluator {
+    counts: StageCounts,
+    integrator: Option<SpectralIntegrator>,
+    /// The last target prepared, and what its preparation gave: kept while scenes bring
+    /// the same target.
+    target: Option<(Arc<Target>, Result<Arc<PreparedTarget>>)>,
+}
+
+impl Evaluator {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// An evaluator with its transforms already planned for `resolution` (if it is valid;
+    /// evaluating then reports why not): its clones share the plans, so parallel workers
+    /// start without planning their own.
+    pub fn planned(resolution: &Resolution) -> Self {
+        Self {
+            counts: StageCounts::default(),
+            integrator: resolution
+                .validate()
+                .is_ok()
+                .then(|| SpectralIntegrator::new(resolution.samples_per_turn)),
+            target: None,
+        }
+    }
+
+    /// The planned transforms for `n` samples per turn (planned on first use).
+    fn integrator(&mut self, n: usize) -> &mut SpectralIntegrator {
+        self.integrator
+            .get_or_insert_with(|| SpectralIntegrator::new(n))
+    }
+
+    /// Prepares `scene`'s target, if it has one, so that this evaluator's clones start
+    /// with it (a bad target's error is kept and returned by each evaluation).
+    pub fn prepare_target(&mut self, scene: &Scene) {
+        if let Some(t) = &scene.target {
+            let _ = self.prepared(t);
+        }
+    }
+
+    /// `scene`'s target prepared, if it has one (kept while scenes bring the same target:
+    /// what the evaluations measure against).
+    pub fn prepared_target(&mut self, scene: &Scene) -> Option<Result<Arc<PreparedTarget>>> {
+        scene.target.as_ref().map(|t| self.prepared(t))
+    }
+
+    /// `target` prepared (once for a run of scenes that share it, by pointer or value).
+    fn prepared(&mut self, target: &Arc<Target>) -> Result<Arc<PreparedTarget>> {
+        let cached =
+            (self.target.as_ref()).is_some_and(|(t, _)| Arc::ptr_eq(t, target) || **t == **target);
+        if !cached {
+            self.target = Some((target.clone(), target.prepare().map(Arc::new)));
+        }
+        self.target.as_ref().expect("just prepared").1.clone()
+    }
+
+    /// Stage executions so far.
+    pub fn counts(&self) -> StageCounts {
+        self.counts
+    }
+
+    /// Evaluates `scene` at its own resolution.
+    ///
+    /// ```
+    /// use noncirc_core::{Evaluator, ObjectiveKind, Scene};
+    ///
+    /// let scene = Scene::default(); // the three-arm paper's design
+    /// let eval = Evaluator::new().evaluate(&scene).unwrap();
+    /// // Every objective the scene asks for, with its value, bounds and violation.
+    /// assert_eq!(eval.objectives.len(), scene.objectives.len());
+    /// // The paper's picking angle is met; its sharp pitch curve leaves no module of 2.5 mm.
+    /// let picking = eval.objective(ObjectiveKind::PickingAngle).unwrap();
+    /// assert!(picking.violation == 0.0 && (picking.value - 0.30).abs() < 0.01);
+    /// assert!(eval.objective(ObjectiveKind::Module).unwrap().violation > 2.0);
+    /// // The picking and planting instants are located on arm I's path.
+    /// let events = eval.events.as_ref().unwrap();
+    /// assert!(events.picking.tip_mm.y > events.planting.tip_mm.y);
+    /// ```
+    pub fn evaluate(&mut self, scene: &Scene) -> Result<Evaluation> {
+        self.evaluate_at(scene, &scene.resolution)
+    }
+
+    /// The teeth stage: runs only under the module rule `teeth`.
+    fn teeth(&mut self, scene: &Scene, curve: &PitchCurve, a: f64) -> Result<Option<TeethReport>> {
+        let rule = &scene.gear.module;
+        match (rule.rule, rule.teeth) {
+            (ModuleReading::Teeth, Some(z)) => {
+                self.counts.teeth += 1;
+                Ok(Some(
+                    ToothedPair::cut(curve, a, z, &scene.gear.teeth)?.report,
+                ))
+            }
+            _ => Ok(None),
+        }
+    }
+
+    /// Builds the scene's pitch curves, closes the pairs and solves the train at
+    /// `resolution` (the stages before the events).
+    pub fn solve_train(&mut self, scene: &Scene, resolution: &Resolution) -> Result<Kinematics> {
+        self.counts.pitch_curve += 1;
+        let (curve, second) = scene.gear.curves()?;
+        self.counts.closure += 1;
+        self.counts.kinematics += 1;
+        let integrator = self.integrator(resolution.samples_per_turn);
+        Kinematics::solve_with(curve, second, &scene.train, resolution, integrator)
+    }
+
+    /// Evaluates a three-arm scene on a train already solved for it (`kin`'s curve and
+    /// train are the scene's, or a [`Kinematics::reassembled`] variant of them): the
+    /// events, the objectives and the moving box, without closing the gears again. The
+    /// tolerance analysis evaluates its assembly variants this way: `scene` is a validated
+    /// scene with another train and agronomy, and only those two are checked here.
+    pub(crate) fn evaluate_solved(&mut self, scene: &Scene, kin: Kinematics) -> Result<Evaluation> {
+        scene.train.validate()?;
+        scene.check_fields("agronomy")?;
+        if !matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
+            return Err(Error::OutOfRange {
+                name: "kind".into(),
+                value: f64::NAN,
+                expected: format!(
+                    "a three_arm or transplanter scene (not {})",
+                    scene.kind.name()
+                ),
+            });
+        }
+        self.counts.kinematics += 1;
+        let mut out = Evaluation::empty(scene, kin.resolution());
+        self.mechanism(scene, kin, &mut out)?;
+        Ok(out)
+    }
+
+    /// The three-arm stages after the train is solved: events, objectives, moving box.
+    fn mechanism(&mut self, scene: &Scene, kin: Kinematics, out: &mut Evaluation) -> Result<()> {
+        let resolution = &kin.resolution();
+        out.centre_distance_mm = Some(kin.centre_distance());
+        let coupled = scene.kind == SceneKind::Transplanter;
+        let target = match &scene.target {
+            Some(t) => Some((t.clone(), self.prepared(t)?)),
+            None => None,
+        };
+        let target_events = target.as_ref().is_some_and(|(t, _)| t.needs_events());
+        let ev = if coupled || target_events || scene.objectives.iter().any(|o| o.needs_events()) {
+            self.counts.events += 1;
+            Some(events(&kin, &scene.agronomy))
+        } else {
+            None
+        };
+        let gear_module = scene
+            .objectives
+            .contains(&ObjectiveKind::Module)
+            .then(|| kin.module(&scene.gear.module));
+        if gear_module.is_some() {
+            out.teeth = self.teeth(scene, kin.curve(), kin.centre_distance())?;
+            if let Some(second) = kin.second_pair() {
+                out.second_teeth = (self.teeth(scene, second.curve(), second.centre_distance()))
+                    .map_err(|e| Error::SecondPair(Box::new(e)))?;
+            }
+        }
+        if let (true, Some(ev)) = (scene.objectives.iter().any(|o| o.needs_strength()), &ev) {
+            self.counts.strength += 1;
+            match train_strength(&kin, ev, scene) {
+                Ok(s) => out.strength = Some(s),
+                Err(e) => out.strength_unavailable = Some(e.to_string()),
+            }
+        }
+        for &kind in &scene.objectives {
+            self.counts.objectives[kind as usize] += 1;
+            let value = objective_value(
+                kind,
+                &kin,
+                ev.as_ref(),
+                &scene.agronomy,
+                gear_module.as_ref(),
+                out.strength.as_ref(),
+            );
+            let mut value = ObjectiveValue::new(kind, value, &scene.bounds);
+            if kind == ObjectiveKind::Module {
+                value.add_teeth(out.teeth.as_ref());
+                value.add_teeth(out.second_teeth.as_ref());
+            }
+            out.objectives.push(value);
+        }
+        if coupled {
+            let window = ev
+                .as_ref()
+                .map(|e| e.picking_window_rad)
+                .unwrap_or_default();
+            let span = (window[1] - window[0]) * scene.moving_box.input_turns_per_carrier_turn;
+            let centre = scene.moving_box.window_centre_deg.to_radians();
+            self.counts.moving_box += 1;
+            out.moving_box = Some(evaluate_box_with(
+                &scene.moving_box,
+                Some([centre - span / 2.0, centre + span / 2.0]),
+                resolution,
+                self.integrator(resolution.samples_per_turn),
+            )?);
+        }
+        out.gear = gear_module.map(|module| GearSummary {
+            centre_distance_mm: kin.centre_distance(),
+            closure_error_mm: kin.pair().closure().error_estimate,
+            perimeter_mm: kin.pair().perimeter(),
+            second: kin.second_pair().map(PairGeometry::of),
+            module,
+        });
+        if let Some((target, prepared)) = &target {
+            self.counts.fit += 1;
+            let design = pulled_values(scene)?;
+            out.fit = Some(fit_report(&kin, ev.as_ref(), target, prepared, &design));
+        }
+        out.events = ev;
+        out.kinematics = Some(kin);
+        // Safety net: a value that broke down numerically is an error, never a NaN.
+        if let Some(o) = out.objectives.iter().find(|o| o.value.is_nan()) {
+            return Err(Error::NonFinite {
+                name: format!(
+                    "objective '{}' (numerical breakdown for this design)",
+                    o.kind.name()
+                ),
+                value: o.value,
+            });
+        }
+        Ok(())
+    }
+
+    /// Evaluates `scene` at `resolution`, running only the stages its outputs need.
+    pub fn evaluate_at(&mut self, scene: &Scene, resolution: &Resolution) -> Result<Evaluation> {
+        scene.validate()?;
+        resolution.validate()?;
+        let mut out = Evaluation::empty(scene, *resolution);
+        match scene.kind {
+            SceneKind::Gear => {
+                self.counts.pitch_curve += 1;
+                let curve = scene.gear.curve.build()?;
+                self.counts.closure += 1;
+                let integrator = self.integrator(resolution.samples_per_turn);
+                let pair = GearPair::solve_with(curve, *resolution, integrator)?;
+                let module = pair.module(&scene.gear.module);
+                out.teeth = self.teeth(scene, pair.curve(), pair.centre_distance())?;
+                out.centre_distance_mm = Some(pair.centre_distance());
+                out.gear = Some(GearSummary {
+                    centre_distance_mm: pair.centre_distance(),
+                    closure_error_mm: pair.closure().error_estimate,
+                    perimeter_mm: pair.perimeter(),
+                    second: None,
+                    module,
+                });
+                for &kind in &scene.objectives {
+                    self.counts.objectives[kind as usize] += 1;
+                    let mut value = ObjectiveValue::new(kind, module.module_max_mm, &scene.bounds);
+                    value.add_teeth(out.teeth.as_ref());
+                    out.objectives.push(value);
+                }
+                out.gear_pair = Some(pair);
+            }
+            SceneKind::Mechanism | SceneKind::Transplanter => {
+                let kin = self.solve_train(scene, resolution)?;
+                self.mechanism(scene, kin, &mut out)?;
+                if !scene.search.constraints.is_empty() {
+                    let measured = Measured::new(&out, scene);
+                    let values = (scene.search.constraints.iter())
+                        .map(|c| c.score(c.measure.value(&measured)))
+                        .collect();
+                    out.constraints = values;
+                }
+            }
+            SceneKind::MovingBox => {
+                self.counts.moving_box += 1;
+                out.moving_box = Some(evaluate_box_with(
+                    &scene.moving_box,
+                    None,
+                    resolution,
+                    self.integrator(resolution.samples_per_turn),
+                )?);
+            }
+        }
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::events::housing_radius;
+
+    #[test]
+    fn a_fit_is_measured_once_per_evaluation_of_a_scene_with_a_target() {
+        let mut scene = Scene::default();
+        let mut evaluator = Evaluator::new();
+        let plain = evaluator.evaluate(&scene).unwrap();
+        assert!(plain.fit.is_none());
+        assert_eq!(evaluator.counts().fit, 0);
+        // The design's own path and events as its target: met, at the tip path's accuracy.
+        let kin = plain.kinematics.unwrap();
+        let target = crate::fit::target_of(&kin, plain.events.as_ref().unwrap(), 4000);
+        scene.target = Some(Arc::new(target));
+        for k in 1..=3 {
+            let eval = evaluator.evaluate(&scene).unwrap();
+            let fit = eval.fit.unwrap();
+            assert!(fit.met && fit.path_hausdorff_mm < 0.05, "{fit:?}");
+            assert_eq!(evaluator.counts().fit, k);
+        }
+        // A bad target never evaluates.
+        let mut bad = (**scene.target.as_ref().unwrap()).clone();
+        bad.x_mm.truncate(2000);
+        bad.y_mm.truncate(2000);
+        scene.target = Some(Arc::new(bad));
+        assert!(matches!(
+            evaluator.evaluate(&scene),
+            Err(Error::OpenTarget { .. })
+        ));
+    }
+
+    #[test]
+    fn a_design_pull_adds_its_scaled_change_to_the_residuals_and_the_cost() {
+        let mut scene = Scene::default();
+        let plain = Evaluator::new().evaluate(&scene).unwrap();
+        let kin = plain.kinematics.unwrap();
+        let mut target = crate::fit::target_of(&kin, plain.events.as_ref().unwrap(), 512);
+        scene.target = Some(Arc::new(target.clone()));
+        let unpulled = Evaluator::new().evaluate(&scene).unwrap().fit.unwrap();
+        assert_eq!(unpulled.design_rms, None);
+        // Φ0 = 86° pulled towards 92° with scale 2°: (86 − 92)/2 = −3; S = 145 mm towards
+        // itself: 0. RMS √(9/2), cost up by 9/2.
+        let pull = |name: &str, value: f64, scale: f64| crate::target::DesignPull {
+            name: name.into(),
+            value,
+            scale,
+        };
+        target.design = vec![
+            pull("train.phi0_deg", 92.0, 2.0),
+            pull("train.arm_length_mm", 145.0, 10.0),
+        ];
+        scene.target = Some(Arc::new(target.clone()));
+        scene.validate_target().unwrap();
+        let pulled = Evaluator::new().evaluate(&scene).unwrap().fit.unwrap();
+        let n = unpulled.residuals.len();
+        assert_eq!(pulled.residuals[..n], unpulled.residuals[..]);
+        assert_eq!(pulled.residuals[n..], [-3.0, 0.0]);
+        assert!((pulled.design_rms.unwrap() - 4.5f64.sqrt()).abs() < 1e-12);
+        assert!((pulled.cost - unpulled.cost - 4.5).abs() < 1e-9);
+        assert_eq!(
+            pulled.met, unpulled.met,
+            "a pull weighs in the cost, not in met"
+        );
+        // A parameter the scene does not have is named, with the nearest paths.
+        target.design = vec![pull("train.phi9_deg", 0.0, 1.0)];
+        scene.target = Some(Arc::new(target));
+        let e = scene.validate_target().unwrap_err();
+        assert!(
+            matches!(&e, Error::UnknownName { name, nearest, .. }
+                if name == "train.phi9_deg" && nearest.iter().any(|n| n == "train.phi0_deg")),
+            "{e:?}"
+        );
+        assert!(Evaluator::new().evaluate(&scene).is_err());
+    }
+
+    #[test]
+    fn the_paper_design_picks_outside_the_housing() {
+        let mut scene = Scene::default();
+        scene.resolution.samples_per_turn = 360;
+        let eval = Evaluator::new().evaluate(&scene).unwrap();
+        let (kin, events) = (eval.kinematics.as_ref().unwrap(), eval.events.unwrap());
+        // Farther from the carrier axis than the housing's disc, by a margin.
+        let housing = housing_radius(kin, &scene.agronomy);
+        assert!(events.picking.tip_mm.hypot() > housing + 15.0, "{housing}");
+    }
+}
