@@ -99,10 +99,15 @@ pub fn robustness_table(r: &Robustness) -> String {
     let [lo, hi] = rep.probability_all_ci95;
     let _ = writeln!(
         t,
-        "P(every objective met) = {:.4}, 95 % interval [{lo:.4}, {hi:.4}] (Wilson; standard \
-         error {:.4}; the samples taken as independent)",
-        rep.probability_all, rep.probability_all_se
+        "P({} met) = {:.4}, 95 % interval [{lo:.4}, {hi:.4}] (Wilson; standard error {:.4}; \
+         the samples taken as independent)",
+        rep.requirements(),
+        rep.probability_all,
+        rep.probability_all_se
     );
+    if !rep.constraints.is_empty() {
+        let _ = writeln!(t, "search constraints: {}", rep.constraints.join(", "));
+    }
     let _ = writeln!(
         t,
         "refused by the model: {}; picking moved to another branch: {}; planting: {}",

@@ -230,3 +230,44 @@ fn picking_admissible_of_the_bolted_tray_is_told_from_evaluates() {
         .value;
     assert!((fixed.nominal_value - evaluated).abs() < 1e-9);
 }
+
+/// A search constraint counts in the success probability: a sample meets it too. A bound
+/// far from the design changes nothing; one at the design's own value splits the samples;
+/// one the design misses by 5 mm leaves none.
+#[test]
+fn the_success_probability_counts_the_search_constraints() {
+    use noncirc::core::{Constraint, Evaluator, Measure, Measured};
+    let mut scene = load_scene(None).unwrap();
+    scene.objectives.retain(|&k| k != ObjectiveKind::Module);
+    scene.tolerances.samples = 256;
+    let eval = Evaluator::new().evaluate(&scene).unwrap();
+    let measure = Measure::parse("picking_height_mm").unwrap();
+    let height = measure.value(&Measured::new(&eval, &scene)).unwrap();
+    let p = |bound: Option<f64>| {
+        let mut s = scene.clone();
+        s.search.constraints = (bound.iter())
+            .map(|&bound| Constraint {
+                measure,
+                bound,
+                at_most: true,
+            })
+            .collect();
+        robustness(&s, false).unwrap().report
+    };
+    let free = p(None);
+    assert_eq!(free.requirements(), "every objective");
+    assert!(free.probability_all > 0.5, "{}", free.probability_all);
+    let loose = p(Some(height + 50.0));
+    assert_eq!(
+        loose.requirements(),
+        "every objective and search constraint"
+    );
+    assert_eq!(loose.probability_all, free.probability_all);
+    let at = p(Some(height)).probability_all;
+    assert!(
+        0.1 < at && at < free.probability_all,
+        "{at} vs {}",
+        free.probability_all
+    );
+    assert_eq!(p(Some(height - 5.0)).probability_all, 0.0);
+}

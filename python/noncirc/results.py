@@ -345,7 +345,8 @@ class SearchResult:
     seed: int
     threads: int
     feasible: bool
-    """Whether the reported design meets every objective at the scene's resolution."""
+    """Whether the reported design meets every objective and search constraint at the
+    scene's resolution."""
     best: dict[str, float]
     """The reported design's free parameters, in the scene's order."""
     objectives: dict[str, float]

@@ -32,9 +32,11 @@ impl Figure for MarginsFigure<'_> {
         let r = &self.analysis.report;
         let [lo, hi] = r.probability_all_ci95;
         let title = format!(
-            "Margins under the tolerances: {} samples, P(every objective met) = {:.3} \
-             (95 % interval {lo:.4}–{hi:.4})",
-            r.samples, r.probability_all
+            "Margins under the tolerances: {} samples, P({} met) = {:.3} (95 % interval \
+             {lo:.4}–{hi:.4})",
+            r.samples,
+            r.requirements(),
+            r.probability_all
         );
         let area = root.titled(&title, (FONT, 20)).map_err(err)?;
         let (area, key_area) = area.split_vertically(area.dim_in_pixel().1.saturating_sub(26));

@@ -179,7 +179,8 @@ impl Evaluator {
         Ok(out)
     }
 
-    /// The three-arm stages after the train is solved: events, objectives, moving box.
+    /// The three-arm stages after the train is solved: events, objectives, moving box,
+    /// then the search constraints.
     fn mechanism(&mut self, scene: &Scene, kin: Kinematics, out: &mut Evaluation) -> Result<()> {
         let resolution = &kin.resolution();
         out.centre_distance_mm = Some(kin.centre_distance());
@@ -269,6 +270,13 @@ impl Evaluator {
                 value: o.value,
             });
         }
+        if !scene.search.constraints.is_empty() {
+            let measured = Measured::new(out, scene);
+            let values = (scene.search.constraints.iter())
+                .map(|c| c.score(c.measure.value(&measured)))
+                .collect();
+            out.constraints = values;
+        }
         Ok(())
     }
 
@@ -305,13 +313,6 @@ impl Evaluator {
             SceneKind::Mechanism | SceneKind::Transplanter => {
                 let kin = self.solve_train(scene, resolution)?;
                 self.mechanism(scene, kin, &mut out)?;
-                if !scene.search.constraints.is_empty() {
-                    let measured = Measured::new(&out, scene);
-                    let values = (scene.search.constraints.iter())
-                        .map(|c| c.score(c.measure.value(&measured)))
-                        .collect();
-                    out.constraints = values;
-                }
             }
             SceneKind::MovingBox => {
                 self.counts.moving_box += 1;

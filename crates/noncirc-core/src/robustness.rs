@@ -149,12 +149,16 @@ pub struct SampleOutcome {
     pub planting_switch: bool,
 }
 
-/// The least normalised margin of an evaluation, skipping the seedling push (its margin is
-/// 0 whenever it is met).
+/// The least normalised margin of an evaluation over its objectives, skipping the seedling
+/// push (its margin is 0 whenever it is met), and its search constraints (a constraint
+/// without a value counts as missed without end).
 pub fn least_normalised_margin(eval: &Evaluation, scene: &Scene) -> f64 {
-    (eval.objectives.iter())
+    let objectives = (eval.objectives.iter())
         .filter(|o| o.kind != ObjectiveKind::SeedlingPush)
-        .map(|o| o.margin / scale(o.kind, &scene.bounds))
+        .map(|o| o.margin / scale(o.kind, &scene.bounds));
+    let constraints = (eval.constraints.iter()).map(|c| c.margin / c.constraint.scale());
+    (objectives.chain(constraints))
+        .map(|m| if m.is_nan() { f64::NEG_INFINITY } else { m })
         .fold(f64::INFINITY, f64::min)
 }
 
@@ -435,7 +439,7 @@ pub struct ToleranceReport {
     /// Sets of machined parts among the samples.
     pub part_sets: usize,
     pub seed: u64,
-    /// Fraction of the samples meeting every objective.
+    /// Fraction of the samples meeting every objective and every search constraint.
     pub probability_all: f64,
     /// Its standard error as if the samples were independent, `√(p(1−p)/n)` (scrambled
     /// Sobol points do at least as well), and its 95 % Wilson interval likewise
@@ -458,6 +462,21 @@ pub struct ToleranceReport {
     /// `noncirc evaluate` reads it, the tray placed at its own picking point (mm). `None`
     /// when the scene fixes the tray (the two agree) or has no picking point.
     pub picking_admissible_placed_mm: Option<f64>,
+    /// The scene's search constraints (as written), which a sample meets too to count in
+    /// [`ToleranceReport::probability_all`].
+    pub constraints: Vec<String>,
+}
+
+impl ToleranceReport {
+    /// What a sample meets to count as a success: "every objective", "and search
+    /// constraint" where the scene has some.
+    pub fn requirements(&self) -> &'static str {
+        if self.constraints.is_empty() {
+            "every objective"
+        } else {
+            "every objective and search constraint"
+        }
+    }
 }
 
 /// Analyses `scene`'s design under its tolerances at `resolution`: the samples (with the
@@ -525,6 +544,7 @@ pub fn analyse(
         picking_admissible_placed_mm: (scene.agronomy.tray_distance_mm.is_none())
             .then(|| placed.events.map(|e| e.check.margin_mm()))
             .flatten(),
+        constraints: scene.search.constraints.iter().map(|c| c.text()).collect(),
     };
     Ok((report, outcomes))
 }
