@@ -10,8 +10,7 @@ use noncirc_core::{
     ObjectiveKind, Scene,
 };
 
-mod common;
-use common::{paper, two_pair_design as two_pairs};
+use crate::common::{paper, two_pair_design as two_pairs};
 
 fn run(scene: &Scene) -> Dynamics {
     let mut scene = scene.clone();

@@ -6,8 +6,7 @@ use noncirc_core::{
 };
 use std::f64::consts::TAU;
 
-mod common;
-use common::{paper, two_pair_design};
+use crate::common::{paper, two_pair_design};
 
 /// The design's path as a target of `points` points with tolerance `tolerance_mm`.
 fn target_of_design(scene: &Scene, points: usize, tolerance_mm: f64) -> Target {
