@@ -154,6 +154,104 @@ fn check_text_layout(path: &Path, doc: &roxmltree::Document) {
     );
 }
 
+/// The data a figure draws: each `<polyline>`'s segments and each filled `<rect>` but the
+/// background, as `[x0, y0, x1, y1]` in the SVG's pixels.
+fn data_marks(doc: &roxmltree::Document) -> (Vec<[f64; 4]>, Vec<[f64; 4]>) {
+    let mut segments = Vec::new();
+    let mut rects = Vec::new();
+    for n in doc.descendants() {
+        let num = |name: &str| n.attribute(name).and_then(|v| v.parse::<f64>().ok());
+        match n.tag_name().name() {
+            "polyline" => {
+                let points: Vec<[f64; 2]> = (n.attribute("points").unwrap_or_default())
+                    .split_whitespace()
+                    .filter_map(|p| {
+                        let (x, y) = p.split_once(',')?;
+                        Some([x.parse().ok()?, y.parse().ok()?])
+                    })
+                    .collect();
+                segments.extend(
+                    points
+                        .windows(2)
+                        .map(|w| [w[0][0], w[0][1], w[1][0], w[1][1]]),
+                );
+            }
+            "rect"
+                if n.attribute("fill")
+                    .is_some_and(|f| f != "none" && f != "#FFFFFF") =>
+            {
+                if let (Some(x), Some(y), Some(w), Some(h)) =
+                    (num("x"), num("y"), num("width"), num("height"))
+                {
+                    // An empty bin is drawn with no height: nothing to cover.
+                    if w > 0.0 && h > 0.0 {
+                        rects.push([x, y, x + w, y + h]);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    (segments, rects)
+}
+
+/// Whether the segment `s` meets the box `b` (Liang–Barsky clipping).
+fn segment_meets_box(s: [f64; 4], b: [f64; 4]) -> bool {
+    let (dx, dy) = (s[2] - s[0], s[3] - s[1]);
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-dx, s[0] - b[0]),
+        (dx, b[2] - s[0]),
+        (-dy, s[1] - b[1]),
+        (dy, b[3] - s[1]),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else if p < 0.0 {
+            t0 = t0.max(q / p);
+        } else {
+            t1 = t1.min(q / p);
+        }
+    }
+    t0 <= t1
+}
+
+/// No text of the figure at `path` lies on its data: its lines (the bound, the dashed
+/// design, the axes) and its bars.
+fn check_text_clear_of_data(path: &Path) {
+    let svg = std::fs::read_to_string(path).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let (segments, rects) = data_marks(&doc);
+    assert!(
+        !segments.is_empty() && !rects.is_empty(),
+        "{}: no data found",
+        path.display()
+    );
+    let mut faults = Vec::new();
+    for (text, b) in (doc.descendants())
+        .filter(|n| n.tag_name().name() == "text")
+        .filter_map(text_box)
+    {
+        let b = [b[0] + 1.0, b[1] + 1.0, b[2] - 1.0, b[3] - 1.0];
+        if let Some(s) = segments.iter().find(|&&s| segment_meets_box(s, b)) {
+            faults.push(format!("{text:?} lies on a line {s:.0?}"));
+        }
+        if let Some(r) =
+            (rects.iter()).find(|r| r[0] < b[2] && b[0] < r[2] && r[1] < b[3] && b[1] < r[3])
+        {
+            faults.push(format!("{text:?} lies on a bar {r:.0?}"));
+        }
+    }
+    assert!(
+        faults.is_empty(),
+        "{}:\n{}",
+        path.display(),
+        faults.join("\n")
+    );
+}
+
 #[test]
 fn evaluation_figures_and_exports_are_valid() {
     let dir = temp("figures");
@@ -190,6 +288,13 @@ fn robustness_and_sensitivity_figures_read_as_a_reviewer_reads_them() {
     for f in &files {
         check_file(f);
     }
+    // The margins' notes (how far a bound off the chart is) stand clear of the bars and
+    // of the dashed design; the paper's design puts bounds off their charts.
+    let margins = dir.join("robustness_margins.svg");
+    check_text_clear_of_data(&margins);
+    let svg = std::fs::read_to_string(&margins).unwrap();
+    let notes = svg.matches("\nbound ").count();
+    assert!(notes >= 3, "{notes} notes on far bounds");
     let svg = std::fs::read_to_string(dir.join("sensitivity.svg")).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let texts: Vec<&str> = (doc.descendants())

@@ -13,6 +13,10 @@ pub struct MarginsFigure<'a> {
 /// Columns of panels.
 const COLUMNS: usize = 3;
 
+/// Height of the line under a panel's caption that says how far a bound off the chart is
+/// (px).
+const NOTE_LINE_PX: u32 = 16;
+
 impl Figure for MarginsFigure<'_> {
     fn size(&self) -> (u32, u32) {
         let rows = self
@@ -22,7 +26,7 @@ impl Figure for MarginsFigure<'_> {
             .len()
             .div_ceil(COLUMNS)
             .max(1);
-        (1200, 96 + 260 * rows as u32)
+        (1200, 96 + (260 + NOTE_LINE_PX) * rows as u32)
     }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
@@ -85,8 +89,11 @@ impl Figure for MarginsFigure<'_> {
                 o.objective.label(),
                 o.probability
             );
-            let mut chart = ChartBuilder::on(panel)
-                .caption(caption, (FONT, 14))
+            // The caption, then a line for the note on a far bound (kept empty otherwise,
+            // so that the panels' charts line up), then the chart: no text on the data.
+            let below = panel.titled(&caption, (FONT, 14)).map_err(err)?;
+            let (note_area, chart_area) = below.split_vertically(NOTE_LINE_PX);
+            let mut chart = ChartBuilder::on(&chart_area)
                 .margin(8)
                 .x_label_area_size(38)
                 .y_label_area_size(44)
@@ -118,6 +125,11 @@ impl Figure for MarginsFigure<'_> {
                         bound.stroke_width(2),
                     )))
                     .map_err(err)?;
+            }
+            let note = if values.is_empty() {
+                Some("no sample: the model refused every one".to_string())
+            } else if bound_shown {
+                None
             } else {
                 // The bound is left of every sample when they meet it, right when they miss.
                 let sd = o.margin_sd.max(1e-12);
@@ -126,17 +138,20 @@ impl Figure for MarginsFigure<'_> {
                 } else {
                     (-o.margin_quantiles[4], "right")
                 };
-                let far = format!(
+                Some(format!(
                     "bound {gap:.2} {} to the {side} ({:.0} sd)",
                     o.unit,
                     gap / sd
-                );
-                chart
-                    .draw_series(std::iter::once(Text::new(
-                        far,
-                        (lo + 0.02 * (hi - lo), top * 0.93),
+                ))
+            };
+            if let Some(note) = note {
+                // Left-aligned with the plotting area (its y-label area and margin).
+                note_area
+                    .draw(&Text::new(
+                        note,
+                        (8 + 44, 2),
                         TextStyle::from((FONT, 11)).color(&bound),
-                    )))
+                    ))
                     .map_err(err)?;
             }
             chart
