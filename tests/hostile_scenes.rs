@@ -198,3 +198,40 @@ fn a_table_written_as_a_list_is_refused_not_read_position_by_position() {
     )
     .unwrap();
 }
+
+/// Bounds near the largest numbers once added up to an infinite violation, refused as "a
+/// bug"; they are refused by name with what is allowed, and at the widest allowed bounds
+/// every violation and their sum are finite.
+#[test]
+fn bounds_beyond_a_machine_are_refused_by_name_and_the_widest_sum_finitely() {
+    let e = refused(
+        "paper",
+        &[
+            "bounds.module_min_mm=1e308",
+            "bounds.trajectory_height_min_mm=1e308",
+        ],
+    );
+    assert!(
+        e.contains("_min_mm = 1e308 is out of range: expected -10000 to 10000"),
+        "{e}"
+    );
+    let e = refused("paper", &["bounds.pushing_angle_deg=[-400.0, 65.0]"]);
+    assert!(e.contains("bounds.pushing_angle_deg[0] = -400"), "{e}");
+    let widest = apply_overrides(
+        load_scene(Some("paper")).unwrap(),
+        &[
+            "bounds.module_min_mm=1e4".into(),
+            "bounds.trajectory_height_min_mm=1e4".into(),
+            "bounds.clearance_min_mm=1e4".into(),
+            "bounds.ground_clearance_min_mm=1e4".into(),
+            "bounds.picking_admissible_min_mm=1e4".into(),
+            "bounds.seedling_push_max_mm=-1e4".into(),
+            "search.constraints=[\"loop_width_mm >= 1e9\"]".into(),
+        ],
+    )
+    .unwrap();
+    let eval = Evaluator::new().evaluate(&widest).unwrap();
+    assert!(eval.total_violation().is_finite() && eval.total_violation() > 1e9);
+    let report = noncirc::report::EvaluationReport::new(&widest, &eval);
+    assert!(!report.feasible && report.total_violation.is_finite());
+}

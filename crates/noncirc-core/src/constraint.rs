@@ -18,6 +18,9 @@ pub struct Constraint {
 }
 
 impl Constraint {
+    /// The largest bound's size, in the measure's unit: far beyond any mechanism's.
+    pub const MAX_BOUND: f64 = 1e9;
+
     /// Parses `NAME <= VALUE` or `NAME >= VALUE` (`≤`, `≥` too; spaces optional).
     pub fn parse(text: &str) -> Result<Self> {
         let (at, op, at_most) = ["<=", "≤", ">=", "≥"]
@@ -41,6 +44,17 @@ impl Constraint {
             return Err(Error::NonFinite {
                 name: format!("search.constraints '{text}' (its bound)"),
                 value: bound,
+            });
+        }
+        if bound.abs() > Self::MAX_BOUND {
+            return Err(Error::OutOfRange {
+                name: format!("search.constraints '{text}' (its bound)"),
+                value: bound,
+                expected: format!(
+                    "within ±{:e} in the measure's unit (violations that far would add up to \
+                     infinity)",
+                    Self::MAX_BOUND
+                ),
             });
         }
         Ok(Self {
@@ -152,6 +166,7 @@ mod tests {
             ("picking_height_mm <= low", "'low'"),
             ("picking_height_mm <= inf", "its bound"),
             ("picking_height_mm <= NaN", "its bound"),
+            ("picking_height_mm >= 1e308", "within ±1e9"),
         ] {
             let err = Constraint::parse(text).unwrap_err().to_string();
             assert!(err.contains(named), "{text}: {err}");
