@@ -113,6 +113,16 @@ pub fn robustness_table(r: &Robustness) -> String {
         "refused by the model: {}; picking moved to another branch: {}; planting: {}",
         rep.refused, rep.picking_branch_switches, rep.planting_branch_switches
     );
+    if rep.refused == rep.samples {
+        let _ = writeln!(
+            t,
+            "NO SAMPLE COULD BE EVALUATED: the model refused all {} (the tolerances move the \
+             design beyond what it takes: smaller tolerances, or `noncirc evaluate` of a \
+             deviated design, say why); the margins' quantiles, mean and spread are not \
+             defined",
+            rep.samples
+        );
+    }
     if let Some(d) = rep.tray_distance_mm {
         let _ = writeln!(t, "tray surface fixed at {d:.3} mm from the carrier axis");
     }

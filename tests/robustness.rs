@@ -271,3 +271,26 @@ fn the_success_probability_counts_the_search_constraints() {
     );
     assert_eq!(p(Some(height - 5.0)).probability_all, 0.0);
 }
+
+/// Tolerances so wide that the model refuses every sample: the report says that no sample
+/// could be evaluated, and its margins' statistics are undefined (NaN), not −0.
+#[test]
+fn a_tolerance_analysis_that_evaluates_no_sample_says_so() {
+    let mut scene = load_scene(None).unwrap();
+    scene.tolerances.samples = 32;
+    scene.tolerances.radius_mm = Spread::Sigma(1000.0);
+    let r = robustness(&scene, false).unwrap();
+    assert_eq!(r.report.refused, 32);
+    assert_eq!(r.report.probability_all, 0.0);
+    for o in &r.report.objectives {
+        assert!(o.margin_mean.is_nan() && o.margin_sd.is_nan(), "{o:?}");
+        assert!(o.margin_quantiles.iter().all(|q| q.is_nan()), "{o:?}");
+    }
+    let table = noncirc::robustness::robustness_table(&r);
+    assert!(
+        table.contains("NO SAMPLE COULD BE EVALUATED: the model refused all 32"),
+        "{table}"
+    );
+    let json = serde_json::to_value(&r).unwrap();
+    assert!(json["objectives"][0]["margin_mean"].is_null());
+}

@@ -413,6 +413,8 @@ pub struct ObjectiveSpread {
     pub probability_ci95: [f64; 2],
     /// The margin's quantiles at [`REPORTED_QUANTILES`] over the samples the model took.
     pub margin_quantiles: [f64; 5],
+    /// The margin's mean and standard deviation over the samples the model took (NaN when
+    /// it took none).
     pub margin_mean: f64,
     pub margin_sd: f64,
     /// The worst-case bound, when computed.
@@ -506,9 +508,19 @@ pub fn analyse(
                 .filter(|m| !m.is_nan())
                 .collect();
             margins.sort_by(f64::total_cmp);
-            let mean = margins.iter().sum::<f64>() / margins.len().max(1) as f64;
-            let var = margins.iter().map(|m| (m - mean).powi(2)).sum::<f64>()
-                / (margins.len().max(2) - 1) as f64;
+            // Without a sample the model took, the statistics are not defined: NaN (null
+            // in JSON; the table says that no sample could be evaluated).
+            let mean = match margins.len() {
+                0 => f64::NAN,
+                taken => margins.iter().sum::<f64>() / taken as f64,
+            };
+            let var = match margins.len() {
+                0 => f64::NAN,
+                1 => 0.0,
+                taken => {
+                    margins.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / (taken - 1) as f64
+                }
+            };
             let met = (outcomes.iter())
                 .filter(|s| s.margins[k] >= 0.0 && !s.refused)
                 .count();
