@@ -4,10 +4,10 @@
 
 use crate::curve::PitchCurve;
 use crate::error::{Error, Result};
+use crate::evaluation::{Evaluation, GearSummary, PairGeometry};
 use crate::events::events;
 use crate::fit::fit_report;
-use crate::gear::GearPair;
-use crate::gear::ModuleReading;
+use crate::gear::{GearPair, ModuleReading};
 use crate::measure_value::Measured;
 use crate::moving_box::evaluate_box_with;
 use crate::objective_kind::ObjectiveKind;
@@ -22,8 +22,6 @@ use crate::target::{PreparedTarget, Target};
 use crate::teeth::{TeethReport, ToothedPair};
 use serde::Serialize;
 use std::sync::Arc;
-
-use crate::evaluation::{Evaluation, GearSummary, PairGeometry};
 
 /// How many times each stage ran.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
