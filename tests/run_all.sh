@@ -42,9 +42,12 @@ if cargo tree -p noncirc-py -e normal | grep -E "^[^a-z]*(clap|indicatif|ctrlc|p
   exit 1
 fi
 stage "cargo test"
-cargo test --release          # default members: core, library, CLI (maturin builds the extension)
-# Benches compile and run once as tests (no timing).
-cargo test --release --benches
+# Default members (core, library, CLI; maturin builds the extension), every target in one
+# invocation: the benches compile and run once as tests (no timing) against the same build
+# of the library (a second `cargo test --benches` selected other features and compiled it
+# again, about three minutes); then the doc tests, which `--all-targets` leaves out.
+cargo test --release --all-targets
+cargo test --release --doc
 
 stage "fuzz targets (scene files, checkpoints): 20 000 fixed-seed runs each from the corpus"
 # cargo-fuzz needs nightly Rust; both are installed here if missing. The runs are
