@@ -14,7 +14,7 @@ fn temp(name: &str) -> std::path::PathBuf {
     dir
 }
 
-fn check_file(path: &Path) {
+pub(crate) fn check_file(path: &Path) {
     let bytes = std::fs::read(path).unwrap();
     match path.extension().and_then(|e| e.to_str()) {
         Some("svg") => {
@@ -278,7 +278,7 @@ fn evaluation_figures_and_exports_are_valid() {
 /// colour bar: a gradient of 100 steps from white to the darkest cell's blue, ticked 0 to 1.
 #[test]
 fn robustness_and_sensitivity_figures_read_as_a_reviewer_reads_them() {
-    let dir = temp("robust");
+    let dir = temp("robustness-figures");
     let scene = load_scene(None).unwrap();
     let r = noncirc::robustness::robustness(&scene, false).unwrap();
     let s = noncirc::robustness::sensitivity(&scene, 64, 20, 0.25, 2).unwrap();
@@ -565,6 +565,30 @@ fn search_figures_for_one_goal_and_for_two() {
         for f in &files {
             check_file(f);
         }
+    }
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// The dynamics' and the teeth's figures pass the layout check too: text inside the
+/// canvas, no two texts on each other, symbols not scene paths (a repair's: tests/repair.rs).
+#[test]
+fn dynamics_and_teeth_figures_read_as_a_reviewer_reads_them() {
+    let dir = temp("dynamics-teeth-figures");
+    let options = Default::default();
+    let paper = load_scene(None).unwrap();
+    let report = noncirc::dynamics::report_of(&paper).unwrap();
+    let arm_counts = noncirc::dynamics::by_arm_count(&paper);
+    let mut files =
+        noncirc::dynamics::figures(&report, &arm_counts, &dir.join("dynamics"), &options).unwrap();
+    let gear = load_scene(Some("ellipse-gear")).unwrap();
+    let teeth = noncirc::teeth::TeethRun::from_scene(&gear, 0.0).unwrap();
+    files.extend(noncirc::figures::teeth_figures(&teeth, &dir.join("teeth"), &options).unwrap());
+    let svgs = files
+        .iter()
+        .filter(|f| f.extension().is_some_and(|e| e == "svg"));
+    assert!(svgs.count() >= 6, "{files:?}");
+    for f in &files {
+        check_file(f);
     }
     std::fs::remove_dir_all(dir).ok();
 }

@@ -37,6 +37,17 @@ fn the_papers_design_is_repaired_to_one_that_meets_every_objective_and_cuts() {
     assert_eq!(eval.total_violation(), 0.0);
     let teeth = TeethRun::from_scene(&r.scene, 0.0).unwrap();
     assert!(teeth.failures().is_empty(), "{:?}", teeth.failures());
+    // Its figures pass the layout check of tests/figures.rs.
+    #[cfg(feature = "figures")]
+    {
+        let dir = std::env::temp_dir().join(format!("noncirc-repair-{}", std::process::id()));
+        let files = noncirc::plots::repair_figures(&outcome, &dir, &Default::default()).unwrap();
+        assert!(files.len() >= 10, "{files:?}");
+        for f in &files {
+            crate::figures::check_file(f);
+        }
+        std::fs::remove_dir_all(dir).ok();
+    }
     // Near the paper's path: a feasible design found anywhere in the box is hundreds of
     // millimetres away (docs/inverse.md §5: 20.6 mm and 5.5 mm, seed 1).
     let summary = outcome.summary();

@@ -302,7 +302,7 @@ class Goal:
 
 @dataclass(frozen=True)
 class ConstraintReading:
-    """A search constraint (`search.constraints`) and the reported design's reading of it."""
+    """A search constraint (`search.constraints`) and a design's reading of it."""
 
     constraint: str
     """As written: `picking_height_mm <= -90`."""
