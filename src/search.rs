@@ -649,11 +649,7 @@ impl Summary {
     /// What a feasible design meets: "every objective", and "and search constraint" when
     /// the scene has some.
     pub fn requirements(&self) -> &'static str {
-        if self.constraints.is_empty() {
-            "every objective"
-        } else {
-            "every objective and search constraint"
-        }
+        noncirc_core::requirements(!self.constraints.is_empty())
     }
 
     /// The summary of a search's `state` on `problem`, with its `confirmed` designs; the

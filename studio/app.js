@@ -444,30 +444,27 @@ function drawGauges(report) {
   let met = 0;
   rows.forEach((o, k) => {
     const ok = o.violation === 0;
+    const lo = o.lower ?? null, hi = o.upper ?? null;
+    const g = box.children[k];
+    g.querySelector('.bound').textContent = lo !== null && hi !== null ? `[${lo}, ${hi}]` : lo !== null ? `≥ ${lo}` : `≤ ${hi}`;
+    g.querySelector('.verdict').textContent = ok ? 'met' : 'missed';
     // A constrained measure the design does not have arrives as null (NaN in JSON).
     if (o.value === null) {
-      const g = box.children[k];
       g.className = 'gauge missed';
       g.querySelector('.value-text').textContent = '—';
-      g.querySelector('.bound').textContent = o.upper !== null ? `≤ ${o.upper}` : `≥ ${o.lower}`;
-      g.querySelector('.verdict').textContent = 'missed';
       g.querySelector('.margin').textContent = 'the design has no such value';
       return;
     }
     met += ok;
-    const lo = o.lower ?? null, hi = o.upper ?? null;
     // The bar spans the bounds with room either side; a one-sided bound gets a span from it.
     const span = lo !== null && hi !== null ? hi - lo : Math.max(Math.abs(lo ?? hi) * 0.5, 1);
     const a = (lo ?? hi - 2 * span) - span * 0.5, b = (hi ?? lo + 2 * span) + span * 0.5;
     const raw = (o.value - a) / (b - a) * 100;
     const pos = (v) => Math.min(100, Math.max(0, (v - a) / (b - a) * 100));
-    const g = box.children[k];
     // Beyond the bar's range the marker sits at its edge with an arrow pointing on.
     const off = raw < 0 ? 'low' : raw > 100 ? 'high' : '';
     g.className = `gauge ${ok ? 'met' : 'missed'}${off ? ` off-${off}` : ''}`;
     g.querySelector('.value-text').textContent = P.fmt(+o.value.toPrecision(4));
-    g.querySelector('.bound').textContent = lo !== null && hi !== null ? `[${lo}, ${hi}]` : lo !== null ? `≥ ${lo}` : `≤ ${hi}`;
-    g.querySelector('.verdict').textContent = ok ? 'met' : 'missed';
     g.querySelector('.bar').setAttribute('aria-valuenow', o.value);
     const band = g.querySelector('.ok');
     band.style.left = `${pos(lo ?? a)}%`;

@@ -113,6 +113,16 @@ impl From<Constraint> for String {
     }
 }
 
+/// What a design meets to count as feasible: "every objective", and "and search
+/// constraint" when there are some.
+pub fn requirements(has_constraints: bool) -> &'static str {
+    if has_constraints {
+        "every objective and search constraint"
+    } else {
+        "every objective"
+    }
+}
+
 /// A constraint's outcome for a design.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ConstraintValue {

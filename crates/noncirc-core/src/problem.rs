@@ -6,12 +6,13 @@ use crate::evaluation::Evaluation;
 use crate::evaluator::Evaluator;
 use crate::goal::{Goal, GoalQuantity, INVALID_CV};
 use crate::measure_value::Measured;
-use crate::objective_kind::{scale, ObjectiveKind};
+use crate::objective_kind::scale;
 use crate::objectives::ObjectiveValue;
 use crate::params::Param;
 use crate::resolution::Resolution;
 use crate::robustness::{
-    least_normalised_margin, radius_count, robust_score, RobustScore, ToleranceSamples,
+    least_normalised_margin, least_objective_margin, radius_count, robust_score, RobustScore,
+    ToleranceSamples,
 };
 use crate::scene::{FreeParam, Scene};
 use noncirc_search::Fitness;
@@ -380,13 +381,7 @@ impl Goal {
         let bounds = &scene.bounds;
         let norm = |o: &ObjectiveValue| o.margin / scale(o.kind, bounds);
         let v = match self {
-            // The seedling-push margin is 0 whenever it is met: it cannot rank designs.
-            Goal::LeastMargin => -eval
-                .objectives
-                .iter()
-                .filter(|o| o.kind != ObjectiveKind::SeedlingPush)
-                .map(norm)
-                .fold(f64::INFINITY, f64::min),
+            Goal::LeastMargin => -least_objective_margin(eval, scene),
             Goal::Margin(k) => -eval.objective(k).map_or(f64::NEG_INFINITY, norm),
             Goal::PickingTipSpeed => eval
                 .events
@@ -420,6 +415,7 @@ impl Goal {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::objective_kind::ObjectiveKind;
 
     #[test]
     fn a_goal_physical_value_is_the_objective_or_its_margin_in_its_unit() {

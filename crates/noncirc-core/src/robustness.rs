@@ -9,6 +9,7 @@
 //! surface, as a machine's tray is bolted where the drawing says, with pots twice the
 //! tray depth deep (the tip may then reach one tray depth less or more than drawn).
 
+use crate::constraint::requirements;
 use crate::curve::{CurveSpec, TAU};
 use crate::error::{Error, Result};
 use crate::evaluation::Evaluation;
@@ -150,16 +151,22 @@ pub struct SampleOutcome {
 }
 
 /// The least normalised margin of an evaluation over its objectives, skipping the seedling
-/// push (its margin is 0 whenever it is met), and its search constraints (a constraint
-/// without a value counts as missed without end).
-pub fn least_normalised_margin(eval: &Evaluation, scene: &Scene) -> f64 {
-    let objectives = (eval.objectives.iter())
+/// push (its margin is 0 whenever it is met): the goal `least_margin`'s.
+pub fn least_objective_margin(eval: &Evaluation, scene: &Scene) -> f64 {
+    (eval.objectives.iter())
         .filter(|o| o.kind != ObjectiveKind::SeedlingPush)
-        .map(|o| o.margin / scale(o.kind, &scene.bounds));
-    let constraints = (eval.constraints.iter()).map(|c| c.margin / c.constraint.scale());
-    (objectives.chain(constraints))
-        .map(|m| if m.is_nan() { f64::NEG_INFINITY } else { m })
+        .map(|o| o.margin / scale(o.kind, &scene.bounds))
         .fold(f64::INFINITY, f64::min)
+}
+
+/// [`least_objective_margin`], and the search constraints' normalised margins (a
+/// constraint without a value counts as missed without end): what a built machine's
+/// samples are ranked by.
+pub fn least_normalised_margin(eval: &Evaluation, scene: &Scene) -> f64 {
+    (eval.constraints.iter())
+        .map(|c| c.margin / c.constraint.scale())
+        .map(|m| if m.is_nan() { f64::NEG_INFINITY } else { m })
+        .fold(least_objective_margin(eval, scene), f64::min)
 }
 
 /// Wrapped distance between two carrier angles (rad).
@@ -473,11 +480,7 @@ impl ToleranceReport {
     /// What a sample meets to count as a success: "every objective", "and search
     /// constraint" where the scene has some.
     pub fn requirements(&self) -> &'static str {
-        if self.constraints.is_empty() {
-            "every objective"
-        } else {
-            "every objective and search constraint"
-        }
+        requirements(!self.constraints.is_empty())
     }
 }
 
