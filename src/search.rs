@@ -35,6 +35,10 @@ pub struct ParallelEvaluator<'a> {
     confirm_at: Resolution,
     /// Evaluators planned for the screening and the confirming resolution, cloned by workers.
     planned: [Evaluator; 2],
+    /// Once set (Ctrl-C), the designs of a batch not yet started are skipped.
+    stop: Arc<AtomicBool>,
+    /// Whether the last batch skipped any design.
+    skipped: bool,
 }
 
 /// Most worker threads: more cannot help on any machine noncirc runs on, and thousands
@@ -65,6 +69,7 @@ pub fn check_threads(threads: usize) -> Result<usize> {
 }
 
 impl<'a> ParallelEvaluator<'a> {
+    /// An evaluator on `threads` threads.
     pub fn new(problem: &'a SceneProblem, threads: usize) -> Result<Self> {
         let pool = thread_pool(threads)?;
         let confirm_at = problem.base().resolution;
@@ -73,23 +78,45 @@ impl<'a> ParallelEvaluator<'a> {
             pool,
             confirm_at,
             planned: [problem.screening(), confirm_at].map(|r| Evaluator::planned(&r)),
+            stop: Arc::new(AtomicBool::new(false)),
+            skipped: false,
         })
     }
 
-    fn run(&self, points: &[Vec<f64>], resolution: Resolution) -> Vec<Fitness> {
+    /// Skips the rest of a batch once `stop` is set: the executor then undoes that
+    /// generation ([`BatchEvaluator::interrupted`]), so a stop is answered within one
+    /// design's evaluation per thread, not at the end of the generation.
+    pub fn stopped_by(self, stop: Arc<AtomicBool>) -> Self {
+        Self { stop, ..self }
+    }
+
+    fn run(&mut self, points: &[Vec<f64>], resolution: Resolution) -> Vec<Fitness> {
         let problem = self.problem;
         let planned = if resolution == self.confirm_at {
             &self.planned[1]
         } else {
             &self.planned[0]
         };
-        map_batch(
+        let (stop, skipped) = (&*self.stop, AtomicBool::new(false));
+        let fitness = map_batch(
             &self.pool,
             planned,
             problem.base(),
             points,
-            |(evaluator, scratch), u| problem.fitness(u, evaluator, scratch, &resolution).0,
-        )
+            |(evaluator, scratch), u| {
+                if stop.load(Ordering::Relaxed) {
+                    skipped.store(true, Ordering::Relaxed);
+                    Fitness {
+                        cv: f64::INFINITY,
+                        f: vec![f64::INFINITY; problem.goals()],
+                    }
+                } else {
+                    problem.fitness(u, evaluator, scratch, &resolution).0
+                }
+            },
+        );
+        self.skipped = skipped.into_inner();
+        fitness
     }
 }
 
@@ -135,6 +162,9 @@ impl BatchEvaluator for ParallelEvaluator<'_> {
     }
     fn confirm(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
         self.run(points, self.confirm_at)
+    }
+    fn interrupted(&self) -> bool {
+        self.skipped
     }
 }
 
@@ -207,7 +237,8 @@ pub struct RunOptions {
     pub resume: Option<PathBuf>,
     /// With `resume`: a new budget (`None` keeps the checkpoint's).
     pub resume_budget: Option<u64>,
-    /// Set by Ctrl-C: the run stops cleanly after the current generation.
+    /// Set by Ctrl-C: the run stops cleanly, within one design's evaluation per thread,
+    /// with the state of the last complete generation.
     pub stop: Arc<AtomicBool>,
     /// Stop after this many generations (for tests of interrupted runs).
     pub max_generations: Option<u64>,
@@ -498,7 +529,8 @@ pub fn run(
             ))
         })?;
     }
-    let mut evaluator = ParallelEvaluator::new(&problem, opts.threads)?;
+    let mut evaluator =
+        ParallelEvaluator::new(&problem, opts.threads)?.stopped_by(opts.stop.clone());
     let start = Instant::now();
     let mut seconds_to_first = None;
     let mut first_feasible = |state: &SearchState, _: u64| {

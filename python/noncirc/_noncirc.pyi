@@ -116,8 +116,9 @@ def optimise(
 ) -> dict[str, Any]:
     """A search: summary (feasible, best, violations, evaluations, stopped_early, ...),
     parameter, goal and objective names, pareto, best_scene. `progress(info)` after every generation (info: generation,
-    evaluations, budget, best_violation, feasible; return False to stop). Ctrl-C stops
-    after the current generation and raises KeyboardInterrupt. `checkpoint` writes the
+    evaluations, budget, best_violation, feasible; return False to stop), called from the
+    search's thread. Ctrl-C stops at once (the generation in flight is dropped) and raises
+    KeyboardInterrupt. `checkpoint` writes the
     state every `checkpoint_every` s and at the end; `resume` continues one (its scene and
     settings; `budget` may be raised)."""
 

@@ -127,8 +127,9 @@ def optimise(
     `progress`: a callable `progress(info)` after every generation (info: generation,
     evaluations, budget, best_violation, feasible; return False to stop), True for a
     progress bar on stderr, False for nothing; by default a bar when a person is watching
-    (a terminal or a notebook) and nothing otherwise. Ctrl-C stops the search after the
-    current generation and raises KeyboardInterrupt. `checkpoint` writes the state every
+    (a terminal or a notebook) and nothing otherwise; it is called from the search's
+    thread. Ctrl-C stops the search within about 20 ms (the generation in flight is
+    dropped whole) and raises KeyboardInterrupt. `checkpoint` writes the state every
     `checkpoint_every` seconds and at the end; `resume` continues one (its scene and
     settings; `budget` may be raised)."""
     raw = _with_progress(

@@ -89,14 +89,32 @@ def test_ctrl_c_stops_after_the_current_generation_and_keeps_the_checkpoint(tmp_
     with InterruptAfter(seen, 3) as interrupt, pytest.raises(KeyboardInterrupt):
         optimise(Scene.builtin("paper-search"), checkpoint=ckpt, progress=seen.append,
                  **{**SETTINGS, "budget": 10**6})
-    # Counted, not timed: the generation in flight when the signal came ends and is
-    # reported (one more if the signal raced a report), then the search stops.
-    assert len(seen) - interrupt.at_signal <= 2, (len(seen), interrupt.at_signal)
-    assert seen[-1]["evaluations"] < 10**6
+    # The search stopped on the signal, not at its budget; the generation in flight was
+    # dropped, so the last report is the last complete generation. (How many generations
+    # of 24 designs end in the 20 ms between two checks for Ctrl-C depends on the machine;
+    # a signal inside one long generation is the test below.)
+    assert interrupt.at_signal <= len(seen) and seen[-1]["evaluations"] < 10**6
     # The checkpoint holds the state the search stopped in: ten more generations from it.
     stopped_at = seen[-1]["evaluations"]
     resumed = optimise(resume=ckpt, budget=stopped_at + 240, threads=1)
     assert resumed.evaluations == stopped_at + 240
+
+
+def test_ctrl_c_inside_a_long_generation_stops_it_and_keeps_the_last_whole_state(tmp_path):
+    import json
+
+    ckpt = tmp_path / "long.ckpt"
+    seen = []
+    # One generation of 20 000 designs at 30 000 samples a turn: minutes on one thread.
+    scene = Scene.builtin("paper-search").with_set("search.screening.samples_per_turn", 30000)
+    with InterruptAfter(seen, 1), pytest.raises(KeyboardInterrupt):
+        optimise(scene, checkpoint=ckpt, progress=seen.append, algorithm="de", population=20000,
+                 budget=40000, threads=1)
+    # Counted, not timed: the signal came in the first generation, which is dropped whole
+    # (had the search waited for its end, 20 000 evaluations would be kept and reported).
+    assert [info["evaluations"] for info in seen] == [0]
+    state = json.loads(ckpt.read_text())["state"]
+    assert (state["generation"], state["evaluations"]) == (0, 0)
 
 
 def test_unknown_algorithm_is_an_unknown_name():

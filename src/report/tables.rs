@@ -172,6 +172,10 @@ pub fn summary_table(s: &crate::search::Summary) -> String {
             "result",
             if s.feasible {
                 format!("FEASIBLE: meets {}", s.requirements())
+            } else if s.evaluations == 0 {
+                "NO DESIGN EVALUATED: stopped before the first generation ended (a generation \
+                 cut short is dropped whole; run again, or resume the checkpoint)"
+                    .to_string()
             } else {
                 let missed = s.missed();
                 format!(

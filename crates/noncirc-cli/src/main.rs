@@ -37,7 +37,7 @@ const EXIT_RUNTIME: u8 = 1;
 const EXIT_INPUT: u8 = 2;
 /// The checked design fails: `noncirc teeth`'s teeth fail a check or cannot be cut.
 pub(crate) const EXIT_VERDICT: u8 = 3;
-const EXIT_INTERRUPTED: u8 = 130;
+pub(crate) const EXIT_INTERRUPTED: u8 = 130;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();

@@ -6,6 +6,7 @@ use crate::Finished;
 use noncirc::core::{Control, Observer, Scene, SearchState};
 use noncirc::scene_file::load_scene_with;
 use noncirc::search::{RunOptions, SearchSettings};
+use std::io::Write;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
@@ -102,10 +103,20 @@ pub(crate) fn prepare_search(
     let mut scene = load_scene_with(Some(name), &args.scene.input.set)?;
     settings.apply(&mut scene)?;
     let checkpoint_every = noncirc::search::checkpoint_interval(args.checkpoint_every)?;
-    // SIGINT, SIGTERM and SIGHUP all stop the search after the current generation.
+    // SIGINT, SIGTERM and SIGHUP all stop the search at once, keeping the last complete
+    // generation (its results are written); a second signal ends the process at once.
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();
-    ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))?;
+    ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            // A failed write to standard error must not keep the process alive.
+            let _ = writeln!(
+                std::io::stderr(),
+                "second signal: exiting now (the last checkpoint written is kept)"
+            );
+            std::process::exit(crate::EXIT_INTERRUPTED.into());
+        }
+    })?;
     let opts = RunOptions {
         checkpoint: args.checkpoint.clone(),
         checkpoint_every,
@@ -127,8 +138,8 @@ pub(crate) fn prepare_search(
     })
 }
 
-/// Search the scene's design space; a signal stops it after the current generation with
-/// its results written.
+/// Search the scene's design space; a signal stops it at once, keeping the last complete
+/// generation, with its results written.
 pub(crate) fn optimise(args: OptimiseArgs) -> Result<Finished, Box<dyn std::error::Error>> {
     let PreparedSearch {
         scene,

@@ -32,7 +32,7 @@ fn long_search(checkpoint: &std::path::Path) -> Command {
 }
 
 /// Waits until `what` holds: a guard against a hang (60 s), not a timing claim.
-fn wait_until(what: impl Fn() -> bool) {
+fn wait_until(mut what: impl FnMut() -> bool) {
     for _ in 0..600 {
         if what() {
             return;
@@ -134,6 +134,76 @@ fn sigterm_stops_a_search_with_its_results_and_exit_130() {
     );
     // The checkpoint resumes.
     assert_resumes(&cp, "1");
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// A search whose first generation alone runs for minutes: 20 000 designs at 30 000
+/// samples a turn on one thread (about 3.6 ms each).
+fn one_long_generation(checkpoint: &std::path::Path) -> std::process::Child {
+    noncirc()
+        .args([
+            "optimise",
+            "--quiet",
+            "--threads",
+            "1",
+            "--population",
+            "20000",
+        ])
+        .args([
+            "--set",
+            "search.screening.samples_per_turn=30000",
+            "--checkpoint",
+        ])
+        .arg(checkpoint)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+#[test]
+fn a_signal_inside_a_generation_stops_it_and_a_second_signal_ends_at_once() {
+    let dir = temp("mid-generation");
+    let cp = dir.join("run.ckpt");
+    // The checkpoint is written before the first evaluation: the generation has begun.
+    let child = one_long_generation(&cp);
+    wait_until(|| cp.exists());
+    std::thread::sleep(Duration::from_millis(300));
+    interrupt(&child);
+    let output = child.wait_with_output().unwrap();
+    assert_eq!(output.status.code(), Some(130), "{output:?}");
+    // Stopped inside the first generation (counted, not timed): had it waited for the
+    // generation's end, 20 000 evaluations would be kept. The generation in flight is
+    // dropped; the kept state is the last complete one, here the start, and resumes.
+    let state: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&cp).unwrap()).unwrap();
+    assert_eq!(state["state"]["evaluations"], 0, "{}", state["state"]);
+    assert_eq!(state["state"]["generation"], 0);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("NO DESIGN EVALUATED"), "{stdout}");
+
+    // A signal stops the search, then its figures are drawn (in PNG and PDF, hundreds of
+    // milliseconds); a second signal meanwhile ends the process at once. Signals are sent
+    // until it ends: two sent together would merge into one.
+    let (cp, plots) = (dir.join("second.ckpt"), dir.join("plots"));
+    let mut child = long_search(&cp)
+        .arg("--plot")
+        .arg(&plots)
+        .args(["--figure-format", "png,pdf"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    wait_until(|| cp.exists());
+    wait_until(|| {
+        interrupt(&child);
+        std::thread::sleep(Duration::from_millis(10));
+        child.try_wait().unwrap().is_some()
+    });
+    let output = child.wait_with_output().unwrap();
+    assert_eq!(output.status.code(), Some(130), "{output:?}");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("second signal"), "{stderr}");
     std::fs::remove_dir_all(dir).ok();
 }
 

@@ -10,9 +10,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 /// The Python side of a search, an observer of the core's executor: after every
-/// generation it takes the GIL for a moment to check for Ctrl-C and to call the progress
-/// callback. Either stops the search cleanly (the checkpoint, if asked, is written); the
-/// error is raised once the search has stopped.
+/// generation it takes the GIL for a moment to call the progress callback, which may stop
+/// the search cleanly (the checkpoint, if asked, is written); its error is raised once the
+/// search has stopped. Ctrl-C is watched by [`observed`].
 struct PythonObserver {
     progress: Option<PyObject>,
     error: Option<PyErr>,
@@ -38,8 +38,7 @@ impl Observer for PythonObserver {
                     (answer.bind(py).downcast::<pyo3::types::PyBool>()).is_ok_and(|b| !b.is_true());
                 Ok(!stop)
             };
-            let outcome = progress().and_then(|go_on| py.check_signals().map(|()| go_on));
-            match outcome {
+            match progress() {
                 Ok(true) => Control::Continue,
                 Ok(false) => Control::Stop,
                 Err(e) => {
@@ -51,19 +50,49 @@ impl Observer for PythonObserver {
     }
 }
 
-/// Runs `work` with the GIL released and a [`PythonObserver`] calling `progress`; the
-/// callback's error (or Ctrl-C's `KeyboardInterrupt`) is raised once the work has stopped.
+/// How often the interpreter's thread checks for Ctrl-C while a search runs (ms).
+const SIGNAL_CHECK_MS: u64 = 20;
+
+/// Runs `work` on a thread of its own with a [`PythonObserver`] calling `progress`, while
+/// this (the interpreter's main) thread checks for Ctrl-C every [`SIGNAL_CHECK_MS`] with
+/// the GIL released in between. Python handles signals in its main thread only, so a
+/// check between generations would wait for a whole generation; here a signal sets `stop`
+/// at once, the search abandons the generation in flight and keeps the last complete one.
+/// The callback's error, or Ctrl-C's `KeyboardInterrupt`, is raised once the work has
+/// stopped.
 fn observed<T: Send>(
     py: Python<'_>,
     progress: Option<PyObject>,
+    stop: &std::sync::atomic::AtomicBool,
     work: impl FnOnce(&mut PythonObserver) -> noncirc::Result<T> + Send,
 ) -> Result<T> {
     let mut observer = PythonObserver {
         progress,
         error: None,
     };
-    let outcome = py.allow_threads(|| work(&mut observer))?;
-    match observer.error {
+    let mut interrupt = None;
+    let watched = &mut observer;
+    let outcome = std::thread::scope(|scope| {
+        let interpreter = std::thread::current();
+        let worker = scope.spawn(move || {
+            let outcome = work(watched);
+            interpreter.unpark();
+            outcome
+        });
+        let wait = std::time::Duration::from_millis(SIGNAL_CHECK_MS);
+        while !worker.is_finished() {
+            py.allow_threads(|| std::thread::park_timeout(wait));
+            if let Err(e) = py.check_signals() {
+                stop.store(true, std::sync::atomic::Ordering::SeqCst);
+                interrupt.get_or_insert(e);
+            }
+        }
+        worker
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    });
+    let outcome = outcome?;
+    match interrupt.or(observer.error) {
         Some(e) => Err(e.into()),
         None => Ok(outcome),
     }
@@ -90,7 +119,8 @@ fn search_settings(
 
 /// Runs a search (GIL released) and returns its summary and confirmed Pareto set.
 /// `progress(info)` is called after every generation (return False to stop); Ctrl-C stops
-/// the search after the current generation and raises `KeyboardInterrupt`. With
+/// the search at once, keeping the last complete generation, and raises
+/// `KeyboardInterrupt`. With
 /// `checkpoint`, the state is written there every `checkpoint_every` seconds and at the
 /// end; `resume` continues a checkpoint (its scene and settings; `budget` may be raised).
 #[pyfunction]
@@ -147,7 +177,7 @@ pub(crate) fn optimise<'py>(
         resume,
         ..RunOptions::new(threads)?
     };
-    let outcome = observed(py, progress, |observer| {
+    let outcome = observed(py, progress, &opts.stop, |observer| {
         noncirc::search::run(&s, &opts, &mut [observer])
     })?;
     let mut failures = outcome.checkpoint_failures.clone();
@@ -286,7 +316,7 @@ pub(crate) fn fit<'py>(
         run,
         local: noncirc::core::LocalSettings::default(),
     };
-    let outcome = observed(py, progress, |observer| {
+    let outcome = observed(py, progress, &options.run.stop, |observer| {
         noncirc::fit::fit_scene(&s, &options, &mut [observer])
     })?;
     let summary = outcome.summary();
@@ -328,7 +358,7 @@ pub(crate) fn repair<'py>(
         design_scale,
         ..noncirc::repair::RepairOptions::new(RunOptions::new(threads)?)
     };
-    let outcome = observed(py, progress, |observer| {
+    let outcome = observed(py, progress, &options.fit.run.stop, |observer| {
         noncirc::repair::repair_scene(&s, &options, &mut [observer])
     })?;
     let out = summary_dict(py, &outcome.summary())?;

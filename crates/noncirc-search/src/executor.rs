@@ -32,12 +32,16 @@ impl<F: FnMut(&SearchState, u64) -> Control> Observer for F {
 pub enum Ending {
     /// The budget was spent.
     Budget,
-    /// An observer stopped it; the state is whole and resumable.
+    /// An observer stopped it, or the evaluator abandoned a generation part-way
+    /// ([`BatchEvaluator::interrupted`]); the state is whole and resumable.
     Stopped,
 }
 
 /// Steps `state` until `budget` evaluations are spent or an observer stops it. Every
-/// observer is polled each time (a progress bar still draws when another one stops).
+/// observer is polled each time (a progress bar still draws when another one stops). A
+/// generation the evaluator abandons part-way is undone: the state goes back to the end of
+/// the last complete generation and the run stops there, so that a stop asked inside a long
+/// generation is answered at once and what is kept still resumes bit for bit.
 ///
 /// Differential evolution on a sphere centred in the unit cube, with an observer (any
 /// closure of the state and the budget) that stops the search once a design lies within
@@ -83,13 +87,45 @@ pub fn execute(
         return Ending::Stopped;
     }
     while state.evaluations < budget {
+        let before = Rollback::before_step(state);
         state.step(evaluator);
+        if evaluator.interrupted() {
+            before.restore(state);
+            return Ending::Stopped;
+        }
         // A stop asked for after the budget's last generation changes nothing.
         if poll(state) == Control::Stop && state.evaluations < budget {
             return Ending::Stopped;
         }
     }
     Ending::Budget
+}
+
+/// The state before a generation, to go back to if the evaluator abandons it. The
+/// history, which grows with every generation, is not copied: a generation only appends a
+/// row to it, so going back truncates it.
+struct Rollback {
+    without_history: SearchState,
+    history_len: usize,
+}
+
+impl Rollback {
+    fn before_step(state: &mut SearchState) -> Self {
+        let history = std::mem::take(&mut state.history);
+        let without_history = state.clone();
+        state.history = history;
+        Self {
+            without_history,
+            history_len: state.history.len(),
+        }
+    }
+
+    fn restore(self, state: &mut SearchState) {
+        let mut history = std::mem::take(&mut state.history);
+        history.truncate(self.history_len);
+        *state = self.without_history;
+        state.history = history;
+    }
 }
 
 /// An observer that stops after `n` generations of this run (for tests of interrupted runs).
@@ -150,6 +186,96 @@ mod tests {
             .iter()
             .enumerate()
             .all(|(i, &(g, b))| g == i as u64 && b == 80));
+    }
+
+    /// The two-goal problem of [`two_goals`], abandoned part-way through the batch in
+    /// which its `stop_at`-th point comes (counting every point, confirmations too), as
+    /// Ctrl-C inside a generation does: the rest of that batch gets placeholders.
+    struct AbandonedAt {
+        stop_at: u64,
+        seen: u64,
+        abandoned: bool,
+    }
+
+    impl BatchEvaluator for AbandonedAt {
+        fn dim(&self) -> usize {
+            4
+        }
+        fn goals(&self) -> usize {
+            2
+        }
+        fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+            let mut problem = two_goals();
+            (points.iter())
+                .map(|p| {
+                    self.seen += 1;
+                    if self.seen >= self.stop_at {
+                        self.abandoned = true;
+                        Fitness {
+                            cv: f64::INFINITY,
+                            f: vec![f64::NAN; 2],
+                        }
+                    } else {
+                        problem.evaluate(std::slice::from_ref(p)).remove(0)
+                    }
+                })
+                .collect()
+        }
+        fn interrupted(&self) -> bool {
+            self.abandoned
+        }
+    }
+
+    /// A generation abandoned part-way is undone: the run stops with the state of the last
+    /// complete generation (no placeholder in it), and resuming it ends where an
+    /// uninterrupted run ends, for every algorithm and wherever in the batch the stop comes.
+    #[test]
+    fn a_generation_abandoned_part_way_is_undone_and_resumes_bit_for_bit() {
+        for algorithm in [
+            Algorithm::Guided,
+            Algorithm::De,
+            Algorithm::Cmaes,
+            Algorithm::Nsga2,
+            Algorithm::Nsga3,
+        ] {
+            let fresh = || SearchState::new(algorithm, 4, 2, 12, 11);
+            let mut whole = fresh();
+            execute(&mut whole, &mut two_goals(), 1200, &mut []);
+            let whole = serde_json::to_string(&whole).unwrap();
+            for stop_at in [1, 5, 13, 100, 401] {
+                let mut part = fresh();
+                let mut abandoning = AbandonedAt {
+                    stop_at,
+                    seen: 0,
+                    abandoned: false,
+                };
+                let ending = execute(&mut part, &mut abandoning, 1200, &mut []);
+                assert_eq!(ending, Ending::Stopped, "{algorithm:?} at {stop_at}");
+                // Every point before the stop was kept and none after it: the state holds
+                // whole generations only.
+                assert!(part.evaluations + part.confirmations < stop_at);
+                assert_eq!(part.history.len() as u64, part.generation);
+                assert!(part
+                    .best
+                    .iter()
+                    .all(|b| b.fitness.f.iter().all(|f| f.is_finite())));
+                // The same state as a run stopped by an observer after those generations.
+                let mut stopped = fresh();
+                let mut limit = stop_after_generations(part.generation);
+                execute(&mut stopped, &mut two_goals(), 1200, &mut [&mut limit]);
+                assert_eq!(
+                    serde_json::to_string(&stopped).unwrap(),
+                    serde_json::to_string(&part).unwrap(),
+                    "{algorithm:?} at {stop_at}"
+                );
+                execute(&mut part, &mut two_goals(), 1200, &mut []);
+                assert_eq!(
+                    whole,
+                    serde_json::to_string(&part).unwrap(),
+                    "{algorithm:?}"
+                );
+            }
+        }
     }
 
     /// A constrained sphere in 4 dimensions, two goals (so NSGA's crowding distances are

@@ -76,6 +76,12 @@ pub trait BatchEvaluator {
     fn confirm(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
         self.evaluate(points)
     }
+    /// Whether the last batch was abandoned part-way because a stop was asked (Ctrl-C in
+    /// a large generation): some of its fitness values are placeholders, and the executor
+    /// discards the generation. An evaluator that always finishes its batches says no.
+    fn interrupted(&self) -> bool {
+        false
+    }
 }
 
 /// Evaluates points and pairs them with their fitness.
