@@ -174,6 +174,7 @@ impl TeethRun {
     /// (every outline point) and `pitch_driver.csv` (the pitch curve to `tolerance_mm` of
     /// chord), into `dir`.
     pub fn export(&self, dir: &Path, tolerance_mm: f64) -> Result<Vec<PathBuf>> {
+        cad::check_tolerance("tolerance_mm", tolerance_mm)?;
         create_dir(dir)?;
         let mut paths = Vec::new();
         for (name, text) in self.files(tolerance_mm) {

@@ -10,6 +10,7 @@ pub mod step;
 pub mod stl;
 
 use crate::cad;
+pub use crate::cad::{check_tolerance, TOLERANCE_MAX_MM, TOLERANCE_MIN_MM};
 use crate::teeth::{train_layout, PlacedGear, TeethRun};
 use crate::{Error, Result};
 use noncirc_core::{CadSpec, Kinematics, Member, Scene, ToothedGear, Vec2};
@@ -89,22 +90,6 @@ pub struct Export {
     /// The failed checks' names, for a one-line verdict.
     pub failed_checks: String,
     pub assembly: Option<Assembly>,
-}
-
-/// The coarsest fit of the outlines the solids take (mm): beyond it the lines and arcs
-/// would change the teeth by more than their checks' clearances.
-pub const TOLERANCE_MAX_MM: f64 = 0.05;
-
-/// Checks a fit tolerance (mm) named `name`: above 0, at most [`TOLERANCE_MAX_MM`].
-pub fn check_tolerance(name: &str, tolerance_mm: f64) -> Result<()> {
-    if tolerance_mm > 0.0 && tolerance_mm <= TOLERANCE_MAX_MM {
-        return Ok(());
-    }
-    Err(misfit(
-        name,
-        tolerance_mm,
-        format!("above 0, at most {TOLERANCE_MAX_MM} mm (a coarser fit would change the teeth)"),
-    ))
 }
 
 /// Checks a carrier angle (degrees) named `name`: a finite number.

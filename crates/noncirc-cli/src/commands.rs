@@ -46,13 +46,7 @@ impl Error for VerdictFailed {}
 /// exported unless `--force`, and the command exits with the verdict's code.
 pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
     let scene = load_scene_with(args.scene.input.scene.as_deref(), &args.scene.input.set)?;
-    if !(args.tolerance_mm > 0.0 && args.tolerance_mm.is_finite()) {
-        return Err(Box::new(noncirc::core::Error::OutOfRange {
-            name: "--tolerance-mm".into(),
-            value: args.tolerance_mm,
-            expected: "a positive number of mm".into(),
-        }));
-    }
+    noncirc::solids::check_tolerance("--tolerance-mm", args.tolerance_mm)?;
     let run = match noncirc::teeth::TeethRun::from_scene(&scene, args.carrier_deg) {
         Ok(run) => run,
         Err(noncirc::Error::Core(

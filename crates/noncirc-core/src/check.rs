@@ -143,10 +143,23 @@ impl Scene {
             let allowed =
                 mechanism || (self.kind == SceneKind::Gear && *o == ObjectiveKind::Module);
             if !allowed {
-                return Err(Error::OutOfRange {
-                    name: format!("objectives: '{}'", o.name()),
-                    value: f64::NAN,
-                    expected: format!("an objective a {} scene can evaluate", self.kind.name()),
+                let (can, list) = match self.kind {
+                    SceneKind::Gear => ("only 'module'", "[\"module\"]"),
+                    _ => ("none of them", "[]"),
+                };
+                return Err(Error::BadList {
+                    list: "objectives",
+                    problem: format!(
+                        "'{}' cannot be evaluated in a {kind} scene (kind = \"{kind}\"), which \
+                         evaluates {can}: write objectives = {list}{}",
+                        o.name(),
+                        if self.objectives == ObjectiveKind::DEFAULT {
+                            " (with no `objectives`, a scene takes every objective)"
+                        } else {
+                            ""
+                        },
+                        kind = self.kind.name(),
+                    ),
                 });
             }
         }

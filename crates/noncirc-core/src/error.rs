@@ -27,6 +27,13 @@ pub enum Error {
         min: usize,
         got: usize,
     },
+    /// More control points than the representation takes, and why.
+    TooManyPoints {
+        kind: &'static str,
+        max: usize,
+        got: usize,
+        why: &'static str,
+    },
     /// A Cartesian curve is not star-shaped about the rotation centre.
     NotStarShaped {
         kind: &'static str,

@@ -13,6 +13,16 @@ use crate::vec2::Vec2;
 /// Bins of own angle for [`Radial::most_within`].
 const BINS: usize = 64;
 
+/// Most carrier nodes, and most points of each gear, at which the overlap is measured:
+/// every k-th beyond it. Each node compares every point with the other gear, a cost of the
+/// square of the samples (23 s an evaluation at 307 200 samples a turn, 607 s at 786 432);
+/// thinned, it costs at most what it costs at this count, and an evaluation at 786 432
+/// samples takes 0.6 s (three sets) to 1.0 s (four that overlap). The nodes and points kept
+/// are 1/16° and about 0.05 mm apart on a transplanter's gears, where the depth, smooth in
+/// both, moves by under 1e-4 mm between them (tested); resolutions up to this count are
+/// measured in full, as before.
+const MOST_PROBES: usize = 5_760;
+
 /// A closed pitch curve seen from its centre: its radius (mm) by own angle (rad).
 struct Radial {
     /// Own angles of the samples, ascending in `[0, 2π)`.
@@ -131,10 +141,13 @@ struct SetGear {
 }
 
 impl SetGear {
+    /// The gear's curve from all its `points`; at most [`MOST_PROBES`] of them, evenly
+    /// spaced, probe the other gears.
     fn new(points: Vec<Vec2>, reach: f64, plane: usize, planet: bool) -> Self {
         let curve = Radial::new(&points);
+        let every = points.len().div_ceil(MOST_PROBES).max(1);
         Self {
-            points,
+            points: points.into_iter().step_by(every).collect(),
             curve,
             reach,
             plane,
@@ -214,8 +227,9 @@ pub(crate) fn gear_sets_overlap(kin: &Kinematics) -> Option<f64> {
         }
     }
     let mut deepest = f64::NEG_INFINITY;
+    let every = kin.len().div_ceil(MOST_PROBES).max(1);
     for (a, b, m) in near {
-        for j in 0..kin.len() {
+        for j in (0..kin.len()).step_by(every) {
             let (ga, gb) = (
                 place(kin, &gears[a], j),
                 place(kin, &gears[b], kin.arm_node(m, j)),
@@ -348,5 +362,34 @@ mod tests {
         }
         // The cases include overlapping and clear gearboxes.
         assert!((1..9).contains(&overlapping), "{overlapping}");
+    }
+
+    /// Above [`MOST_PROBES`] samples the overlap is measured at every k-th node and point:
+    /// it stays within 1e-4 mm of the full measure at the threshold and of the finer
+    /// resolutions' own, and its cost no longer grows as the square of the samples.
+    #[test]
+    fn thinned_overlaps_agree_with_the_full_measure() {
+        let curve = crate::CurveSpec::paper().build().unwrap();
+        for gamma0 in [-80.0, -53.0] {
+            let spec = crate::TrainSpec {
+                gamma0_deg: gamma0,
+                arms: 4,
+                ..Default::default()
+            };
+            let at = |n: usize| {
+                let resolution = crate::Resolution::DEFAULT.with_samples(n);
+                let kin = Kinematics::solve(&curve, None, &spec, &resolution).unwrap();
+                gear_sets_overlap(&kin).expect("four sets of the paper's gears overlap")
+            };
+            // In full at MOST_PROBES; thinned 2, 4 and 8 to 1 above it.
+            let full = at(MOST_PROBES);
+            for n in [2 * MOST_PROBES, 4 * MOST_PROBES, 8 * MOST_PROBES] {
+                let thinned = at(n);
+                assert!(
+                    (thinned - full).abs() < 1e-4,
+                    "γ0 {gamma0}, {n} samples: {thinned} against {full} mm in full"
+                );
+            }
+        }
     }
 }

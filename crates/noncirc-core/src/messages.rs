@@ -29,6 +29,12 @@ impl fmt::Display for Error {
                 f,
                 "{kind} needs at least {min} points, got {got}"
             ),
+            Error::TooManyPoints {
+                kind,
+                max,
+                got,
+                why,
+            } => write!(f, "{kind} takes at most {max} points, got {got}: {why}"),
             Error::NotStarShaped { kind, x_mm, y_mm } => write!(
                 f,
                 "{kind} pitch curve is not star-shaped about the centre: its polar angle turns back near ({x_mm:.3}, {y_mm:.3}) mm"

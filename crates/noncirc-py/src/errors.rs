@@ -174,6 +174,7 @@ fn core_kind(e: &noncirc::core::Error, message: String) -> Error {
         | E::OutOfRange { .. }
         | E::ControlAngles { .. }
         | E::TooFewPoints { .. }
+        | E::TooManyPoints { .. }
         | E::Missing { .. }
         | E::BadList { .. }
         | E::OpenTarget { .. }

@@ -41,11 +41,17 @@ struct Jet {
     d2: Vec2,
 }
 
+/// Most control points of a Bézier curve (see [`CartesianCurve::new`]).
+pub(crate) const MAX_BEZIER_POINTS: usize = 64;
+
 /// Table samples per B-spline segment (and `8 n` for the Bézier curve) used to bracket `t(psi)`.
 const TABLE_PER_SEGMENT: usize = 32;
 
 impl CartesianCurve {
-    /// Builds the curve from control points `(x, y)` in mm, checking star-shapedness.
+    /// Builds the curve from control points `(x, y)` in mm, checking star-shapedness. A
+    /// Bézier curve takes at most [`MAX_BEZIER_POINTS`]: its cost grows as the cube of
+    /// their count, and a point pulls the curve by at most 1/√(2π n t(1−t)) of its own
+    /// move, a tenth at the middle of a degree-64 curve.
     pub fn new(kind: CartesianKind, points: Vec<Vec2>) -> Result<Self> {
         let n = points.len();
         if n < 4 {
@@ -53,6 +59,16 @@ impl CartesianCurve {
                 kind: kind.name(),
                 min: 4,
                 got: n,
+            });
+        }
+        if kind == CartesianKind::Bezier && n > MAX_BEZIER_POINTS {
+            return Err(Error::TooManyPoints {
+                kind: kind.name(),
+                max: MAX_BEZIER_POINTS,
+                got: n,
+                why: "one Bézier curve of degree n costs n² per point and n³ to build (1 000 \
+                      points took 31 s), and each point moves it less as n grows; for a \
+                      finer curve use kind = \"bspline\" or \"spline\"",
             });
         }
         let t_end = match kind {

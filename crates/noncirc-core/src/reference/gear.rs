@@ -35,7 +35,7 @@ pub(super) const FIELDS: &[Field] = &[
         symbol: "r1 … r12",
         unit: "mm",
         range: Range::from_to(1e-9, 1e9)
-            .and("; as many as `angles_deg`, at least 4; the curve they give positive everywhere"),
+            .and("; as many as `angles_deg`, at least 4 (at most 64 for `bezier`); the curve they give positive everywhere"),
         meaning: "Radii of the control points (spline, bspline, bezier, table).",
         refused: &[
             "gear.curve.radii_mm[7]=0",
@@ -120,9 +120,15 @@ pub(super) const FIELDS: &[Field] = &[
         key: "gear.module.teeth",
         symbol: "z",
         unit: "",
-        range: Range::at_least(1.0).and("; required by `perimeter` and `teeth`"),
-        meaning: "Teeth per gear (shared by meshing gears).",
-        refused: &["gear.module.teeth=-3", "gear.module.teeth=2.5"],
+        range: Range::from_to(1.0, 1000.0).and("; required by `perimeter` and `teeth`"),
+        meaning: "Teeth per gear (shared by meshing gears). At most 1 000: a module of \
+                  0.2 mm on a 600 mm pitch curve; cutting the teeth costs about the square \
+                  of their count.",
+        refused: &[
+            "gear.module.teeth=-3",
+            "gear.module.teeth=2.5",
+            "gear.module.teeth=1001",
+        ],
         number: Some(optional_integer!(u32, gear.module.teeth)),
     },
     Field {
