@@ -47,6 +47,8 @@ impl Error for VerdictFailed {}
 pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
     let scene = load_scene_with(args.scene.input.scene.as_deref(), &args.scene.input.set)?;
     noncirc::solids::check_tolerance("--tolerance-mm", args.tolerance_mm)?;
+    // Checked in a gear scene too, where no train is assembled: never silently ignored.
+    noncirc::solids::check_carrier("--carrier-deg", args.carrier_deg)?;
     let run = match noncirc::teeth::TeethRun::from_scene(&scene, args.carrier_deg) {
         Ok(run) => run,
         Err(noncirc::Error::Core(

@@ -395,6 +395,9 @@ fn teeth_reports_its_checks_and_names_what_it_refuses() {
             "gear.teeth.pressure_angle_deg",
         ),
         (&["--tolerance-mm", "0"][..], "--tolerance-mm"),
+        (&["--tolerance-mm", "1e-300"][..], "from 1e-6 to 0.05"),
+        // A gear scene assembles no train, yet a NaN angle is refused, not ignored.
+        (&["--carrier-deg", "nan"][..], "--carrier-deg"),
         (&["--set", "gear.module.teeth=2"][..], "gear.module.teeth"),
         (
             &["--set", "gear.teeth.cutter={kind=\"shaper\",teeth=20}"][..],
