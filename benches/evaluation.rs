@@ -93,6 +93,8 @@ fn python_batch(c: &mut Criterion) {
     group.throughput(Throughput::Elements(rows.len() as u64));
     for threads in [1usize, 2] {
         let pool = (threads > 1).then(|| thread_pool(threads).unwrap());
+        // The stop flag Python's Ctrl-C sets; never set here.
+        let never = std::sync::atomic::AtomicBool::new(false);
         for (name, measures) in [
             ("default", &default[..]),
             ("no_measures", &[][..]),
@@ -100,7 +102,7 @@ fn python_batch(c: &mut Criterion) {
         ] {
             let batch = BatchRows::new(&problem, &resolution, measures);
             group.bench_with_input(BenchmarkId::new(name, threads), &rows, |b, rows| {
-                b.iter(|| batch.run(pool.as_ref(), black_box(rows)))
+                b.iter(|| batch.run(pool.as_ref(), black_box(rows), &never))
             });
         }
     }

@@ -8,6 +8,7 @@ use noncirc_core::{
     ConstraintValue, Evaluator, Fitness, Measure, Measured, ObjectiveValue, Resolution, Scene,
     SceneProblem,
 };
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// One design's numbers.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,21 +77,27 @@ impl<'a> BatchRows<'a> {
     }
 
     /// Evaluates `rows` in order: in the caller's thread without a pool (so that
-    /// concurrent callers overlap), on the pool's threads with one.
+    /// concurrent callers overlap), on the pool's threads with one. Once `stop` is set the
+    /// rows not yet started are skipped and `None` is returned: Ctrl-C is answered within
+    /// one row's evaluation per thread.
     pub fn run(
         &self,
         pool: Option<&rayon::ThreadPool>,
         rows: &[Vec<f64>],
-    ) -> Vec<(Fitness, RowOutcome)> {
+        stop: &AtomicBool,
+    ) -> Option<Vec<(Fitness, RowOutcome)>> {
         let planned = Evaluator::planned(self.resolution);
+        let row = |state: &mut (Evaluator, Scene), x: &Vec<f64>| {
+            (!stop.load(Ordering::Relaxed)).then(|| self.row(state, x))
+        };
         match pool {
             None => {
                 let mut state = (planned, self.problem.base().clone());
-                rows.iter().map(|x| self.row(&mut state, x)).collect()
+                rows.iter().map(|x| row(&mut state, x)).collect()
             }
-            Some(pool) => map_batch(pool, &planned, self.problem.base(), rows, |state, x| {
-                self.row(state, x)
-            }),
+            Some(pool) => map_batch(pool, &planned, self.problem.base(), rows, row)
+                .into_iter()
+                .collect(),
         }
     }
 }
@@ -119,9 +126,10 @@ mod tests {
         assert!(measures.iter().all(|m| m.cost() == MeasureCost::Read));
         assert!(!measures.iter().any(|m| m.name() == "gear_overlap_mm"));
         let batch = BatchRows::new(&problem, &resolution, &measures);
-        let one = batch.run(None, &rows);
+        let go_on = AtomicBool::new(false);
+        let one = batch.run(None, &rows, &go_on).unwrap();
         let pool = crate::search::thread_pool(2).unwrap();
-        let two = batch.run(Some(&pool), &rows);
+        let two = batch.run(Some(&pool), &rows, &go_on).unwrap();
         assert_eq!(one.len(), rows.len());
         for ((f1, o1), (f2, o2)) in one.iter().zip(&two) {
             assert_eq!(f1.cv.to_bits(), f2.cv.to_bits());
@@ -159,7 +167,9 @@ mod tests {
         let rows = random_rows(&problem, 12, 5);
         let batch = BatchRows::new(&problem, &resolution, &[]).with_tip_paths(true);
         let pool = crate::search::thread_pool(2).unwrap();
-        let out = batch.run(Some(&pool), &rows);
+        let out = batch
+            .run(Some(&pool), &rows, &AtomicBool::new(false))
+            .unwrap();
         let mut checked = 0;
         for (x, (_, outcome)) in rows.iter().zip(&out) {
             let mut design = scene.clone();
@@ -181,5 +191,21 @@ mod tests {
             }
         }
         assert!(checked >= 3, "{checked} valid designs");
+    }
+
+    /// Once stopped, a batch evaluates no row that had not started and says so; without a
+    /// pool and with one.
+    #[test]
+    fn a_stopped_batch_skips_the_rows_not_started() {
+        let scene = load_scene(Some("paper-search")).unwrap();
+        let problem = SceneProblem::new(&scene).unwrap();
+        let rows = random_rows(&problem, 64, 7);
+        let batch = BatchRows::new(&problem, &scene.resolution, &[]);
+        let pool = crate::search::thread_pool(2).unwrap();
+        for pool in [None, Some(&pool)] {
+            assert!(batch.run(pool, &rows, &AtomicBool::new(true)).is_none());
+            let none = batch.run(pool, &[], &AtomicBool::new(true));
+            assert_eq!(none.map(|rows| rows.len()), Some(0));
+        }
     }
 }

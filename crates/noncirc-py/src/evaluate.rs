@@ -4,6 +4,7 @@
 use crate::convert::{json_to_py, points, pool, resolution};
 use crate::errors::{internal, invalid, parameter, Result};
 use crate::scene::Scene;
+use crate::signals::watched;
 use noncirc::batch::BatchRows;
 use noncirc::core::{Evaluator, Measure, Measured, Scalar, SceneProblem};
 use noncirc::report::measure_rows;
@@ -12,6 +13,7 @@ use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
+use std::sync::atomic::AtomicBool;
 
 /// Evaluates one design: objectives as a dict, trajectory and pitch curves as arrays.
 #[pyfunction]
@@ -171,9 +173,9 @@ pub(crate) fn measures(py: Python<'_>) -> Result<Bound<'_, PyDict>> {
     Ok(out)
 }
 
-/// Rows of a batch evaluated between two checks for Ctrl-C: about 0.1 s on one core at
-/// the default resolution (18 µs a design).
-const ROWS_PER_SIGNAL_CHECK: usize = 4096;
+/// Rows of a batch read, evaluated and written at a time (streamed), and reported to
+/// `progress`: about 0.1 s on one core at the default resolution.
+const ROWS_PER_PIECE: usize = 4096;
 
 /// The largest array of tip paths `evaluate_batch(trajectories=True)` makes (bytes): 2 GB,
 /// a million designs at 120 samples a turn.
@@ -300,14 +302,20 @@ pub(crate) fn evaluate_batch<'py>(
     let samples = res.samples_per_turn;
     let mut paths = trajectories.then(|| Array3::from_elem((n, samples, 2), f64::NAN));
     let errors = PyList::empty(py);
-    // A check for Ctrl-C between two pieces: a large batch answers it within a piece's
-    // time (about 0.1 s on one core) instead of at its end. `progress` hears of each piece
-    // after that check, so no piece is reported after an interrupt.
-    for first in (0..n).step_by(ROWS_PER_SIGNAL_CHECK) {
-        let rows: Vec<Vec<f64>> = (first..n.min(first + ROWS_PER_SIGNAL_CHECK))
+    // Ctrl-C is watched while a piece is evaluated ([`watched`]): the rows not yet started
+    // are skipped, so a batch stops within one row's evaluation per thread at any
+    // resolution. `progress` hears of each piece after that, so no piece is reported after
+    // an interrupt.
+    let stop = AtomicBool::new(false);
+    for first in (0..n).step_by(ROWS_PER_PIECE) {
+        let rows: Vec<Vec<f64>> = (first..n.min(first + ROWS_PER_PIECE))
             .map(|i| input.row(i).to_vec())
             .collect();
-        let results = py.allow_threads(|| batch.run(pool.as_deref(), &rows));
+        let (results, interrupt) = watched(py, &stop, || batch.run(pool.as_deref(), &rows, &stop));
+        if let Some(e) = interrupt {
+            return Err(e.into());
+        }
+        let results = results.ok_or_else(|| internal("a batch stopped with no signal"))?;
         for (offset, (fitness, outcome)) in results.into_iter().enumerate() {
             let i = first + offset;
             cv[i] = fitness.cv;
@@ -353,7 +361,7 @@ pub(crate) fn evaluate_batch<'py>(
         py.check_signals()?;
         if let Some(progress) = progress {
             let info = PyDict::new(py);
-            info.set_item("evaluations", (first + ROWS_PER_SIGNAL_CHECK).min(n))?;
+            info.set_item("evaluations", (first + ROWS_PER_PIECE).min(n))?;
             info.set_item("total", n)?;
             progress.call1((info,))?;
         }

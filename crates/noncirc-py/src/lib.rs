@@ -15,6 +15,7 @@ mod errors;
 mod evaluate;
 mod scene;
 mod search;
+mod signals;
 mod studies;
 
 use pyo3::prelude::*;

@@ -4,6 +4,7 @@
 use crate::convert::summary_dict;
 use crate::errors::{internal, invalid, parameter, warn, Result};
 use crate::scene::Scene;
+use crate::signals::watched;
 use noncirc::core::{Algorithm, Control, Observer, SearchState};
 use noncirc::search::{RunOptions, SearchSettings};
 use pyo3::prelude::*;
@@ -50,16 +51,10 @@ impl Observer for PythonObserver {
     }
 }
 
-/// How often the interpreter's thread checks for Ctrl-C while a search runs (ms).
-const SIGNAL_CHECK_MS: u64 = 20;
-
-/// Runs `work` on a thread of its own with a [`PythonObserver`] calling `progress`, while
-/// this (the interpreter's main) thread checks for Ctrl-C every [`SIGNAL_CHECK_MS`] with
-/// the GIL released in between. Python handles signals in its main thread only, so a
-/// check between generations would wait for a whole generation; here a signal sets `stop`
-/// at once, the search abandons the generation in flight and keeps the last complete one.
-/// The callback's error, or Ctrl-C's `KeyboardInterrupt`, is raised once the work has
-/// stopped.
+/// Runs `work` with a [`PythonObserver`] calling `progress`, watched for Ctrl-C
+/// ([`watched`]): a signal sets `stop`, and the search abandons the generation in flight
+/// and keeps the last complete one. The callback's error, or Ctrl-C's `KeyboardInterrupt`,
+/// is raised once the work has stopped.
 fn observed<T: Send>(
     py: Python<'_>,
     progress: Option<PyObject>,
@@ -70,27 +65,8 @@ fn observed<T: Send>(
         progress,
         error: None,
     };
-    let mut interrupt = None;
-    let watched = &mut observer;
-    let outcome = std::thread::scope(|scope| {
-        let interpreter = std::thread::current();
-        let worker = scope.spawn(move || {
-            let outcome = work(watched);
-            interpreter.unpark();
-            outcome
-        });
-        let wait = std::time::Duration::from_millis(SIGNAL_CHECK_MS);
-        while !worker.is_finished() {
-            py.allow_threads(|| std::thread::park_timeout(wait));
-            if let Err(e) = py.check_signals() {
-                stop.store(true, std::sync::atomic::Ordering::SeqCst);
-                interrupt.get_or_insert(e);
-            }
-        }
-        worker
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-    });
+    let watching = &mut observer;
+    let (outcome, interrupt) = watched(py, stop, move || work(watching));
     let outcome = outcome?;
     match interrupt.or(observer.error) {
         Some(e) => Err(e.into()),
