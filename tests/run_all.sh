@@ -27,6 +27,12 @@ report_times() {
 }
 trap report_times EXIT
 
+# One build profile for every stage (Cargo.toml's `ci`: release without LTO): the Rust
+# tests build it, and the CLI the Python and browser tests run, the examples and the
+# Python wheel reuse it instead of building the release profile again.
+PROFILE=ci
+export NONCIRC_PROFILE=$PROFILE NONCIRC_BIN="$PWD/target/$PROFILE/noncirc"
+
 stage "cargo fmt --check; the core's layers point one way"
 cargo fmt --all -- --check
 python3 scripts/check_layers.py
@@ -46,8 +52,8 @@ stage "cargo test"
 # invocation: the benches compile and run once as tests (no timing) against the same build
 # of the library (a second `cargo test --benches` selected other features and compiled it
 # again, about three minutes); then the doc tests, which `--all-targets` leaves out.
-cargo test --release --all-targets
-cargo test --release --doc
+cargo test --profile "$PROFILE" --all-targets
+cargo test --profile "$PROFILE" --doc
 
 stage "fuzz targets (scene files, checkpoints): 20 000 fixed-seed runs each from the corpus"
 # cargo-fuzz needs nightly Rust; both are installed here if missing. The runs are
@@ -74,18 +80,18 @@ if [ -f python/pyproject.toml ]; then
   # installed package (python/ is not on their path, so a build `maturin develop` left in
   # python/noncirc is not what they test; the check below says where it comes from).
   WHEELS=$(mktemp -d)
-  (cd python && ../"$VENV"/bin/maturin build --release --strip --quiet --out "$WHEELS")
+  (cd python && ../"$VENV"/bin/maturin build --profile "$PROFILE" --strip --quiet --out "$WHEELS")
   "$VENV/bin/python" -m pip install --quiet --force-reinstall --no-deps "$WHEELS"/noncirc-*-abi3-*.whl
   rm -rf "$WHEELS"
   PY="$PWD/$VENV/bin/python"
   (cd /tmp && "$PY" -c \
     'import noncirc, sys; assert "site-packages" in noncirc.__file__, noncirc.__file__; print("testing the installed wheel:", noncirc.__file__)')
-  cargo build --release --quiet -p noncirc-cli # the teeth peers' tests run the CLI
+  cargo build --profile "$PROFILE" --quiet -p noncirc-cli # the teeth peers' tests run the CLI ($NONCIRC_BIN)
   "$VENV/bin/python" -m pytest python/tests -q -p no:cacheprovider
 
   stage "examples/: the papers' figures (as PNG and PDF) and a multi-objective study"
   EXAMPLES_OUT=$(mktemp -d)
-  bash examples/paper_figures.sh "$EXAMPLES_OUT" png,pdf
+  NONCIRC=$NONCIRC_BIN bash examples/paper_figures.sh "$EXAMPLES_OUT" png,pdf
   "$VENV/bin/python" examples/multi_objective.py --seeds 2 --out "$EXAMPLES_OUT/front.csv"
   rm -rf "$EXAMPLES_OUT"
 fi
@@ -97,6 +103,6 @@ if [ ! -x "$CHROMIUM" ]; then
   echo "no Chromium at $CHROMIUM: install Debian's chromium (apt-get install chromium) or set CHROMIUM" >&2
   exit 1
 fi
-cargo build --release --quiet -p noncirc-cli
-cargo build --release --quiet --example evaluation_time # the native side of the speed comparison
+cargo build --profile "$PROFILE" --quiet -p noncirc-cli
+cargo build --profile "$PROFILE" --quiet --example evaluation_time # the native side of the speed comparison
 (cd studio && npm ci --no-audit --no-fund --loglevel=error && CHROMIUM="$CHROMIUM" npm test)

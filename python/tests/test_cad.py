@@ -4,7 +4,7 @@ placements, every part a valid closed solid of the volume of its exact profile, 
 on the cut outline within the tolerance, the gears in mesh at 36 carrier angles, and the
 STL watertight with outward normals.
 
-The CLI binary (`target/release/noncirc`) writes the files; tests/run_all.sh builds it.
+The CLI binary (`cli_binary.NONCIRC_BIN`) writes the files; tests/run_all.sh builds it.
 """
 
 import json
@@ -38,9 +38,10 @@ from OCP.TopoDS import TopoDS
 from OCP.gp import gp_Dir
 from shapely.affinity import rotate, translate
 from shapely.geometry import MultiLineString, Point
+from cli_binary import NONCIRC_BIN
 
 ROOT = Path(__file__).resolve().parents[2]
-BIN = ROOT / "target" / "release" / "noncirc"
+BIN = NONCIRC_BIN
 # The two-arm design cut by a shaper (a rack cannot cut its concave arcs), with 0.1 mm of
 # backlash so that the gears' flanks stand apart by the checked clearance.
 SETS = ['gear.teeth.cutter={kind="shaper",teeth=100}', "gear.teeth.backlash_mm=0.1"]

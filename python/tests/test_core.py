@@ -9,6 +9,7 @@ import pytest
 
 import noncirc
 from noncirc import NoncircError, Scene, evaluate, evaluate_batch, optimise
+from cli_binary import NONCIRC_BIN
 
 
 def test_scenes_load_from_builtin_string_file_and_json(tmp_path):
@@ -296,7 +297,7 @@ def test_evaluate_holds_everything_the_cli_json_holds():
     import subprocess
     from pathlib import Path
 
-    cli = Path(__file__).resolve().parents[2] / "target" / "release" / "noncirc"
+    cli = NONCIRC_BIN
     scene = Scene.builtin("paper")
     r = evaluate(scene)
     printed = json.loads(subprocess.run([str(cli), "evaluate", "paper", "--format", "json"], check=True, capture_output=True, text=True).stdout)

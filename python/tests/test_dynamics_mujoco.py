@@ -4,7 +4,7 @@ kinematics) and solved by `mj_inverse`. The hinge torques MuJoCo needs are the m
 noncirc's meshes supply, and by virtual work (the sun's mesh does no work: its pitch point
 stands still) they give the input torque.
 
-The CLI binary (`target/release/noncirc`) computes the dynamics; tests/run_all.sh builds it.
+The CLI binary (`cli_binary.NONCIRC_BIN`) computes the dynamics; tests/run_all.sh builds it.
 """
 
 import json
@@ -15,9 +15,10 @@ from pathlib import Path
 import mujoco
 import numpy as np
 import pytest
+from cli_binary import NONCIRC_BIN
 
 ROOT = Path(__file__).resolve().parents[2]
-BIN = ROOT / "target" / "release" / "noncirc"
+BIN = NONCIRC_BIN
 
 
 def noncirc_dynamics(*sets: str) -> dict:

@@ -6,6 +6,7 @@ import subprocess
 
 import noncirc
 import pytest
+from cli_binary import NONCIRC_BIN
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 TARGETS = ROOT / "scenes" / "targets"
@@ -30,7 +31,7 @@ def test_a_drawn_loop_inverts_to_a_train_that_meets_all_nine_objectives():
 def test_the_cli_and_python_report_the_same_inversion(tmp_path):
     result = noncirc.inverse(target=TARGETS / "drawn-peach.toml", split="first-circular")
     cli = subprocess.run(
-        [str(ROOT / "target" / "release" / "noncirc"), "inverse", "--format", "json", "--split", "first-circular",
+        [str(NONCIRC_BIN), "inverse", "--format", "json", "--split", "first-circular",
          "--target", str(TARGETS / "drawn-peach.toml")],
         capture_output=True, text=True, check=False,
     )

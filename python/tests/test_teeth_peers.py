@@ -1,7 +1,7 @@
 """Teeth against peers: the DXF read back by ezdxf and by dxfgrabber, and the outlines
 against ncgears (the open reference for non-circular teeth, from the package index).
 
-The CLI binary (`target/release/noncirc`) writes the outlines; tests/run_all.sh builds it.
+The CLI binary (`cli_binary.NONCIRC_BIN`) writes the outlines; tests/run_all.sh builds it.
 """
 
 import json
@@ -17,9 +17,10 @@ import numpy as np
 import pytest
 from ezdxf import path as dxfpath
 from shapely.geometry import LineString, LinearRing, Point
+from cli_binary import NONCIRC_BIN
 
 ROOT = Path(__file__).resolve().parents[2]
-BIN = ROOT / "target" / "release" / "noncirc"
+BIN = NONCIRC_BIN
 
 
 def teeth(scene: Path, out: Path, *sets: str) -> dict:

@@ -15,7 +15,10 @@ import { chromium } from 'playwright-core';
 
 const studioDir = join(dirname(fileURLToPath(import.meta.url)), '..');
 const repo = join(studioDir, '..');
-const cli = join(repo, 'target/release/noncirc');
+// The cargo profile whose build the tests run: tests/run_all.sh sets `ci` (the Rust tests'
+// build, reused); by hand, `release`.
+const profile = process.env.NONCIRC_PROFILE || 'release';
+const cli = join(repo, 'target', profile, 'noncirc');
 const results = join(studioDir, 'test-results');
 const tmp = mkdtempSync(join(tmpdir(), 'noncirc-studio-'));
 mkdirSync(results, { recursive: true });
@@ -444,7 +447,7 @@ test('one evaluation in the browser against the native one', async () => {
     return rounds;
   });
   const file = sceneFile('timed.toml', await pageScene());
-  const native = JSON.parse(execFileSync('cargo', ['run', '--release', '--quiet', '--example', 'evaluation_time', '--', file], { cwd: repo, encoding: 'utf8' }));
+  const native = JSON.parse(execFileSync('cargo', ['run', '--profile', profile, '--quiet', '--example', 'evaluation_time', '--', file], { cwd: repo, encoding: 'utf8' }));
   speed.evaluation_us = { wasm: spread(wasm), native };
   speed.evaluation_ratio = spread(wasm).median / native.median_us;
   assert.ok(Number.isFinite(speed.evaluation_ratio));
