@@ -662,6 +662,9 @@ pub struct Summary {
     pub stopped_early: bool,
     /// The goals, in physical terms.
     pub goals: Vec<GoalReading>,
+    /// Whether the scene has search constraints (known even when no design was read).
+    #[serde(skip)]
+    pub constrained: bool,
 }
 
 impl Summary {
@@ -679,9 +682,10 @@ impl Summary {
     }
 
     /// What a feasible design meets: "every objective", and "and search constraint" when
-    /// the scene has some.
+    /// the scene has some (said even when the model refused every design, which leaves no
+    /// constraint reading).
     pub fn requirements(&self) -> &'static str {
-        noncirc_core::requirements(!self.constraints.is_empty())
+        noncirc_core::requirements(self.constrained)
     }
 
     /// The summary of a search's `state` on `problem`, with its `confirmed` designs; the
@@ -745,6 +749,7 @@ impl Summary {
                     value,
                 })
                 .collect(),
+            constrained: !base.search.constraints.is_empty(),
         }
     }
 }

@@ -11,7 +11,10 @@ if [ "$(wasm-bindgen --version 2>/dev/null)" != "wasm-bindgen $version" ]; then
   # --force: a copy recorded as installed but missing or replaced is built again.
   cargo install --locked --force --quiet wasm-bindgen-cli --version "$version"
 fi
-cargo build --release --quiet --target wasm32-unknown-unknown -p noncirc-wasm
+# The release profile unless NONCIRC_PROFILE names another (tests/run_all.sh: `ci`, the
+# test command's faster build; the studio it serves is the same code).
+profile=${NONCIRC_PROFILE:-release}
+cargo build --profile "$profile" --quiet --target wasm32-unknown-unknown -p noncirc-wasm
 wasm-bindgen --target web --no-typescript --out-dir studio/pkg \
-  target/wasm32-unknown-unknown/release/noncirc_wasm.wasm
+  "target/wasm32-unknown-unknown/$profile/noncirc_wasm.wasm"
 echo "studio built: studio/pkg/ ($(du -h studio/pkg/noncirc_wasm_bg.wasm | cut -f1) of WebAssembly)"

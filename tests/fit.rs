@@ -80,6 +80,20 @@ fn the_round_trip_recovers_a_path_and_its_poses_from_far_away() {
     // The refinement ran from the search's design and did not make the fit worse.
     let local = outcome.local.as_ref().unwrap();
     assert!(local.cost <= local.start_cost, "{local:?}");
+    // Its figures pass the layout check of tests/figures.rs.
+    #[cfg(feature = "figures")]
+    {
+        let dir = std::env::temp_dir().join(format!("noncirc-fit-figures-{}", std::process::id()));
+        let files = noncirc::plots::fit_figures(&outcome, &dir, &Default::default()).unwrap();
+        let names: Vec<_> = files.iter().filter_map(|f| f.file_name()).collect();
+        for name in ["fit.svg", "fit_distance.svg", "convergence.svg"] {
+            assert!(names.iter().any(|n| *n == name), "{name}: {files:?}");
+        }
+        for f in &files {
+            crate::figures::check_file(f);
+        }
+        std::fs::remove_dir_all(dir).ok();
+    }
 }
 
 #[test]

@@ -74,6 +74,25 @@ fn a_two_pair_design_is_inverted_back_to_its_path() {
             let a = kin.centre_distance();
             assert!(hi - lo < 1e-9 * a, "split 0: the sun spans {lo}..{hi} mm");
         }
+        // Its figures pass the layout check of tests/figures.rs.
+        #[cfg(feature = "figures")]
+        {
+            let dir = std::env::temp_dir().join(format!(
+                "noncirc-inverse-figures-{}-{split}",
+                std::process::id()
+            ));
+            let files =
+                noncirc::plots::inverse_figures(&outcome, &target, &dir, &Default::default())
+                    .unwrap();
+            let names: Vec<_> = files.iter().filter_map(|f| f.file_name()).collect();
+            for name in ["inverse.svg", "fit.svg", "fit_distance.svg"] {
+                assert!(names.iter().any(|n| *n == name), "{name}: {files:?}");
+            }
+            for f in &files {
+                crate::figures::check_file(f);
+            }
+            std::fs::remove_dir_all(dir).ok();
+        }
     }
 }
 

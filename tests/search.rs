@@ -664,3 +664,91 @@ fn a_constraint_on_any_measure_holds_in_every_algorithm() {
         assert_eq!(again.constraints[0].value, reading.value, "{algorithm:?}");
     }
 }
+
+/// A search stopped before its first generation ended keeps no design, and its summary
+/// says so: no evaluation, nothing feasible, and what a design would have had to meet
+/// (the scene's search constraints too, though no design was read to show them).
+#[test]
+fn a_search_stopped_before_any_design_says_so() {
+    let mut scene = load_scene(Some("paper-search")).unwrap();
+    scene.search.constraints =
+        vec![noncirc::core::Constraint::parse("loop_width_mm <= 50").unwrap()];
+    let opts = options(1, None, None, None);
+    opts.stop.store(true, std::sync::atomic::Ordering::SeqCst);
+    let outcome = run(&scene, &opts).unwrap();
+    assert!(outcome.stopped_early);
+    assert_eq!(outcome.state.evaluations, 0);
+    let summary = outcome.summary();
+    assert!(!summary.feasible && summary.constraints.is_empty());
+    assert_eq!(
+        summary.requirements(),
+        "every objective and search constraint"
+    );
+    let table = noncirc::report::summary_table(&summary);
+    assert!(table.contains("NO DESIGN EVALUATED"), "{table}");
+}
+
+/// The default goal, `least_margin`, counts the search constraints' margins beside the
+/// objectives': a constraint missed by more than any objective sets it, one met with room
+/// leaves it as it was.
+#[test]
+fn the_default_goal_counts_the_constraints_margins() {
+    use noncirc::core::{Constraint, Evaluator, Measure, Measured, SceneProblem};
+    let scene = load_scene(Some("paper-search")).unwrap();
+    let values = |scene: &noncirc::core::Scene| {
+        let problem = SceneProblem::new(scene).unwrap();
+        let x: Vec<f64> = (problem.names().iter())
+            .map(|n| {
+                noncirc::scene_file::value_at(scene, n)
+                    .unwrap()
+                    .as_f64()
+                    .unwrap()
+            })
+            .collect();
+        let (fitness, eval) = problem.fitness_at_values(
+            &x,
+            &mut Evaluator::new(),
+            &mut scene.clone(),
+            &scene.resolution,
+        );
+        (fitness, eval.unwrap())
+    };
+    // The base design's least objective margin, normalised (its goal is minus that).
+    let (free, eval) = values(&scene);
+    let measure = Measure::parse("loop_width_mm").unwrap();
+    let width = measure.value(&Measured::new(&eval, &scene)).unwrap();
+    let with = |constraint: Constraint| {
+        let mut constrained = scene.clone();
+        constrained.search.constraints = vec![constraint];
+        values(&constrained).0
+    };
+    // Missed by twice the width: a normalised margin of -2w / (0.1 · 3w) = -6.67, below
+    // every objective's here.
+    let missed = Constraint {
+        measure,
+        bound: 3.0 * width,
+        at_most: false,
+    };
+    let normalised = -2.0 * width / missed.scale();
+    assert!(
+        normalised < -free.f[0],
+        "{normalised} against {}",
+        -free.f[0]
+    );
+    let fitness = with(missed);
+    assert!(fitness.cv > free.cv);
+    assert!(
+        (fitness.f[0] + normalised).abs() < 1e-9,
+        "{} against {}",
+        fitness.f[0],
+        -normalised
+    );
+    // Met by nine widths (a normalised margin of 9): the objectives' least margin stays.
+    let met = Constraint {
+        measure,
+        bound: 10.0 * width,
+        at_most: true,
+    };
+    let fitness = with(met);
+    assert_eq!((fitness.cv, fitness.f[0]), (free.cv, free.f[0]));
+}

@@ -65,7 +65,8 @@ pub(crate) fn unit_token(unit: &str) -> String {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "String", into = "String")]
 pub enum Goal {
-    /// Maximise the least normalised margin over the objectives (the default).
+    /// Maximise the least normalised margin over the objectives and the search
+    /// constraints (the default).
     LeastMargin,
     /// Maximise one objective's normalised margin.
     Margin(ObjectiveKind),

@@ -126,9 +126,9 @@ pub use inverse::{invert, Branch, Condition, InverseOutcome, InverseSpec, Place}
 
 // Tolerances, robustness and global sensitivity.
 pub use robustness::{
-    analyse, least_normalised_margin, least_objective_margin, quantile, radius_count, robust_score,
-    Deviated, ObjectiveSpread, RobustScore, SampleOutcome, ToleranceReport, ToleranceSamples,
-    WorstCase, REPORTED_QUANTILES,
+    analyse, least_normalised_margin, quantile, radius_count, robust_score, Deviated,
+    ObjectiveSpread, RobustScore, SampleOutcome, ToleranceReport, ToleranceSamples, WorstCase,
+    REPORTED_QUANTILES,
 };
 pub use sensitivity::{
     saltelli_points, sobol_indices, SobolIndices, Unreliable, FEWEST_ROWS, READABLE_HALF_WIDTH,

@@ -151,17 +151,17 @@ pub struct SampleOutcome {
 }
 
 /// The least normalised margin of an evaluation over its objectives, skipping the seedling
-/// push (its margin is 0 whenever it is met): the goal `least_margin`'s.
-pub fn least_objective_margin(eval: &Evaluation, scene: &Scene) -> f64 {
+/// push (its margin is 0 whenever it is met).
+fn least_objective_margin(eval: &Evaluation, scene: &Scene) -> f64 {
     (eval.objectives.iter())
         .filter(|o| o.kind != ObjectiveKind::SeedlingPush)
         .map(|o| o.margin / scale(o.kind, &scene.bounds))
         .fold(f64::INFINITY, f64::min)
 }
 
-/// [`least_objective_margin`], and the search constraints' normalised margins (a
-/// constraint without a value counts as missed without end): what a built machine's
-/// samples are ranked by.
+/// The least normalised margin over the objectives (the seedling push skipped) and the
+/// search constraints (a constraint without a value counts as missed without end): the
+/// goal `least_margin`'s, and what a built machine's samples are ranked by.
 pub fn least_normalised_margin(eval: &Evaluation, scene: &Scene) -> f64 {
     (eval.constraints.iter())
         .map(|c| c.margin / c.constraint.scale())
