@@ -231,13 +231,7 @@ mod tests {
     /// uninterrupted run ends, for every algorithm and wherever in the batch the stop comes.
     #[test]
     fn a_generation_abandoned_part_way_is_undone_and_resumes_bit_for_bit() {
-        for algorithm in [
-            Algorithm::Guided,
-            Algorithm::De,
-            Algorithm::Cmaes,
-            Algorithm::Nsga2,
-            Algorithm::Nsga3,
-        ] {
+        for &algorithm in Algorithm::ALL {
             let fresh = || SearchState::new(algorithm, 4, 2, 12, 11);
             let mut whole = fresh();
             execute(&mut whole, &mut two_goals(), 1200, &mut []);
@@ -295,13 +289,7 @@ mod tests {
     /// an uninterrupted run does.
     #[test]
     fn every_algorithm_resumes_bit_for_bit_from_json() {
-        for algorithm in [
-            Algorithm::Guided,
-            Algorithm::De,
-            Algorithm::Cmaes,
-            Algorithm::Nsga2,
-            Algorithm::Nsga3,
-        ] {
+        for &algorithm in Algorithm::ALL {
             let fresh = || SearchState::new(algorithm, 4, 2, 12, 11);
             let mut whole = fresh();
             execute(&mut whole, &mut two_goals(), 1200, &mut []);
