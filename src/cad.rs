@@ -10,8 +10,8 @@ use std::fmt::Write as _;
 
 use crate::Result;
 
-/// The coarsest fit of the outlines the exports (DXF, STEP, STL) take (mm): beyond it the lines and arcs
-/// would change the teeth by more than their checks' clearances.
+/// The coarsest fit of the outlines the exports (DXF, STEP, STL) take (mm): beyond it the
+/// lines and arcs would change the teeth by more than their checks' clearances.
 pub const TOLERANCE_MAX_MM: f64 = 0.05;
 
 /// The finest fit of the outlines the exports take (mm), a thousandth of a machine tool's

@@ -10,7 +10,6 @@ pub mod step;
 pub mod stl;
 
 use crate::cad;
-pub use crate::cad::{check_tolerance, TOLERANCE_MAX_MM, TOLERANCE_MIN_MM};
 use crate::teeth::{train_layout, PlacedGear, TeethRun};
 use crate::{Error, Result};
 use noncirc_core::{CadSpec, Kinematics, Member, Scene, ToothedGear, Vec2};
@@ -116,7 +115,7 @@ pub fn export(
     dir: &std::path::Path,
     force: bool,
 ) -> Result<Export> {
-    check_tolerance("tolerance_mm", tolerance_mm)?;
+    cad::check_tolerance("tolerance_mm", tolerance_mm)?;
     check_carrier("carrier_deg", carrier_deg)?;
     let run = TeethRun::from_scene(scene, carrier_deg)?;
     let failures = run.failures();

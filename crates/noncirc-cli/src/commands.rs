@@ -46,7 +46,7 @@ impl Error for VerdictFailed {}
 /// exported unless `--force`, and the command exits with the verdict's code.
 pub(crate) fn teeth(args: TeethArgs) -> Result<(), Box<dyn Error>> {
     let scene = load_scene_with(args.scene.input.scene.as_deref(), &args.scene.input.set)?;
-    noncirc::solids::check_tolerance("--tolerance-mm", args.tolerance_mm)?;
+    noncirc::cad::check_tolerance("--tolerance-mm", args.tolerance_mm)?;
     // Checked in a gear scene too, where no train is assembled: never silently ignored.
     noncirc::solids::check_carrier("--carrier-deg", args.carrier_deg)?;
     let run = match noncirc::teeth::TeethRun::from_scene(&scene, args.carrier_deg) {
@@ -127,7 +127,7 @@ pub(crate) fn cad(args: CadArgs) -> Result<(), Box<dyn Error>> {
         })
         .collect();
     // The library names its own arguments; here they are flags.
-    noncirc::solids::check_tolerance("--tolerance-mm", args.tolerance_mm)?;
+    noncirc::cad::check_tolerance("--tolerance-mm", args.tolerance_mm)?;
     noncirc::solids::check_carrier("--carrier-deg", args.carrier_deg)?;
     let done = match noncirc::solids::export(
         &scene,
