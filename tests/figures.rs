@@ -14,6 +14,22 @@ fn temp(name: &str) -> std::path::PathBuf {
     dir
 }
 
+/// Checks every file of `files` as [`check_file`] does, and that the SVGs named in
+/// `named` are among them.
+pub(crate) fn check_figures(files: &[std::path::PathBuf], named: &[&str]) {
+    for name in named {
+        assert!(
+            files
+                .iter()
+                .any(|f| f.file_name().is_some_and(|n| n == *name)),
+            "{name}: {files:?}"
+        );
+    }
+    for f in files {
+        check_file(f);
+    }
+}
+
 pub(crate) fn check_file(path: &Path) {
     let bytes = std::fs::read(path).unwrap();
     match path.extension().and_then(|e| e.to_str()) {

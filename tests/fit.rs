@@ -85,13 +85,7 @@ fn the_round_trip_recovers_a_path_and_its_poses_from_far_away() {
     {
         let dir = std::env::temp_dir().join(format!("noncirc-fit-figures-{}", std::process::id()));
         let files = noncirc::plots::fit_figures(&outcome, &dir, &Default::default()).unwrap();
-        let names: Vec<_> = files.iter().filter_map(|f| f.file_name()).collect();
-        for name in ["fit.svg", "fit_distance.svg", "convergence.svg"] {
-            assert!(names.iter().any(|n| *n == name), "{name}: {files:?}");
-        }
-        for f in &files {
-            crate::figures::check_file(f);
-        }
+        crate::figures::check_figures(&files, &["fit.svg", "fit_distance.svg", "convergence.svg"]);
         std::fs::remove_dir_all(dir).ok();
     }
 }

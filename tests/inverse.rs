@@ -84,13 +84,7 @@ fn a_two_pair_design_is_inverted_back_to_its_path() {
             let files =
                 noncirc::plots::inverse_figures(&outcome, &target, &dir, &Default::default())
                     .unwrap();
-            let names: Vec<_> = files.iter().filter_map(|f| f.file_name()).collect();
-            for name in ["inverse.svg", "fit.svg", "fit_distance.svg"] {
-                assert!(names.iter().any(|n| *n == name), "{name}: {files:?}");
-            }
-            for f in &files {
-                crate::figures::check_file(f);
-            }
+            crate::figures::check_figures(&files, &["inverse.svg", "fit.svg", "fit_distance.svg"]);
             std::fs::remove_dir_all(dir).ok();
         }
     }

@@ -23,6 +23,11 @@ const BINS: usize = 64;
 /// measured in full, as before.
 const MOST_PROBES: usize = 5_760;
 
+/// The step that keeps at most [`MOST_PROBES`] of `len` nodes or points (1: all of them).
+fn probe_step(len: usize) -> usize {
+    len.div_ceil(MOST_PROBES).max(1)
+}
+
 /// A closed pitch curve seen from its centre: its radius (mm) by own angle (rad).
 struct Radial {
     /// Own angles of the samples, ascending in `[0, 2π)`.
@@ -145,7 +150,7 @@ impl SetGear {
     /// spaced, probe the other gears.
     fn new(points: Vec<Vec2>, reach: f64, plane: usize, planet: bool) -> Self {
         let curve = Radial::new(&points);
-        let every = points.len().div_ceil(MOST_PROBES).max(1);
+        let every = probe_step(points.len());
         Self {
             points: points.into_iter().step_by(every).collect(),
             curve,
@@ -227,7 +232,7 @@ pub(crate) fn gear_sets_overlap(kin: &Kinematics) -> Option<f64> {
         }
     }
     let mut deepest = f64::NEG_INFINITY;
-    let every = kin.len().div_ceil(MOST_PROBES).max(1);
+    let every = probe_step(kin.len());
     for (a, b, m) in near {
         for j in (0..kin.len()).step_by(every) {
             let (ga, gb) = (
