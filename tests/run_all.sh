@@ -23,7 +23,10 @@ report_times() {
   local status=$?
   end_stage
   # A run ended early leaves no install behind it (see PIP_PID below).
-  if [ -n "${PIP_PID:-}" ]; then kill "$PIP_PID" 2>/dev/null || true; fi
+  if [ -n "${PIP_PID:-}" ]; then
+    pkill -P "$PIP_PID" 2>/dev/null || true
+    kill "$PIP_PID" 2>/dev/null || true
+  fi
   echo "== stage times (total ${SECONDS} s, exit ${status})"
   printf '%s' "$TIMES"
 }
@@ -47,7 +50,7 @@ CLIPPY_DRIVER=$(command -v clippy-driver) || {
   echo "no clippy-driver: install clippy (rustup component add clippy)" >&2
   exit 1
 }
-export RUSTC_WORKSPACE_WRAPPER=$CLIPPY_DRIVER RUSTFLAGS="-D warnings"
+export RUSTC_WORKSPACE_WRAPPER=$CLIPPY_DRIVER RUSTFLAGS="${RUSTFLAGS:+$RUSTFLAGS }-D warnings"
 NO_LINTS=(env -u RUSTC_WORKSPACE_WRAPPER -u RUSTFLAGS)
 
 # The Python packages (mostly downloads) install in the background while the Rust stages
@@ -124,7 +127,7 @@ if [ -f python/pyproject.toml ]; then
   # noncirc-cli`: without the tests' dev-dependencies Cargo unifies other features (serde's
   # `alloc`, among others) and builds the CLI and everything under it again (86 s).
   [ -x "$NONCIRC_BIN" ] || { echo "no CLI at $NONCIRC_BIN: the cargo test stage builds it" >&2; exit 1; }
-  # One worker per core (pytest-xdist): 77 s instead of 121 s on two cores.
+  # One worker per core (pytest-xdist): 76 s instead of 121 s on two cores.
   "$VENV/bin/python" -m pytest python/tests -q -p no:cacheprovider -n auto
 
   stage "examples/: the papers' figures (as PNG and PDF) and a multi-objective study"
@@ -142,5 +145,5 @@ if [ ! -x "$CHROMIUM" ]; then
   exit 1
 fi
 # The native side of the speed comparison, `cargo run --example evaluation_time`, is the
-# build the cargo test stage made (the same features; see the Python stage).
+# build the cargo test stage made (the same features and lints: nothing is built again).
 (cd studio && npm ci --no-audit --no-fund --loglevel=error && CHROMIUM="$CHROMIUM" npm test)
