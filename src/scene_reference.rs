@@ -127,8 +127,8 @@ pub fn markdown() -> String {
     }
     md += "\n**Goals** (`search.goals`): `least_margin` (the least normalised margin over \
            the objectives and the search constraints, maximised), an objective's name (its \
-           margin, maximised: `module` is reported as `module_mm`), `picking_tip_speed` (m/s, minimised), `box_travel` (mm, minimised, \
-           transplanter scenes), and `min:NAME` or `max:NAME` of any measure \
+           margin, maximised: `module` is reported as `module_mm`), `picking_tip_speed` \
+           (m/s, minimised), `box_travel` (mm, minimised, transplanter scenes), and `min:NAME` or `max:NAME` of any measure \
            (`noncirc measures` lists them).\n\n**Constraints** (`search.constraints`): \
            `NAME <= VALUE` or `NAME >= VALUE` of any measure (`noncirc measures`), the value \
            in its unit: `picking_height_mm <= -90`, `loop_width_mm <= 50`.\n\n\

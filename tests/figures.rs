@@ -8,7 +8,8 @@ use noncirc::scene_file::load_scene;
 use std::f64::consts::TAU;
 use std::path::Path;
 
-fn temp(name: &str) -> std::path::PathBuf {
+/// A fresh directory of this test process named by `name` (unique within the binary).
+pub(crate) fn temp(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("noncirc-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir

@@ -83,7 +83,7 @@ fn the_round_trip_recovers_a_path_and_its_poses_from_far_away() {
     // Its figures pass the layout check of tests/figures.rs.
     #[cfg(feature = "figures")]
     {
-        let dir = std::env::temp_dir().join(format!("noncirc-fit-figures-{}", std::process::id()));
+        let dir = crate::figures::temp("fit-figures");
         let files = noncirc::plots::fit_figures(&outcome, &dir, &Default::default()).unwrap();
         crate::figures::check_figures(&files, &["fit.svg", "fit_distance.svg", "convergence.svg"]);
         std::fs::remove_dir_all(dir).ok();

@@ -77,10 +77,7 @@ fn a_two_pair_design_is_inverted_back_to_its_path() {
         // Its figures pass the layout check of tests/figures.rs.
         #[cfg(feature = "figures")]
         {
-            let dir = std::env::temp_dir().join(format!(
-                "noncirc-inverse-figures-{}-{split}",
-                std::process::id()
-            ));
+            let dir = crate::figures::temp(&format!("inverse-figures-{split}"));
             let files =
                 noncirc::plots::inverse_figures(&outcome, &target, &dir, &Default::default())
                     .unwrap();

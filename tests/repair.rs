@@ -40,7 +40,7 @@ fn the_papers_design_is_repaired_to_one_that_meets_every_objective_and_cuts() {
     // Its figures pass the layout check of tests/figures.rs.
     #[cfg(feature = "figures")]
     {
-        let dir = std::env::temp_dir().join(format!("noncirc-repair-{}", std::process::id()));
+        let dir = crate::figures::temp("repair");
         let files = noncirc::plots::repair_figures(&outcome, &dir, &Default::default()).unwrap();
         assert!(files.len() >= 10, "{files:?}");
         crate::figures::check_figures(&files, &["fit.svg", "fit_distance.svg"]);
