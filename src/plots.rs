@@ -248,7 +248,8 @@ fn target_figures(
                 series: vec![(format!("{against} path's samples"), distances)],
                 points_only: false,
                 markers: true,
-                band: Some((None, Some(target.tolerance_mm))),
+                // A distance is never negative: the band runs from zero, not from the axis.
+                band: Some((Some(0.0), Some(target.tolerance_mm))),
             },
             &dir.join("fit_distance"),
             options,
