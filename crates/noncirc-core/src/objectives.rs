@@ -140,7 +140,8 @@ pub(crate) fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     let w = agro.arm_half_width_mm;
     // Every arm segment O3→D has length S.
     let s = kin.spec().arm_length_mm;
-    let arm = |j: usize| Segment::with_inv_len2(centres[j], tips[j], 1.0 / (s * s));
+    let inv_s2 = 1.0 / (s * s);
+    let arm = |j: usize| Segment::with_inv_len2(centres[j], tips[j], inv_s2);
     let planet_lags = 1..kin.arms();
     let arm_lags = 1..=kin.arms() / 2;
     // Arm I (`seg`) against a planet centre, and against another arm.
@@ -233,7 +234,7 @@ pub(crate) fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f
     let (mut worst, mut before, mut after) = (0.0f64, None, None);
     let mut previous = None;
     for k in first..first + n {
-        let p = kin.tips()[k % n];
+        let p = kin.tips()[if k >= n { k - n } else { k }];
         if p.y > top {
             break;
         }

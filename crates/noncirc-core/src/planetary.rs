@@ -392,6 +392,9 @@ pub struct Kinematics {
     tip: Vec<Vec2>,
     /// Per node, the arm's direction `unit(θ3 + β0)`: a reassembly turns it.
     arm_dir: Vec<Vec2>,
+    /// Nodes by which each arm lags the one before it (`n / arms`): arm indices by a
+    /// multiplication, not an integer division per use.
+    nodes_per_arm: usize,
 }
 
 impl Kinematics {
@@ -558,6 +561,7 @@ impl Kinematics {
             o3: vec![Vec2::ZERO; n],
             tip: vec![Vec2::ZERO; n],
             arm_dir: vec![Vec2::ZERO; n],
+            nodes_per_arm: n / spec.arms,
         };
         // The arms' turn relative to `same_carrier`'s: θ3 moves with the planets' base
         // angle, the arm with β0 on top.
@@ -775,8 +779,10 @@ impl Kinematics {
     /// by k·360°/arms (the samples per turn are a multiple of the arm count).
     pub fn arm_node(&self, k: usize, j: usize) -> usize {
         let n = self.len();
-        let lag = (k % self.arms()) * n / self.arms();
-        // No integer division on the usual path (`j < n`): this runs at every node.
+        // No integer division on the usual path (`k < arms`, `j < n`): this runs at every
+        // node, several times.
+        let k = if k < self.arms() { k } else { k % self.arms() };
+        let lag = k * self.nodes_per_arm;
         let j = if j < n { j } else { j % n };
         if j >= lag {
             j - lag
