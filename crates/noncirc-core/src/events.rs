@@ -308,8 +308,8 @@ fn picking_check(
     // Arm k lags arm I by k·360°/arms: its state is arm I's at θ − k·360°/arms.
     let other_arms_behind = (1..kin.arms())
         .map(|k| {
-            let other = kin.state_at(picked.theta - kin.arm_lag(k));
-            surface - dot(other.o3).max(dot(other.tip)) - agro.arm_half_width_mm
+            let (o3, tip) = kin.planet_and_tip_at(picked.theta - kin.arm_lag(k));
+            surface - dot(o3).max(dot(tip)) - agro.arm_half_width_mm
         })
         .fold(f64::INFINITY, f64::min);
     PickingCheck {

@@ -817,15 +817,25 @@ impl Kinematics {
     /// there, and the planet's lag. One curve evaluation, at the lag, instead of two with
     /// two interpolations and an inverse: the dynamics at the kinematics' nodes reads it.
     pub fn node_state_and_contacts(&self, j: usize) -> (ArmState, [PitchContact; 2]) {
+        self.with_contacts(self.theta(j), &self.node_lag(j), Some(j))
+    }
+
+    /// [`Kinematics::state_at`] at node `j`, carrier angle `θ_j`, to rounding, from what
+    /// the nodes keep (one curve evaluation, at the lag).
+    pub fn node_state(&self, j: usize) -> ArmState {
+        self.state_from(self.theta(j), &self.node_lag(j), Some(j))
+    }
+
+    /// The lag at node `j` and its derivatives, from the node's values.
+    fn node_lag(&self, j: usize) -> Lag {
         let pair = &self.gears.first.pair;
-        let lag = self.lag_with(
+        self.lag_with(
             pair.phi2_nodes()[j],
             pair.ratio_nodes()[j],
             self.gears.first.dg[j],
             pair.samples()[j],
             self.planet_lag[j],
-        );
-        self.with_contacts(self.theta(j), &lag, Some(j))
+        )
     }
 
     /// The state and the meshes' contacts at carrier angle `theta` (node `node`'s if given)
@@ -876,23 +886,11 @@ impl Kinematics {
             d2: lag2,
             ..
         } = *lag;
-        let (gamma0, beta0) = (self.gamma0, self.beta0);
         let s = self.spec.arm_length_mm;
-        let [a1, a2] = self.carrier_a;
         let th1 = sigma * (1.0 - lag1);
         let th2 = -sigma * lag2;
         let phi_h = self.phi0 + sigma * theta;
-        let o2 = unit(phi_h) * a1;
-        // At a node, the planet's centre and orientation and the arm's direction as the
-        // nodes keep them (to rounding what the angles give).
-        let (o3, theta3, u) = match node {
-            Some(j) => (self.o3[j], self.theta3[j], self.arm_dir[j]),
-            None => {
-                let theta3 =
-                    self.planet_base + sigma * (theta - lag) + gamma0 + std::f64::consts::PI;
-                (o2 + unit(phi_h + gamma0) * a2, theta3, unit(theta3 + beta0))
-            }
-        };
+        let (o2, o3, theta3, u) = self.placed(theta, lag, node);
         let tip = o3 + u * s;
         // O3'' = −O3; u' = θ3' u⊥.
         let tip_d1 = self.tip_velocity(o3, u, th1);
@@ -918,9 +916,17 @@ impl Kinematics {
     /// The planet's lag at carrier angle `theta` (rad) with its first two derivatives.
     #[inline(always)]
     fn lag_at(&self, theta: f64) -> Lag {
+        let (big_phi, value) = self.lag_value_at(theta);
+        let (g, dg, sun) = self.gears.first.ratio_and_curve_at(theta);
+        self.lag_with(big_phi, g, dg, sun, value)
+    }
+
+    /// The intermediate's turn `Φ_A(θ)` and the planet's lag at carrier angle `theta`
+    /// (rad), without their derivatives.
+    #[inline(always)]
+    fn lag_value_at(&self, theta: f64) -> (f64, f64) {
         let first = &self.gears.first;
         let (big_phi, _) = first.phi().eval(theta);
-        let (g, dg, sun) = first.ratio_and_curve_at(theta);
         let value = match &self.gears.second {
             None => {
                 // Start the cell search where node ⌊θ/h⌋'s own θ_s lies: O(1), not O(N).
@@ -929,7 +935,35 @@ impl Kinematics {
             }
             Some(second) => second.phi().eval(big_phi).0,
         };
-        self.lag_with(big_phi, g, dg, sun, value)
+        (big_phi, value)
+    }
+
+    /// Arm I's planet centre `O3` and tip at carrier angle `theta` (rad): the positions of
+    /// [`Kinematics::state_at`], without the derivatives (no curve evaluation).
+    pub fn planet_and_tip_at(&self, theta: f64) -> (Vec2, Vec2) {
+        let (_, lag) = self.lag_value_at(theta);
+        let (_, o3, _, u) = self.placed(theta, lag, None);
+        (o3, o3 + u * self.spec.arm_length_mm)
+    }
+
+    /// The intermediate's centre `O2`, the planet's centre `O3` and orientation `θ3` and
+    /// the arm's direction at carrier angle `theta` with the planet's `lag` (rad); node
+    /// `node`'s kept values if given (to rounding what the angles give).
+    #[inline(always)]
+    fn placed(&self, theta: f64, lag: f64, node: Option<usize>) -> (Vec2, Vec2, f64, Vec2) {
+        let phi_h = self.phi0 + self.sigma * theta;
+        let o2 = unit(phi_h) * self.carrier_a[0];
+        match node {
+            Some(j) => (o2, self.o3[j], self.theta3[j], self.arm_dir[j]),
+            None => {
+                let theta3 = self.planet_base
+                    + self.sigma * (theta - lag)
+                    + self.gamma0
+                    + std::f64::consts::PI;
+                let o3 = o2 + unit(phi_h + self.gamma0) * self.carrier_a[1];
+                (o2, o3, theta3, unit(theta3 + self.beta0))
+            }
+        }
     }
 
     /// The lag `value` at the carrier angle where the intermediate has turned `big_phi` at
