@@ -146,7 +146,8 @@ fn refine_extreme(kin: &Kinematics, dir: Vec2, j: usize, max: bool) -> (ArmState
     let dot = |v: Vec2| v.dot(dir);
     let start = kin.theta(j);
     let mut t = start;
-    let at_node = kin.state_at(t);
+    // The node's state from what the nodes keep (to rounding `state_at(θ_j)`).
+    let at_node = kin.node_state(j);
     let mut state = at_node;
     for _ in 0..20 {
         let (d1, d2) = (dot(state.tip_d1), dot(state.tip_d2));
