@@ -179,6 +179,12 @@ fn refine_extreme(kin: &Kinematics, dir: Vec2, j: usize, max: bool) -> (ArmState
 
 /// The node of the largest `D·dir`, and the sub-sample value of the largest other local
 /// maximum (another branch), if the trajectory has one.
+///
+/// One pass: one value per node, rolled through (previous, this, next), with neighbours by
+/// comparison, not `%` (an integer division per node cost more than the rest of the walk;
+/// this runs twice per evaluation). The local maxima are strict on the left, so no two are
+/// neighbours: at most two lie within one node of the best node (those that are its own
+/// peak), and the three highest local maxima hold the runner-up.
 fn extreme_and_runner_up(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
     let n = tips.len();
     if n == 0 {
@@ -186,29 +192,37 @@ fn extreme_and_runner_up(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
     }
     let v = |j: usize| tips[j].dot(dir);
     let (mut best, mut best_value) = (0, v(0));
-    for j in 1..n {
-        let value = v(j);
-        if value > best_value {
-            (best, best_value) = (j, value);
-        }
-    }
-    // One value per node, rolled through (previous, this, next); neighbours by comparison,
-    // not `%`: an integer division per node cost more than the rest of the walk (this runs
-    // three times per evaluation).
-    let mut runner_up: Option<f64> = None;
-    let (mut m, mut c) = (v(n - 1), v(0));
+    // The three highest local maxima so far, highest first: (node, sub-sample value).
+    let mut peaks = [(usize::MAX, f64::NEG_INFINITY); 3];
+    let (mut m, mut c) = (v(n - 1), best_value);
     for j in 0..n {
         let p = v(if j + 1 == n { 0 } else { j + 1 });
-        // A local maximum (strict on the left, so a flat top counts once) that is not the
-        // best node's own peak (within one node of it, around the turn).
-        let d = j.abs_diff(best);
-        let near_best = d <= 1 || d + 1 >= n;
-        if c > m && c >= p && !near_best {
-            let value = -parabola_vertex(-m, -c, -p);
-            runner_up = Some(runner_up.map_or(value, |r: f64| r.max(value)));
+        if c > best_value {
+            (best, best_value) = (j, c);
+        }
+        if c > m && c >= p {
+            let peak = (j, -parabola_vertex(-m, -c, -p));
+            if peak.1 > peaks[2].1 {
+                peaks[2] = peak;
+                if peaks[2].1 > peaks[1].1 {
+                    peaks.swap(1, 2);
+                    if peaks[1].1 > peaks[0].1 {
+                        peaks.swap(0, 1);
+                    }
+                }
+            }
         }
         (m, c) = (c, p);
     }
+    // The highest local maximum that is not the best node's own peak (within one node of
+    // it, around the turn).
+    let runner_up = (peaks.iter())
+        .filter(|(j, _)| *j != usize::MAX)
+        .find(|(j, _)| {
+            let d = j.abs_diff(best);
+            !(d <= 1 || d + 1 >= n)
+        })
+        .map(|&(_, value)| value);
     (best, runner_up)
 }
 
@@ -337,6 +351,49 @@ mod tests {
         assert!((attitude_deg(-std::f64::consts::FRAC_PI_2) - 90.0).abs() < 1e-12);
         assert!(attitude_deg(std::f64::consts::PI).abs() < 1e-12);
         assert!((attitude_deg(std::f64::consts::PI + 0.5) - 0.5f64.to_degrees()).abs() < 1e-9);
+    }
+
+    /// The runner-up by its definition: every local maximum (strict on the left) more
+    /// than one node from the best, each refined by its parabola, the largest of them.
+    fn runner_up_by_definition(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
+        let n = tips.len();
+        let v = |j: usize| tips[j % n].dot(dir);
+        let best = (0..n).fold(0, |b, j| if v(j) > v(b) { j } else { b });
+        let runner_up = (0..n)
+            .filter(|&j| {
+                let d = j.abs_diff(best);
+                v(j) > v(j + n - 1) && v(j) >= v(j + 1) && d > 1 && d + 1 < n
+            })
+            .map(|j| -parabola_vertex(-v(j + n - 1), -v(j), -v(j + 1)))
+            .reduce(f64::max);
+        (best, runner_up)
+    }
+
+    proptest::proptest! {
+        /// Wavy closed paths, many with several branches along the direction (and ties from
+        /// values rounded to a grid): the one-pass walk finds the definition's best node
+        /// and runner-up, bit for bit.
+        #[test]
+        fn one_pass_runner_up_is_the_definitions(
+            n in 3usize..60,
+            waves in proptest::collection::vec((1.0f64..9.0, -3.0f64..3.0, 0.0f64..6.3), 1..4),
+            grid in proptest::prop_oneof![proptest::strategy::Just(0.0), 0.05f64..0.5],
+            angle in 0.0f64..6.3,
+        ) {
+            let tips: Vec<Vec2> = (0..n)
+                .map(|j| {
+                    let t = TAU * j as f64 / n as f64;
+                    let x: f64 = waves.iter().map(|(k, a, p)| a * (k.floor() * t + p).sin()).sum();
+                    let x = if grid > 0.0 { (x / grid).round() * grid } else { x };
+                    Vec2::new(x, t.cos())
+                })
+                .collect();
+            let dir = unit(angle);
+            proptest::prop_assert_eq!(
+                extreme_and_runner_up(&tips, dir),
+                runner_up_by_definition(&tips, dir)
+            );
+        }
     }
 
     #[test]
