@@ -290,7 +290,12 @@ pub(crate) fn module_max(
 
 /// Least convex and least concave |R_c| of the driver and its conjugate at the given
 /// uniform samples, each refined by the parabola through the extreme sample of the
-/// curvature and its neighbours. One pass, no allocation.
+/// curvature and its neighbours. One pass per gear, no allocation.
+///
+/// The scan for the extreme samples orders them by the curvature's signed square
+/// `κ|κ|` ([`curvature_order`]): one division per sample and gear, where `κ` itself costs
+/// a root and two divisions (three for the conjugate). The divider is the scan's
+/// bottleneck. Only the three samples around each extreme take `κ` itself.
 pub(crate) fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     let n = samples.len();
     // `j` is at most 2n − 1 here: a subtraction wraps it (no integer division per sample).
@@ -301,9 +306,10 @@ pub(crate) fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     let mut convex = f64::INFINITY;
     let mut concave = f64::INFINITY;
     for driven in [false, true] {
+        let order = |j: usize| curvature_order(samples[j], driven.then_some(a));
         let (mut jmax, mut kmax, mut jmin, mut kmin) = (0, f64::NEG_INFINITY, 0, f64::INFINITY);
         for j in 0..n {
-            let k = kappa(driven, j);
+            let k = order(j);
             if k > kmax {
                 (jmax, kmax) = (j, k);
             }
@@ -327,6 +333,25 @@ pub(crate) fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
         }
     }
     (convex, concave)
+}
+
+/// The signed square `κ|κ|` (mm⁻²) of the curvature of the driver at `p`, or with a centre
+/// distance `a` (mm) of its conjugate at the same contact: the same order as `κ`, without
+/// its root. With `S = ρ² + ρ'²` and the gap `g = a − ρ`, the driver's `κ` is
+/// `(ρ² + 2ρ'² − ρρ'')/S^{3/2}` and the conjugate's, [`conjugate_polar`]'s curve, is
+/// `(ρ³ + ρ'²(ρ − g) + ρρ''g)/(g·S^{3/2})` (its `ρ`-powers cleared).
+#[inline]
+pub(crate) fn curvature_order(p: Polar, a: Option<f64>) -> f64 {
+    let s = p.rho * p.rho + p.d1 * p.d1;
+    let (numerator, gap) = match a {
+        None => (p.curvature_numerator(), 1.0),
+        Some(a) => {
+            let g = a - p.rho;
+            let (r, d1) = (p.rho, p.d1);
+            (r * r * r + d1 * d1 * (r - g) + r * p.d2 * g, g)
+        }
+    };
+    numerator * numerator.abs() / (gap * gap * s * s * s)
 }
 
 /// Sense in which the carrier turns, seen in the frame with `y` up.
@@ -684,6 +709,30 @@ mod tests {
                 c.d2
             );
         }
+    }
+
+    #[test]
+    fn curvature_order_is_the_signed_square_of_the_curvature() {
+        // The paper's curve and its conjugate, sampled: the closed form without the
+        // conjugate's division equals κ|κ| of the conjugate curve itself.
+        let pair = GearPair::solve(CurveSpec::paper().build().unwrap(), Resolution::DEFAULT)
+            .unwrap();
+        let a = pair.centre_distance();
+        let mut signs = [0; 2];
+        for &p in pair.samples() {
+            for (driven, k) in [(false, p.curvature()), (true, conjugate_polar(p, a).curvature())]
+            {
+                let order = curvature_order(p, driven.then_some(a));
+                assert!(
+                    (order - k * k.abs()).abs() <= 1e-12 * k * k,
+                    "{driven}: {order} against {}",
+                    k * k.abs()
+                );
+                signs[(k < 0.0) as usize] += 1;
+            }
+        }
+        // Both signs met: convex and concave stretches.
+        assert!(signs[0] > 0 && signs[1] > 0, "{signs:?}");
     }
 
     #[test]
