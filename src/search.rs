@@ -294,6 +294,8 @@ pub struct Confirmed {
     /// The reported design (best confirmed-feasible, else best screened): its scene and its
     /// evaluation (`None` if it failed to evaluate at the scene's resolution).
     pub best: Option<(Scene, Option<Evaluation>)>,
+    /// The reported design's parameter values, as `pareto` gives them (with `best`).
+    pub best_values: Option<Vec<f64>>,
     /// The confirmed first front (multi-objective), else the best design; only those still
     /// feasible at the scene's resolution (or the best design if none is): parameter values
     /// and fitness.
@@ -330,12 +332,14 @@ impl Confirmed {
             members.push(r.clone());
         }
         let mut best = None;
+        let mut best_u = None;
         let mut confirmed = Vec::with_capacity(members.len());
         let mut evals = Vec::with_capacity(members.len());
         for c in &members {
             let (fitness, eval) = problem.fitness(&c.u, &mut ev, &mut scratch, &base.resolution);
             if !several_goals && best.is_none() && reported.is_some_and(|r| r.u == c.u) {
                 best = Some((problem.scene_at(&c.u), eval.clone()));
+                best_u = Some(c.u.clone());
             }
             confirmed.push((problem.decode(&c.u), fitness));
             evals.push(eval);
@@ -369,14 +373,20 @@ impl Confirmed {
                 .min_by(|&a, &b| confirmed[a].1.f[0].total_cmp(&confirmed[b].1.f[0]));
             if let Some(i) = top {
                 best = Some((problem.scene_at(&members[i].u), evals[i].take()));
+                best_u = Some(members[i].u.clone());
             }
         }
         if let (None, Some(r)) = (&best, reported) {
             let (_, eval) = problem.fitness(&r.u, &mut ev, &mut scratch, &base.resolution);
             best = Some((problem.scene_at(&r.u), eval));
+            best_u = Some(r.u.clone());
         }
         let pareto = pareto.into_iter().map(|i| confirmed[i].clone()).collect();
-        Self { best, pareto }
+        Self {
+            best,
+            best_values: best_u.map(|u| problem.decode(&u)),
+            pareto,
+        }
     }
 }
 
@@ -705,8 +715,10 @@ impl Summary {
         let mut objectives = BTreeMap::new();
         let mut constraints = Vec::new();
         let mut feasible = false;
-        if let Some(c) = state.reported() {
-            for (name, x) in problem.names().iter().zip(problem.decode(&c.u)) {
+        // The confirmed reported design: with several goals, the confirmed front's best on
+        // the first goal, which need not be the solver's (confirmation moves the goals).
+        if let Some(values) = &confirmed.best_values {
+            for (name, &x) in problem.names().iter().zip(values) {
                 best.insert(name.to_string(), x);
             }
         }

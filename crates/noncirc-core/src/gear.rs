@@ -715,13 +715,15 @@ mod tests {
     fn curvature_order_is_the_signed_square_of_the_curvature() {
         // The paper's curve and its conjugate, sampled: the closed form without the
         // conjugate's division equals κ|κ| of the conjugate curve itself.
-        let pair = GearPair::solve(CurveSpec::paper().build().unwrap(), Resolution::DEFAULT)
-            .unwrap();
+        let pair =
+            GearPair::solve(CurveSpec::paper().build().unwrap(), Resolution::DEFAULT).unwrap();
         let a = pair.centre_distance();
         let mut signs = [0; 2];
         for &p in pair.samples() {
-            for (driven, k) in [(false, p.curvature()), (true, conjugate_polar(p, a).curvature())]
-            {
+            for (driven, k) in [
+                (false, p.curvature()),
+                (true, conjugate_polar(p, a).curvature()),
+            ] {
                 let order = curvature_order(p, driven.then_some(a));
                 assert!(
                     (order - k * k.abs()).abs() <= 1e-12 * k * k,
