@@ -293,9 +293,9 @@ pub(crate) fn module_max(
 /// curvature and its neighbours. One pass per gear, no allocation.
 ///
 /// The scan for the extreme samples orders them by the curvature's signed square
-/// `κ|κ|` ([`curvature_order`]): one division per sample and gear, where `κ` itself costs
-/// a root and two divisions (three for the conjugate). The divider is the scan's
-/// bottleneck. Only the three samples around each extreme take `κ` itself.
+/// ([`curvature_order`]): one division per sample and gear, where `κ` itself costs a root
+/// and two divisions (three for the conjugate). The divider is the scan's bottleneck. Only
+/// the three samples around each extreme take `κ` itself.
 pub(crate) fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     let n = samples.len();
     // `j` is at most 2n − 1 here: a subtraction wraps it (no integer division per sample).
@@ -305,8 +305,9 @@ pub(crate) fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     };
     let mut convex = f64::INFINITY;
     let mut concave = f64::INFINITY;
+    let inv_a = 1.0 / a;
     for driven in [false, true] {
-        let order = |j: usize| curvature_order(samples[j], driven.then_some(a));
+        let order = |j: usize| curvature_order(samples[j], inv_a, driven);
         let (mut jmax, mut kmax, mut jmin, mut kmin) = (0, f64::NEG_INFINITY, 0, f64::INFINITY);
         for j in 0..n {
             let k = order(j);
@@ -335,21 +336,22 @@ pub(crate) fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
     (convex, concave)
 }
 
-/// The signed square `κ|κ|` (mm⁻²) of the curvature of the driver at `p`, or with a centre
-/// distance `a` (mm) of its conjugate at the same contact: the same order as `κ`, without
-/// its root. With `S = ρ² + ρ'²` and the gap `g = a − ρ`, the driver's `κ` is
-/// `(ρ² + 2ρ'² − ρρ'')/S^{3/2}` and the conjugate's, [`conjugate_polar`]'s curve, is
-/// `(ρ³ + ρ'²(ρ − g) + ρρ''g)/(g·S^{3/2})` (its `ρ`-powers cleared).
+/// The signed square `(κa)|κa|` of the curvature `κ` of the driver at `p`, or of its
+/// conjugate at the same contact (`driven`), in units of the centre distance `a` (given
+/// as `inv_a = 1/a`, mm⁻¹): the same order as `κ`, without its root. In units of `a`, no
+/// power overflows for a curve that closes (`ρ < a`). With `S = ρ² + ρ'²` and the gap
+/// `g = a − ρ`, the driver's `κ` is `(ρ² + 2ρ'² − ρρ'')/S^{3/2}` and the conjugate's,
+/// [`conjugate_polar`]'s curve, is `(ρ³ + ρ'²(ρ − g) + ρρ''g)/(g·S^{3/2})` (its `ρ`-powers
+/// cleared).
 #[inline]
-pub(crate) fn curvature_order(p: Polar, a: Option<f64>) -> f64 {
-    let s = p.rho * p.rho + p.d1 * p.d1;
-    let (numerator, gap) = match a {
-        None => (p.curvature_numerator(), 1.0),
-        Some(a) => {
-            let g = a - p.rho;
-            let (r, d1) = (p.rho, p.d1);
-            (r * r * r + d1 * d1 * (r - g) + r * p.d2 * g, g)
-        }
+pub(crate) fn curvature_order(p: Polar, inv_a: f64, driven: bool) -> f64 {
+    let (r, d1, d2) = (p.rho * inv_a, p.d1 * inv_a, p.d2 * inv_a);
+    let s = r * r + d1 * d1;
+    let (numerator, gap) = if driven {
+        let g = 1.0 - r;
+        (r * r * r + d1 * d1 * (r - g) + r * d2 * g, g)
+    } else {
+        (r * r + 2.0 * d1 * d1 - r * d2, 1.0)
     };
     numerator * numerator.abs() / (gap * gap * s * s * s)
 }
@@ -714,7 +716,7 @@ mod tests {
     #[test]
     fn curvature_order_is_the_signed_square_of_the_curvature() {
         // The paper's curve and its conjugate, sampled: the closed form without the
-        // conjugate's division equals κ|κ| of the conjugate curve itself.
+        // conjugate's division equals (κa)|κa| of the conjugate curve itself.
         let pair =
             GearPair::solve(CurveSpec::paper().build().unwrap(), Resolution::DEFAULT).unwrap();
         let a = pair.centre_distance();
@@ -724,17 +726,48 @@ mod tests {
                 (false, p.curvature()),
                 (true, conjugate_polar(p, a).curvature()),
             ] {
-                let order = curvature_order(p, driven.then_some(a));
+                // Relative to the square, or near an inflection (κ → 0, where both forms
+                // cancel) to 1e-3 (κa of 0.03).
+                let (order, ka) = (curvature_order(p, 1.0 / a, driven), k * a);
                 assert!(
-                    (order - k * k.abs()).abs() <= 1e-12 * k * k,
+                    (order - ka * ka.abs()).abs() <= 1e-12 * (ka * ka).max(1e-3),
                     "{driven}: {order} against {}",
-                    k * k.abs()
+                    ka * ka.abs()
                 );
                 signs[(k < 0.0) as usize] += 1;
             }
         }
         // Both signs met: convex and concave stretches.
         assert!(signs[0] > 0 && signs[1] > 0, "{signs:?}");
+    }
+
+    #[test]
+    fn curvature_extremes_scale_with_the_curve_at_any_size() {
+        // The paper's pair scaled by 1e±100: the least radii scale with it (the scan's
+        // powers, taken in units of the centre distance, neither overflow nor underflow).
+        let pair =
+            GearPair::solve(CurveSpec::paper().build().unwrap(), Resolution::DEFAULT).unwrap();
+        let a = pair.centre_distance();
+        let (convex, concave) = curvature_extremes(pair.samples(), a);
+        assert!(convex.is_finite() && concave.is_finite());
+        for scale in [1e-100, 1e100] {
+            let scaled: Vec<Polar> = (pair.samples().iter())
+                .map(|p| Polar {
+                    rho: p.rho * scale,
+                    d1: p.d1 * scale,
+                    d2: p.d2 * scale,
+                })
+                .collect();
+            let (cx, cc) = curvature_extremes(&scaled, a * scale);
+            assert!(
+                (cx / scale - convex).abs() <= 1e-12 * convex,
+                "{scale}: {cx}"
+            );
+            assert!(
+                (cc / scale - concave).abs() <= 1e-12 * concave,
+                "{scale}: {cc}"
+            );
+        }
     }
 
     #[test]
