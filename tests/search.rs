@@ -307,6 +307,24 @@ fn multi_objective_runs_are_feasible_from_random_starts() {
                 pareto.iter().any(|(x, _)| *x == best),
                 "{algorithm:?} seed {seed}: the reported design is not in the front"
             );
+            // The summary's objectives are those of the design its `best` names (they were
+            // another design's when the solver's pick and the confirmed front's best
+            // differed).
+            let mut named = s.clone();
+            for (name, v) in names.iter().zip(&best) {
+                noncirc::core::Param::parse(name, &named)
+                    .unwrap()
+                    .set(&mut named, *v);
+            }
+            let eval = noncirc::core::Evaluator::new().evaluate(&named).unwrap();
+            for o in &eval.objectives {
+                assert_eq!(
+                    summary.objectives[o.kind.name()],
+                    o.value,
+                    "{algorithm:?} seed {seed}: {}",
+                    o.kind.name()
+                );
+            }
             // summary.json names the parameters in the scene's order.
             let json = serde_json::to_string(&summary).unwrap();
             let at = |k: &str| json.find(&format!("\"{k}\":")).unwrap();
