@@ -439,6 +439,9 @@ pub struct GearPair {
     /// Fourier coefficients of the ratio (k ≥ 0) for `phi2` between nodes, computed on
     /// first use: the planetary train interpolates its own way and never pays for them.
     ratio_coeffs: OnceLock<Vec<Complex64>>,
+    /// The pitch perimeter (mm), computed on first use: the module and the evaluation's
+    /// summary both read it.
+    perimeter: OnceLock<f64>,
 }
 
 impl GearPair {
@@ -513,6 +516,7 @@ impl GearPair {
             phi2_nodes,
             phi2_mean_rate,
             ratio_coeffs: OnceLock::new(),
+            perimeter: OnceLock::new(),
         })
     }
 
@@ -655,7 +659,7 @@ impl GearPair {
 
     /// Driver pitch perimeter (mm); the driven gear's is equal.
     pub fn perimeter(&self) -> f64 {
-        self.curve.perimeter(&self.samples)
+        *(self.perimeter).get_or_init(|| self.curve.perimeter(&self.samples))
     }
 
     /// Largest admissible module over the pair's teeth.
