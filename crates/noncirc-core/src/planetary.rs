@@ -564,10 +564,22 @@ impl Kinematics {
             nodes_per_arm: n / spec.arms,
         };
         // The arms' turn relative to `same_carrier`'s: θ3 moves with the planets' base
-        // angle, the arm with β0 on top.
+        // angle, the arm with β0 on top. The planet centres, as complex numbers
+        // `O3(θ) = e(Φ0 + σθ)·(a1 + a2·e(γ0))`, are the source's times one factor: `Φ0`
+        // turns them, the carrier's distances scale them (each node on its own, no
+        // rotation carried from node to node).
         let turn = same_carrier.map(|src| {
             let planets = kin.planet_base - src.planet_base;
-            (planets, unit(planets + beta0 - src.beta0))
+            let e_gamma = unit(gamma0);
+            let reach = Vec2::new(kin.carrier_a[0], 0.0) + e_gamma * kin.carrier_a[1];
+            let src_reach = Vec2::new(src.carrier_a[0], 0.0) + e_gamma * src.carrier_a[1];
+            let scale =
+                reach.rotated(Vec2::new(src_reach.x, -src_reach.y)) * (1.0 / src_reach.hypot2());
+            (
+                planets,
+                unit(planets + beta0 - src.beta0),
+                scale.rotated(unit(kin.phi0 - src.phi0)),
+            )
         });
         kin.planet_lag = match (same_carrier, &kin.gears.second) {
             (Some(src), _) => src.planet_lag.clone(),
@@ -597,16 +609,18 @@ impl Kinematics {
         for j in 0..n {
             let theta = h * j as f64;
             let lag = kin.planet_lag[j];
-            let o3 = e1 * a1 + e2 * a2;
-            (e1, e2) = (e1.rotated(step), e2.rotated(step));
-            let (theta3, arm_dir) = match (same_carrier, turn) {
-                (Some(src), Some((planets, arm))) => {
-                    (src.theta3[j] + planets, src.arm_dir[j].rotated(arm))
-                }
+            let (theta3, arm_dir, o3) = match (same_carrier, turn) {
+                (Some(src), Some((planets, arm, centres))) => (
+                    src.theta3[j] + planets,
+                    src.arm_dir[j].rotated(arm),
+                    src.o3[j].rotated(centres),
+                ),
                 _ => {
+                    let o3 = e1 * a1 + e2 * a2;
+                    (e1, e2) = (e1.rotated(step), e2.rotated(step));
                     let theta3 =
                         kin.planet_base + sigma * (theta - lag) + gamma0 + std::f64::consts::PI;
-                    (theta3, unit(theta3 + beta0))
+                    (theta3, unit(theta3 + beta0), o3)
                 }
             };
             kin.theta3[j] = theta3;
