@@ -20,7 +20,7 @@ impl Figure for GroundFigure<'_> {
         let (kin, ev, agro) = (self.kin, self.events, &self.scene.agronomy);
         root.fill(&WHITE).map_err(err)?;
         // As the seedling-push objective moves the machine.
-        let sign = travel_sign(kin, agro, ev);
+        let sign = travel_sign(agro, ev);
         let advance = advance_per_rad(kin.arms(), agro);
         let n = kin.len();
         let turns = 2usize;

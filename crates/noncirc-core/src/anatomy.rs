@@ -120,7 +120,7 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
     };
     let planted = kin.state_at(tl);
     let ground_velocity = Vec2::new(
-        travel_sign(kin, agro, ev) * planted.tip_d1.x + advance_per_rad(kin.arms(), agro),
+        travel_sign(agro, ev) * planted.tip_d1.x + advance_per_rad(kin.arms(), agro),
         planted.tip_d1.y,
     );
     Anatomy {

@@ -122,6 +122,10 @@ pub struct Events {
     pub picking_branch_gap_mm: Option<f64>,
     /// The same for planting: how much higher the runner-up low point is (mm).
     pub planting_branch_gap_mm: Option<f64>,
+    /// The tip's velocity at planting (mm per radian of carrier): its sign along x tells
+    /// the travel direction ([`crate::objectives::travel_sign`]) without another arm state.
+    #[serde(skip)]
+    pub planting_tip_d1: Vec2,
 }
 
 impl Events {
@@ -275,6 +279,7 @@ pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
         check,
         picking_branch_gap_mm: picking_runner_up.map(|r| depth - r),
         planting_branch_gap_mm: planting_runner_up.map(|r| neg_low - r),
+        planting_tip_d1: planted.tip_d1,
     }
 }
 

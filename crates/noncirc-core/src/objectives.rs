@@ -197,12 +197,12 @@ pub(crate) fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
 }
 
 /// The machine's travel direction along x (+1 or −1), resolving [`Travel::Auto`].
-pub fn travel_sign(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f64 {
+pub fn travel_sign(agro: &Agronomy, ev: &Events) -> f64 {
     match agro.travel {
         Travel::PlusX => 1.0,
         Travel::MinusX => -1.0,
         Travel::Auto => {
-            if kin.state_at(ev.planting.carrier_rad).tip_d1.x > 0.0 {
+            if ev.planting_tip_d1.x > 0.0 {
                 -1.0
             } else {
                 1.0
@@ -225,7 +225,7 @@ pub(crate) fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f
     let h = TAU / n as f64;
     let advance = advance_per_rad(kin.arms(), agro);
     let tp = ev.planting.carrier_rad;
-    let forward = travel_sign(kin, agro, ev);
+    let forward = travel_sign(agro, ev);
     let top = ev.planting.tip_mm.y + agro.seedling_height_mm;
     let ahead = |x: f64, t: f64| forward * (x - ev.planting.tip_mm.x) + advance * (t - tp);
     let first = (tp / h).floor() as usize + 1;
