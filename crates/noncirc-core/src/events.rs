@@ -123,7 +123,7 @@ pub struct Events {
     /// The same for planting: how much higher the runner-up low point is (mm).
     pub planting_branch_gap_mm: Option<f64>,
     /// The tip's velocity at planting (mm per radian of carrier): its sign along x tells
-    /// the travel direction ([`crate::objectives::travel_sign`]) without another arm state.
+    /// the machine's travel direction under `travel = "auto"` without another arm state.
     #[serde(skip)]
     pub planting_tip_d1: Vec2,
 }
