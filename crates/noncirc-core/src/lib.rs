@@ -58,6 +58,7 @@ mod evaluator;
 mod events;
 mod fit;
 mod flywheel;
+mod interference;
 mod inverse;
 mod measure_value;
 mod objectives;
