@@ -143,6 +143,43 @@ fn evaluate_report_has_the_documented_keys() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
+    /// The located events are the arm's state at their carrier angle: the tip, the
+    /// attitude, the planet centre (the picking check) and the tip speed agree with
+    /// `state_at` there far below the trajectory's accuracy (1e-3 mm at 120 samples), as
+    /// Newton's last step is taken along the state's Taylor series; the picking point is
+    /// an extreme along the tray normal and planting the lowest point. Both senses.
+    #[test]
+    fn events_are_the_arm_state_at_their_angle(
+        radii in prop::collection::vec(10.0f64..70.0, 12),
+        phi0 in -180.0f64..180.0, beta0 in -90.0f64..90.0, s in 60.0f64..250.0,
+        h1 in 0.0f64..59.0, gamma0 in -170.0f64..170.0, clockwise in any::<bool>(),
+    ) {
+        let (_, angles) = noncirc::core::paper_control_points();
+        let Ok(curve) = (CurveSpec::Spline { radii_mm: radii, angles_deg: angles }).build() else { return Ok(()); };
+        let rotation = if clockwise { Rotation::Clockwise } else { Rotation::Counterclockwise };
+        let train = TrainSpec { phi0_deg: phi0, beta0_deg: beta0, arm_length_mm: s, pusher_offset_mm: h1, gamma0_deg: gamma0, rotation, ..TrainSpec::default() };
+        let Ok(kin) = Kinematics::solve(&curve, None, &train, &Resolution::DEFAULT) else { return Ok(()); };
+        let agro = Agronomy::default();
+        let ev = events(&kin, &agro);
+        let normal = noncirc::core::unit(agro.tray_normal_deg.to_radians());
+        let down = noncirc::core::Vec2::new(0.0, -1.0);
+        for (event, dir) in [(ev.picking, normal), (ev.planting, down)] {
+            let at = kin.state_at(event.carrier_rad);
+            prop_assert!((event.tip_mm - at.tip).hypot() < 1e-7, "{:?} vs {:?}", event.tip_mm, at.tip);
+            let attitude = noncirc::core::attitude_deg(at.pusher_angle);
+            prop_assert!((event.attitude_deg - attitude).abs() < 1e-7, "{} vs {attitude}", event.attitude_deg);
+            // Stationary along the direction (or the node, where Newton found no extreme).
+            let slope = at.tip_d1.dot(dir).abs();
+            let node = kin.tips().iter().any(|t| (*t - event.tip_mm).hypot() < 1e-9);
+            prop_assert!(slope < 1e-6 * at.tip_d1.hypot() || node, "slope {slope}");
+        }
+        let at = kin.state_at(ev.picking.carrier_rad);
+        let behind = ev.check.tray_surface_mm - at.o3.dot(normal);
+        prop_assert!((ev.check.planet_behind_mm - behind).abs() < 1e-7, "{} vs {behind}", ev.check.planet_behind_mm);
+        let speed = at.tip_d1.hypot() * kin.carrier_speed() / 1000.0;
+        prop_assert!((ev.picking_tip_speed_m_s - speed).abs() < 1e-9 * speed.max(1.0), "{} vs {speed}", ev.picking_tip_speed_m_s);
+    }
+
     /// Random designs around the paper: either a typed error or nine finite objectives with
     /// non-negative violations that are zero exactly when the value is within bounds.
     #[test]

@@ -142,42 +142,81 @@ pub fn attitude_deg(pusher_angle: f64) -> f64 {
     (-pusher_angle.sin()).clamp(-1.0, 1.0).asin().to_degrees()
 }
 
+/// What the events read of arm I at an extreme: the carrier angle (rad), the tip (mm),
+/// its velocity (mm/rad), the planet centre (mm) and the pusher-axis angle (rad).
+#[derive(Debug, Clone, Copy)]
+struct AtExtreme {
+    theta: f64,
+    tip: Vec2,
+    tip_d1: Vec2,
+    o3: Vec2,
+    pusher_angle: f64,
+}
+
+impl AtExtreme {
+    fn of(s: &ArmState) -> Self {
+        Self {
+            theta: s.theta,
+            tip: s.tip,
+            tip_d1: s.tip_d1,
+            o3: s.o3,
+            pusher_angle: s.pusher_angle,
+        }
+    }
+
+    /// The state `dt` (rad) of carrier angle past `s`, by Taylor's series: second order
+    /// for the tip and the planet centre (`O3` turns with the carrier, `O3' = σ·O3⊥`,
+    /// `O3'' = −O3`), first for the tip's velocity and the pusher angle (`θ3'`). For
+    /// `|dt|` below 1e-7 rad the terms left out are below 1e-13 of each value: rounding.
+    fn advanced(s: &ArmState, sigma: f64, dt: f64) -> Self {
+        Self {
+            theta: s.theta + dt,
+            tip: s.tip + (s.tip_d1 + s.tip_d2 * (0.5 * dt)) * dt,
+            tip_d1: s.tip_d1 + s.tip_d2 * dt,
+            o3: s.o3 + (s.o3.turn_90() * sigma - s.o3 * (0.5 * dt)) * dt,
+            pusher_angle: s.pusher_angle + s.theta3_d[0] * dt,
+        }
+    }
+}
+
 /// Refines the extreme of `t ↦ D(t)·dir` near node `j` by Newton on the derivative,
-/// using the exact tip derivatives; `max` chooses maximum or minimum. Returns the arm's
-/// state there (`state.theta` is the carrier angle) and the extreme value.
-fn refine_extreme(kin: &Kinematics, dir: Vec2, j: usize, max: bool) -> (ArmState, f64) {
+/// using the exact tip derivatives; `max` chooses maximum or minimum. Returns the arm
+/// there and the extreme value. Newton converges quadratically: once a step falls below
+/// 1e-7 rad, the next is below 1e-13 rad, so that last step is taken along the Taylor
+/// series of the state in hand ([`AtExtreme::advanced`]) instead of with a new arm state.
+fn refine_extreme(kin: &Kinematics, dir: Vec2, j: usize, max: bool) -> (AtExtreme, f64) {
     let h = TAU / kin.len() as f64;
+    let sigma = kin.spec().rotation.sign();
     let dot = |v: Vec2| v.dot(dir);
     let start = kin.theta(j);
-    let mut t = start;
     // The node's state from what the nodes keep (to rounding `state_at(θ_j)`).
     let at_node = kin.node_state(j);
     let mut state = at_node;
+    let mut last = None;
     for _ in 0..20 {
         let (d1, d2) = (dot(state.tip_d1), dot(state.tip_d2));
         if (max && d2 >= 0.0) || (!max && d2 <= 0.0) {
             break;
         }
         let step = (d1 / d2).clamp(-h, h);
-        t -= step;
-        state = kin.state_at(t);
-        // Newton converges quadratically: after a step below 1e-7 rad the next one is
-        // below 1e-13 rad, and the extreme value's error is second order in it.
         if step.abs() < 1e-7 {
+            last = Some(AtExtreme::advanced(&state, sigma, -step));
             break;
         }
+        state = kin.state_at(state.theta - step);
     }
+    let last = last.unwrap_or(AtExtreme::of(&state));
     let node_value = dot(kin.tips()[j]);
-    let refined = dot(state.tip);
+    let refined = dot(last.tip);
     let better = if max {
         refined >= node_value
     } else {
         refined <= node_value
     };
-    if better && (t - start).abs() <= 1.5 * h {
-        (state, refined)
+    if better && (last.theta - start).abs() <= 1.5 * h {
+        (last, refined)
     } else {
-        (at_node, node_value)
+        (AtExtreme::of(&at_node), node_value)
     }
 }
 
@@ -254,7 +293,7 @@ pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
         .max_by(|&a, &b| tips[a].y.total_cmp(&tips[b].y))
         .unwrap_or(0);
     let (_, y_max) = refine_extreme(kin, Vec2::new(0.0, 1.0), jh, true);
-    let event = |s: &ArmState| Event {
+    let event = |s: &AtExtreme| Event {
         carrier_rad: s.theta.rem_euclid(TAU),
         tip_mm: s.tip,
         attitude_deg: attitude_deg(s.pusher_angle),
@@ -316,7 +355,7 @@ pub(crate) fn span_where(n: usize, j0: usize, f: impl Fn(usize) -> f64) -> Optio
 fn picking_check(
     kin: &Kinematics,
     agro: &Agronomy,
-    picked: &ArmState,
+    picked: &AtExtreme,
     surface: f64,
     runner_up: Option<f64>,
 ) -> PickingCheck {
