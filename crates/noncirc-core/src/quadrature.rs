@@ -1,18 +1,22 @@
 //! Periodic quadrature on uniform grids: spectral cumulative integrals and Hermite interpolation.
 
-use rustfft::num_complex::Complex64;
-use rustfft::{Fft, FftPlanner};
+use realfft::num_complex::Complex64;
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use std::sync::Arc;
 
 /// Spectral cumulative integration of periodic samples on a uniform grid.
 ///
-/// Holds the FFT plans and scratch buffers so that repeated use allocates nothing.
+/// Holds the real-input FFT plans (`realfft`: half the work of a complex transform of the
+/// same length) and their buffers so that repeated use allocates nothing.
 #[derive(Clone)]
 pub(crate) struct SpectralIntegrator {
     n: usize,
-    forward: Arc<dyn Fft<f64>>,
-    inverse: Arc<dyn Fft<f64>>,
-    buffer: Vec<Complex64>,
+    forward: Arc<dyn RealToComplex<f64>>,
+    inverse: Arc<dyn ComplexToReal<f64>>,
+    /// The samples in, the inverse transform out (`n`; the forward transform overwrites it).
+    real: Vec<f64>,
+    /// Coefficients `k = 0 … n/2`.
+    spectrum: Vec<Complex64>,
     scratch: Vec<Complex64>,
 }
 
@@ -25,18 +29,17 @@ impl std::fmt::Debug for SpectralIntegrator {
 impl SpectralIntegrator {
     /// Plans transforms of length `n` (samples per period).
     pub(crate) fn new(n: usize) -> Self {
-        let mut planner = FftPlanner::new();
+        let mut planner = RealFftPlanner::new();
         let forward = planner.plan_fft_forward(n);
         let inverse = planner.plan_fft_inverse(n);
-        let scratch_len = forward
-            .get_inplace_scratch_len()
-            .max(inverse.get_inplace_scratch_len());
+        let scratch_len = forward.get_scratch_len().max(inverse.get_scratch_len());
         Self {
             n,
+            real: forward.make_input_vec(),
+            spectrum: forward.make_output_vec(),
+            scratch: vec![Complex64::default(); scratch_len],
             forward,
             inverse,
-            buffer: vec![Complex64::default(); n],
-            scratch: vec![Complex64::default(); scratch_len],
         }
     }
 
@@ -45,16 +48,24 @@ impl SpectralIntegrator {
         self.n
     }
 
+    /// The unnormalised forward transform of `f` into `self.spectrum` (`k = 0 … n/2`).
+    fn transform(&mut self, f: &[f64]) {
+        self.real.copy_from_slice(f);
+        // Lengths are the plan's own: the transform cannot fail.
+        let done = (self.forward).process_with_scratch(
+            &mut self.real,
+            &mut self.spectrum,
+            &mut self.scratch,
+        );
+        debug_assert!(done.is_ok());
+    }
+
     /// Fourier coefficients `c_k`, k = 0..n/2 (exclusive of Nyquist), of the trigonometric
     /// interpolant `f(u) = Σ c_k e^{iku}` of real samples (negative k are conjugates).
     pub(crate) fn coefficients(&mut self, f: &[f64]) -> Vec<Complex64> {
         let n = self.n;
-        for (b, &v) in self.buffer.iter_mut().zip(f) {
-            *b = Complex64::new(v, 0.0);
-        }
-        self.forward
-            .process_with_scratch(&mut self.buffer, &mut self.scratch);
-        self.buffer[..n.div_ceil(2)]
+        self.transform(f);
+        self.spectrum[..n.div_ceil(2)]
             .iter()
             .map(|c| c / n as f64)
             .collect()
@@ -71,33 +82,29 @@ impl SpectralIntegrator {
             f.len() == n && out.len() == n,
             "sample count must match the plan"
         );
-        for (b, &v) in self.buffer.iter_mut().zip(f) {
-            *b = Complex64::new(v, 0.0);
-        }
-        self.forward
-            .process_with_scratch(&mut self.buffer, &mut self.scratch);
-        let mean = self.buffer[0].re / n as f64;
-        self.buffer[0] = Complex64::default();
+        self.transform(f);
+        let mean = self.spectrum[0].re / n as f64;
+        self.spectrum[0] = Complex64::default();
         let scale = 1.0 / n as f64;
-        for k in 1..n {
-            let wave = if 2 * k < n {
-                k as f64
-            } else if 2 * k > n {
-                k as f64 - n as f64
+        for (k, c) in self.spectrum.iter_mut().enumerate().skip(1) {
+            *c = if 2 * k == n {
+                Complex64::default()
             } else {
-                self.buffer[k] = Complex64::default();
-                continue;
+                // Divide by i·k: (x + i y)/(i k) = (y - i x)/k.
+                Complex64::new(c.im, -c.re) * (scale / k as f64)
             };
-            // Divide by i·k: (x + i y)/(i k) = (y - i x)/k.
-            let c = self.buffer[k];
-            self.buffer[k] = Complex64::new(c.im, -c.re) * (scale / wave);
         }
-        self.inverse
-            .process_with_scratch(&mut self.buffer, &mut self.scratch);
-        let p0 = self.buffer[0].re;
+        // The spectrum's zero and Nyquist terms are real (set to 0 above): cannot fail.
+        let done = (self.inverse).process_with_scratch(
+            &mut self.spectrum,
+            &mut self.real,
+            &mut self.scratch,
+        );
+        debug_assert!(done.is_ok());
+        let p0 = self.real[0];
         let h = std::f64::consts::TAU / n as f64;
-        for (j, (o, b)) in out.iter_mut().zip(&self.buffer).enumerate() {
-            *o = mean * h * j as f64 + b.re - p0;
+        for (j, (o, b)) in out.iter_mut().zip(&self.real).enumerate() {
+            *o = mean * h * j as f64 + b - p0;
         }
         mean
     }
