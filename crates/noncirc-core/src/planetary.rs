@@ -610,10 +610,10 @@ impl Kinematics {
             let theta = h * j as f64;
             let lag = kin.planet_lag[j];
             let (theta3, arm_dir, o3) = match (same_carrier, turn) {
-                (Some(src), Some((planets, arm, centres))) => (
+                (Some(src), Some((planets, arm, centre_factor))) => (
                     src.theta3[j] + planets,
                     src.arm_dir[j].rotated(arm),
-                    src.o3[j].rotated(centres),
+                    src.o3[j].rotated(centre_factor),
                 ),
                 _ => {
                     let o3 = e1 * a1 + e2 * a2;
