@@ -6,6 +6,7 @@ use noncirc_core::{
     analyse, saltelli_points, sobol_indices, Evaluator, Measure, Measured, Scene, SceneKind,
     SceneProblem, SobolIndices, ToleranceReport, Tolerances, Unreliable, REPORTED_QUANTILES,
 };
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::search::{map_batch, thread_pool};
@@ -348,11 +349,21 @@ pub fn sensitivity(
         }
     });
     let refused = y.iter().filter(|r| r.iter().all(|v| v.is_nan())).count();
+    // Each output's indices and bootstrap on its own (the same seed each): in parallel,
+    // in the outputs' order whatever the threads.
+    let indices: Vec<_> = pool.install(|| {
+        (0..measures.len())
+            .into_par_iter()
+            .map(|m| {
+                let column: Vec<f64> = y.iter().map(|r| r[m]).collect();
+                sobol_indices(&column, k, bootstrap, seed)
+            })
+            .collect()
+    });
     let mut out = Vec::new();
     let mut skipped = Vec::new();
-    for (m, measure) in measures.iter().enumerate() {
-        let column: Vec<f64> = y.iter().map(|r| r[m]).collect();
-        match sobol_indices(&column, k, bootstrap, seed) {
+    for (measure, indices) in measures.iter().zip(indices) {
+        match indices {
             Ok(indices) => out.push(OutputIndices {
                 name: measure.name(),
                 unit: measure.unit(),

@@ -65,48 +65,91 @@ pub struct SobolIndices {
     pub rows_used: usize,
 }
 
-/// The output blocks `(A, B, AB_i)` of the base points in `rows` (indices into the base),
-/// with `centre` the mean of every output of the base points used.
-fn indices_on(y: &[f64], k: usize, rows: &[usize], centre: f64) -> (Vec<f64>, Vec<f64>, f64) {
-    let step = k + 2;
-    let m = rows.len() as f64;
-    let a = |j: usize| y[j * step];
-    let b = |j: usize| y[j * step + k + 1];
-    // The variance of A and B together, as SALib takes it (population variance).
-    let mean = rows.iter().map(|&j| a(j) + b(j)).sum::<f64>() / (2.0 * m);
-    let var = rows
-        .iter()
-        .map(|&j| (a(j) - mean).powi(2) + (b(j) - mean).powi(2))
-        .sum::<f64>()
-        / (2.0 * m);
-    let mut first = vec![0.0; k];
-    let mut total = vec![0.0; k];
-    if var > 0.0 {
-        // Saltelli (2010): V_i = E[f(B)(f(A_B^i) − f(A))]; Jansen: V_Ti = ½E[(f(A) −
-        // f(A_B^i))²]. Jansen's first order, V − ½E[(f(B) − f(A_B^i))²], subtracts two
-        // estimates of nearly the same size: for an inert parameter it scatters about 0 by
-        // the sampling error of V (its ΣS1 drifted above 1), where Saltelli's is exactly 0
-        // (f(A_B^i) = f(A)). Its spread grows with the output's mean, so f(B) is taken
-        // about the mean of all outputs, as SALib standardises them (the expectation is
-        // the same: E[f(A_B^i) − f(A)] = 0). One pass over the rows, each row's block read
-        // whole (its k + 2 outputs lie together); every parameter's sums add the rows in
-        // their order.
-        let (mut v_first, mut d_total) = (vec![0.0; k], vec![0.0; k]);
-        for &j in rows {
-            let block = &y[j * step..(j + 1) * step];
-            let (a, b) = (block[0], block[k + 1]);
+/// Per base point, what the estimators sum, computed once for the estimate and every
+/// bootstrap resample: `f(A)`, `f(B)`, and for each parameter `i` (in one row of `2k`)
+/// `(f(B) − centre)(f(A_B^i) − f(A))` then `(f(A) − f(A_B^i))²`.
+///
+/// Saltelli (2010): V_i = E[f(B)(f(A_B^i) − f(A))]; Jansen: V_Ti = ½E[(f(A) − f(A_B^i))²].
+/// Jansen's first order, V − ½E[(f(B) − f(A_B^i))²], subtracts two estimates of nearly
+/// the same size: for an inert parameter it scatters about 0 by the sampling error of V
+/// (its ΣS1 drifted above 1), where Saltelli's is exactly 0 (f(A_B^i) = f(A)). Its spread
+/// grows with the output's mean, so f(B) is taken about the mean of all outputs, as SALib
+/// standardises them (the expectation is the same: E[f(A_B^i) − f(A)] = 0).
+struct Terms {
+    k: usize,
+    a: Vec<f64>,
+    b: Vec<f64>,
+    /// `2k` per base point, then zeros to a whole number of [`LANES`].
+    sums: Vec<f64>,
+}
+
+/// Terms summed side by side in registers.
+const LANES: usize = 16;
+
+impl Terms {
+    /// The terms per base point, padded.
+    fn width(&self) -> usize {
+        (2 * self.k).div_ceil(LANES) * LANES
+    }
+
+    /// The terms of `y` (laid out as [`saltelli_points`] lays out the points), `centre`
+    /// the mean of every output of the base points used.
+    fn new(y: &[f64], k: usize, centre: f64) -> Self {
+        let step = k + 2;
+        let n = y.len() / step;
+        let (mut a, mut b) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        let width = (2 * k).div_ceil(LANES) * LANES;
+        let mut sums = Vec::with_capacity(width * n);
+        for block in y.chunks_exact(step) {
+            let (fa, fb) = (block[0], block[k + 1]);
             let abs = &block[1..=k];
-            for ((vf, dt), &ab) in v_first.iter_mut().zip(&mut d_total).zip(abs) {
-                *vf += (b - centre) * (ab - a);
-                *dt += (a - ab).powi(2);
+            sums.extend(abs.iter().map(|&ab| (fb - centre) * (ab - fa)));
+            sums.extend(abs.iter().map(|&ab| (fa - ab).powi(2)));
+            sums.resize(sums.len() + width - 2 * k, 0.0);
+            a.push(fa);
+            b.push(fb);
+        }
+        Self { k, a, b, sums }
+    }
+
+    /// The first-order and total indices and the variance over the base points `rows`
+    /// (indices into the base; a bootstrap resample repeats some). Every sum adds the rows
+    /// in their order.
+    fn indices_on(&self, rows: &[usize]) -> (Vec<f64>, Vec<f64>, f64) {
+        let k = self.k;
+        let m = rows.len() as f64;
+        let (a, b) = (&self.a, &self.b);
+        // The variance of A and B together, as SALib takes it (population variance).
+        let mean = rows.iter().map(|&j| a[j] + b[j]).sum::<f64>() / (2.0 * m);
+        let var = rows
+            .iter()
+            .map(|&j| (a[j] - mean).powi(2) + (b[j] - mean).powi(2))
+            .sum::<f64>()
+            / (2.0 * m);
+        let mut first = vec![0.0; k];
+        let mut total = vec![0.0; k];
+        if var > 0.0 {
+            // One row of 2k terms per base point (padded to whole lanes): the sums of
+            // `LANES` terms at a time kept in registers over all rows.
+            let width = self.width();
+            let mut sums = vec![0.0; width];
+            for (c, lane) in sums.chunks_exact_mut(LANES).enumerate() {
+                let mut acc = [0.0; LANES];
+                for &j in rows {
+                    let t = &self.sums[width * j + LANES * c..][..LANES];
+                    for (s, t) in acc.iter_mut().zip(t) {
+                        *s += t;
+                    }
+                }
+                lane.copy_from_slice(&acc);
+            }
+            for i in 0..k {
+                first[i] = sums[i] / (m * var);
+                total[i] = sums[k + i] / (2.0 * m * var);
             }
         }
-        for i in 0..k {
-            first[i] = v_first[i] / (m * var);
-            total[i] = d_total[i] / (2.0 * m * var);
-        }
+        (first, total, var)
     }
-    (first, total, var)
 }
 
 /// The Sobol indices of one output `y`, laid out as [`saltelli_points`] lays out the
@@ -138,14 +181,15 @@ pub fn sobol_indices(y: &[f64], k: usize, bootstrap: usize, seed: u64) -> Result
         .flat_map(|&j| &y[j * step..(j + 1) * step])
         .sum::<f64>()
         / (rows.len() * step) as f64;
-    let (first, total, variance) = indices_on(y, k, &rows, centre);
+    let terms = Terms::new(y, k, centre);
+    let (first, total, variance) = terms.indices_on(&rows);
     let mut rng = Rng::new(seed);
     let (mut s1, mut st) = (vec![Vec::new(); k], vec![Vec::new(); k]);
     for _ in 0..bootstrap {
         let resample: Vec<usize> = (0..rows.len())
             .map(|_| rows[rng.below(rows.len())])
             .collect();
-        let (f, t, _) = indices_on(y, k, &resample, centre);
+        let (f, t, _) = terms.indices_on(&resample);
         for i in 0..k {
             s1[i].push(f[i]);
             st[i].push(t[i]);
