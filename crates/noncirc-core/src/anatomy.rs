@@ -103,11 +103,12 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
     let (p0, p1) = (p0 - turns, p1 - turns);
     let end = r0 + TAU;
     let plant = [p0.max(r1).min(end), p1.max(r1).min(end)];
-    let spans = [[r0, r1], [r1, plant[0]], plant, [plant[1], end]];
+    // The sections' ends, each the start of the next; the arm's state once at each.
+    let ends = [r0, r1, plant[0], plant[1], end];
+    let at_ends = ends.map(|t| End::at(kin, t));
     let speeds = kin.node_tip_speeds();
     let sections = std::array::from_fn(|i| {
-        let [t0, t1] = spans[i];
-        measure_section(kin, &speeds, Section::ALL[i], t0, t1)
+        measure_section(kin, &speeds, Section::ALL[i], [at_ends[i], at_ends[i + 1]])
     });
     let removal: &SectionMeasures = &sections[0];
     let [w0, w1] = ev.picking_window_rad;
@@ -116,7 +117,7 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
     let in_tray = if w1 == w0 {
         kin.state_at(tp).tip_d1.hypot()
     } else {
-        path_length(kin, &speeds, w0, w1) / (w1 - w0)
+        path_length(kin, &speeds, [End::at(kin, w0), End::at(kin, w1)]) / (w1 - w0)
     };
     let planted = kin.state_at(tl);
     let ground_velocity = Vec2::new(
@@ -136,44 +137,62 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
     }
 }
 
-/// The tip's path length over carrier angles `[t0, t1]` (rad, unwrapped; mm): the
-/// trapezoid rule of the tip speed `speeds` (mm/rad at the nodes) on the nodes inside plus
-/// the two partial cells.
-fn path_length(kin: &Kinematics, speeds: &[f64], t0: f64, t1: f64) -> f64 {
+/// One end of a stretch of the trajectory: its carrier angle (rad, unwrapped), the tip
+/// there (mm) and the tip's speed (mm/rad).
+#[derive(Clone, Copy)]
+struct End {
+    carrier_rad: f64,
+    tip: Vec2,
+    speed: f64,
+}
+
+impl End {
+    fn at(kin: &Kinematics, carrier_rad: f64) -> Self {
+        let state = kin.state_at(carrier_rad);
+        Self {
+            carrier_rad,
+            tip: state.tip,
+            speed: state.tip_d1.hypot(),
+        }
+    }
+}
+
+/// The tip's path length between two ends (mm): the trapezoid rule of the tip speed
+/// `speeds` (mm/rad at the nodes) on the nodes inside plus the two partial cells.
+fn path_length(kin: &Kinematics, speeds: &[f64], [e0, e1]: [End; 2]) -> f64 {
     let h = TAU / kin.len() as f64;
     let at = |k: i64| k.rem_euclid(kin.len() as i64) as usize;
-    let speed = |t: f64| kin.state_at(t).tip_d1.hypot();
+    let (t0, t1) = (e0.carrier_rad, e1.carrier_rad);
     // Nodes strictly inside (t0, t1).
     let (first, last) = ((t0 / h).floor() as i64 + 1, (t1 / h).ceil() as i64 - 1);
     if first > last {
-        return 0.5 * (speed(t0) + speed(t1)) * (t1 - t0);
+        return 0.5 * (e0.speed + e1.speed) * (t1 - t0);
     }
-    let mut length = 0.5 * (speed(t0) + speeds[at(first)]) * (first as f64 * h - t0)
-        + 0.5 * (speed(t1) + speeds[at(last)]) * (t1 - last as f64 * h);
+    let mut length = 0.5 * (e0.speed + speeds[at(first)]) * (first as f64 * h - t0)
+        + 0.5 * (e1.speed + speeds[at(last)]) * (t1 - last as f64 * h);
     for k in first..last {
         length += 0.5 * (speeds[at(k)] + speeds[at(k + 1)]) * h;
     }
     length
 }
 
-/// The measures of one section `[t0, t1]` (rad, unwrapped): the path length
-/// ([`path_length`]), the extremes of x and y at the nodes inside (refined by the parabola
-/// through the neighbours) and at the ends.
+/// The measures of one section between two ends: the path length ([`path_length`]), the
+/// extremes of x and y at the nodes inside (refined by the parabola through the
+/// neighbours) and at the ends.
 fn measure_section(
     kin: &Kinematics,
     speeds: &[f64],
     section: Section,
-    t0: f64,
-    t1: f64,
+    ends: [End; 2],
 ) -> SectionMeasures {
     let n = kin.len();
     let h = TAU / n as f64;
     let tips = kin.tips();
     let at = |k: i64| k.rem_euclid(n as i64) as usize;
-    let (a, b) = (kin.state_at(t0).tip, kin.state_at(t1).tip);
+    let [(t0, a), (t1, b)] = ends.map(|e| (e.carrier_rad, e.tip));
     // Nodes strictly inside (t0, t1).
     let (first, last) = ((t0 / h).floor() as i64 + 1, (t1 / h).ceil() as i64 - 1);
-    let length = path_length(kin, speeds, t0, t1);
+    let length = path_length(kin, speeds, ends);
     let mut extent = [a.x.min(b.x), a.x.max(b.x)];
     let mut heights = [a.y.min(b.y), a.y.max(b.y)];
     if first <= last {
