@@ -170,8 +170,13 @@ fn path_length(kin: &Kinematics, speeds: &[f64], [e0, e1]: [End; 2]) -> f64 {
     }
     let mut length = 0.5 * (e0.speed + speeds[at(first)]) * (first as f64 * h - t0)
         + 0.5 * (e1.speed + speeds[at(last)]) * (t1 - last as f64 * h);
-    for k in first..last {
-        length += 0.5 * (speeds[at(k)] + speeds[at(k + 1)]) * h;
+    // Node indices wrap by a comparison, not a division per node.
+    let n = speeds.len();
+    let mut j = at(first);
+    for _ in first..last {
+        let next = if j + 1 == n { 0 } else { j + 1 };
+        length += 0.5 * (speeds[j] + speeds[next]) * h;
+        j = next;
     }
     length
 }
@@ -196,8 +201,12 @@ fn measure_section(
     let mut extent = [a.x.min(b.x), a.x.max(b.x)];
     let mut heights = [a.y.min(b.y), a.y.max(b.y)];
     if first <= last {
-        for k in first..=last {
-            let (m, c, p) = (tips[at(k - 1)], tips[at(k)], tips[at(k + 1)]);
+        // Node indices wrap by a comparison, not a division per node.
+        let (mut before, mut j) = (at(first - 1), at(first));
+        for _ in first..=last {
+            let after = if j + 1 == n { 0 } else { j + 1 };
+            let (m, c, p) = (tips[before], tips[j], tips[after]);
+            (before, j) = (j, after);
             for ([m, c, p], range) in [
                 ([m.x, c.x, p.x], &mut extent),
                 ([m.y, c.y, p.y], &mut heights),
