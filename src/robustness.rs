@@ -3,8 +3,9 @@
 //! person or a program reads.
 
 use noncirc_core::{
-    analyse, saltelli_points, sobol_indices, Evaluator, Measure, Measured, Scene, SceneKind,
-    SceneProblem, SobolIndices, ToleranceReport, Tolerances, Unreliable, REPORTED_QUANTILES,
+    analyse, saltelli_points, sobol_indices_sharing, Evaluator, Measure, Measured, Resamples,
+    Scene, SceneKind, SceneProblem, SobolIndices, ToleranceReport, Tolerances, Unreliable,
+    REPORTED_QUANTILES,
 };
 use rayon::prelude::*;
 use serde::Serialize;
@@ -350,13 +351,15 @@ pub fn sensitivity(
     });
     let refused = y.iter().filter(|r| r.iter().all(|v| v.is_nan())).count();
     // Each output's indices and bootstrap on its own (the same seed each): in parallel,
-    // in the outputs' order whatever the threads.
+    // in the outputs' order whatever the threads. The outputs with every base point share
+    // one draw of the resamples.
+    let shared = Resamples::new(base_samples, bootstrap, seed);
     let indices: Vec<_> = pool.install(|| {
         (0..measures.len())
             .into_par_iter()
             .map(|m| {
                 let column: Vec<f64> = y.iter().map(|r| r[m]).collect();
-                sobol_indices(&column, k, bootstrap, seed)
+                sobol_indices_sharing(&column, k, bootstrap, seed, Some(&shared))
             })
             .collect()
     });

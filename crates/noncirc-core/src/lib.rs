@@ -132,7 +132,8 @@ pub use robustness::{
     REPORTED_QUANTILES,
 };
 pub use sensitivity::{
-    saltelli_points, sobol_indices, SobolIndices, Unreliable, FEWEST_ROWS, READABLE_HALF_WIDTH,
+    saltelli_points, sobol_indices, sobol_indices_sharing, Resamples, SobolIndices, Unreliable,
+    FEWEST_ROWS, READABLE_HALF_WIDTH,
 };
 pub use tolerance::{Spread, Tolerances};
 

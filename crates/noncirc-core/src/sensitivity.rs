@@ -152,11 +152,52 @@ impl Terms {
     }
 }
 
+/// The bootstrap's draws: `bootstrap` resamples of `m` positions (into the base points an
+/// output uses), drawn from `seed`. Every output of a study with all `m` base points used
+/// draws the same, so they can share one draw ([`sobol_indices_sharing`]).
+#[derive(Debug, Clone)]
+pub struct Resamples {
+    m: usize,
+    bootstrap: usize,
+    seed: u64,
+    /// `bootstrap` rows of `m`.
+    positions: Vec<usize>,
+}
+
+impl Resamples {
+    pub fn new(m: usize, bootstrap: usize, seed: u64) -> Self {
+        let mut rng = Rng::new(seed);
+        Self {
+            m,
+            bootstrap,
+            seed,
+            positions: (0..bootstrap * m).map(|_| rng.below(m)).collect(),
+        }
+    }
+
+    fn fits(&self, m: usize, bootstrap: usize, seed: u64) -> bool {
+        (self.m, self.bootstrap, self.seed) == (m, bootstrap, seed)
+    }
+}
+
 /// The Sobol indices of one output `y`, laid out as [`saltelli_points`] lays out the
 /// points, for `k` parameters; `bootstrap` resamples of the base points (seeded by `seed`)
 /// give each index's 95 % half-width (1.96 standard deviations, as SALib reports it). An
 /// output that does not vary has all indices 0.
 pub fn sobol_indices(y: &[f64], k: usize, bootstrap: usize, seed: u64) -> Result<SobolIndices> {
+    sobol_indices_sharing(y, k, bootstrap, seed, None)
+}
+
+/// As [`sobol_indices`], taking the bootstrap's draws from `shared` when they are the
+/// ones it would draw (the same count of base points used, resamples and seed): the same
+/// indices, without drawing them again for each output.
+pub fn sobol_indices_sharing(
+    y: &[f64],
+    k: usize,
+    bootstrap: usize,
+    seed: u64,
+    shared: Option<&Resamples>,
+) -> Result<SobolIndices> {
     let step = k + 2;
     if k == 0 || !y.len().is_multiple_of(step) {
         return Err(Error::OutOfRange {
@@ -183,12 +224,20 @@ pub fn sobol_indices(y: &[f64], k: usize, bootstrap: usize, seed: u64) -> Result
         / (rows.len() * step) as f64;
     let terms = Terms::new(y, k, centre);
     let (first, total, variance) = terms.indices_on(&rows);
-    let mut rng = Rng::new(seed);
+    let own;
+    let draws = match shared {
+        Some(draws) if draws.fits(rows.len(), bootstrap, seed) => draws,
+        _ => {
+            own = Resamples::new(rows.len(), bootstrap, seed);
+            &own
+        }
+    };
     let (mut s1, mut st) = (vec![Vec::new(); k], vec![Vec::new(); k]);
-    for _ in 0..bootstrap {
-        let resample: Vec<usize> = (0..rows.len())
-            .map(|_| rows[rng.below(rows.len())])
-            .collect();
+    let mut resample = vec![0; rows.len()];
+    for positions in draws.positions.chunks_exact(rows.len()) {
+        for (r, &p) in resample.iter_mut().zip(positions) {
+            *r = rows[p];
+        }
         let (f, t, _) = terms.indices_on(&resample);
         for i in 0..k {
             s1[i].push(f[i]);
@@ -502,6 +551,28 @@ mod tests {
                 s.total[i]
             );
         }
+    }
+
+    /// A shared draw gives each output what its own draw gives, and one that does not fit
+    /// (another count of base points used, resamples or seed) is not taken.
+    #[test]
+    fn shared_resamples_give_each_output_its_own_indices() {
+        let points = saltelli_points(2, 64, 1).unwrap();
+        let whole: Vec<f64> = points.iter().map(|p| p[0] + 2.0 * p[1] * p[0]).collect();
+        let mut refused = whole.clone();
+        refused[9] = f64::NAN;
+        let shared = Resamples::new(64, 50, 3);
+        for y in [&whole, &refused] {
+            let own = sobol_indices(y, 2, 50, 3).unwrap();
+            assert_eq!(sobol_indices_sharing(y, 2, 50, 3, Some(&shared)).unwrap(), own);
+            let other_seed = sobol_indices_sharing(y, 2, 50, 4, Some(&shared)).unwrap();
+            assert_eq!(other_seed, sobol_indices(y, 2, 50, 4).unwrap());
+            assert_ne!(other_seed.first_conf, own.first_conf);
+        }
+        assert_ne!(
+            sobol_indices(&refused, 2, 50, 3).unwrap().first_conf,
+            sobol_indices(&whole, 2, 50, 3).unwrap().first_conf
+        );
     }
 
     #[test]
