@@ -305,13 +305,20 @@ impl SolvedPair {
         grid.start + grid.sense.sign() * u
     }
 
-    /// `g̃(u) = g(start + sense·u)` and `g̃'(u)` at any turn `u`, from the curve itself.
-    fn ratio_at(&self, u: f64) -> (f64, f64) {
-        let (g, dg, _) = self.ratio_and_curve_at(u);
-        (g, dg)
+    /// `g̃(u) = g(start + sense·u)` at each turn `u` of `turns` (rad), from the curve
+    /// itself: as [`SolvedPair::ratio_and_curve_at`], the curve walked once for turns in
+    /// order.
+    fn ratios_along(&self, turns: &[f64]) -> Vec<f64> {
+        let a = self.pair.centre_distance();
+        let curve = self
+            .pair
+            .curve()
+            .eval_each(turns.iter().map(|&u| self.parameter(u)));
+        curve.iter().map(|p| p.rho / (a - p.rho)).collect()
     }
 
-    /// As [`SolvedPair::ratio_at`], with the driver curve's value there.
+    /// `g̃(u) = g(start + sense·u)` and `g̃'(u)` at any turn `u`, from the curve itself,
+    /// with the driver curve's value there.
     fn ratio_and_curve_at(&self, u: f64) -> (f64, f64, Polar) {
         let a = self.pair.centre_distance();
         let p = self.pair.curve().eval(self.parameter(u));
@@ -1024,12 +1031,19 @@ impl Kinematics {
         let sigma = self.sigma;
         let first = &self.gears.first;
         let ratio = first.pair.ratio_nodes();
+        // The ratio of the pair that sets the lag, at its turn for each node (the turns
+        // rise along the nodes): all of them first, so that the divisions and roots below
+        // do not wait on one curve evaluation after another.
+        let lag_ratio = match &self.gears.second {
+            None => first.ratios_along(&self.planet_lag),
+            Some(second) => second.ratios_along(first.pair.phi2_nodes()),
+        };
         (0..self.len())
             .map(|j| {
                 let g_t = ratio[j];
                 let lag1 = match &self.gears.second {
-                    None => g_t / first.ratio_at(self.planet_lag[j]).0,
-                    Some(second) => second.ratio_at(first.pair.phi2_nodes()[j]).0 * g_t,
+                    None => g_t / lag_ratio[j],
+                    Some(_) => lag_ratio[j] * g_t,
                 };
                 let tip_d1 = self.tip_velocity(self.o3[j], self.arm_dir[j], sigma * (1.0 - lag1));
                 // The root of the squares, not libm's `hypot` (its care against overflow costs

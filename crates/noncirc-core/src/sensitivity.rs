@@ -564,7 +564,10 @@ mod tests {
         let shared = Resamples::new(64, 50, 3);
         for y in [&whole, &refused] {
             let own = sobol_indices(y, 2, 50, 3).unwrap();
-            assert_eq!(sobol_indices_sharing(y, 2, 50, 3, Some(&shared)).unwrap(), own);
+            assert_eq!(
+                sobol_indices_sharing(y, 2, 50, 3, Some(&shared)).unwrap(),
+                own
+            );
             let other_seed = sobol_indices_sharing(y, 2, 50, 4, Some(&shared)).unwrap();
             assert_eq!(other_seed, sobol_indices(y, 2, 50, 4).unwrap());
             assert_ne!(other_seed.first_conf, own.first_conf);

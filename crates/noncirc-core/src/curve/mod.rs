@@ -221,6 +221,14 @@ impl PitchCurve {
         }
     }
 
+    /// [`Self::eval`] at each angle (rad), cheaper for the spline when they are in order.
+    pub fn eval_each(&self, psi: impl IntoIterator<Item = f64>) -> Vec<Polar> {
+        match self {
+            PitchCurve::Spline(s) => s.eval_each(psi),
+            _ => psi.into_iter().map(|psi| self.eval(psi)).collect(),
+        }
+    }
+
     /// Samples at `start + step·j` for `j = 0..n` (rad): as [`Self::eval`] at each point,
     /// cheaper for the spline.
     pub fn sample_uniform(&self, start: f64, step: f64, n: usize) -> Vec<Polar> {

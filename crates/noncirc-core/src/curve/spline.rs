@@ -85,6 +85,25 @@ impl PeriodicSpline {
         self.eval_in(i, t)
     }
 
+    /// As [`Self::eval`] at each angle (rad), the same values: each segment found by
+    /// walking from the last one instead of a search (a step or none for angles in order).
+    pub fn eval_each(&self, psi: impl IntoIterator<Item = f64>) -> Vec<Polar> {
+        let last = self.knots.len() - 1;
+        let mut i = 0;
+        (psi.into_iter())
+            .map(|psi| {
+                let x = self.knots[0] + crate::angle::wrap_turn(psi - self.knots[0]);
+                while i > 0 && x < self.knots[i] {
+                    i -= 1;
+                }
+                while i < last && x >= self.knots[i + 1] {
+                    i += 1;
+                }
+                self.eval_in(i, x - self.knots[i])
+            })
+            .collect()
+    }
+
     /// Samples at `start + step·j` for `j = 0..n` (rad): the same values as [`Self::eval`],
     /// found by walking the segments along the grid instead of searching for each point.
     pub fn sample_uniform(&self, start: f64, step: f64, n: usize) -> Vec<Polar> {
@@ -309,6 +328,31 @@ mod tests {
                 assert!(
                     (p.rho - q.rho).abs() < 1e-11 && (p.d1 - q.d1).abs() < 1e-9,
                     "start {start} step {step} j {j}: {p:?} vs {q:?}"
+                );
+            }
+        }
+    }
+
+    /// The walk from segment to segment finds the segment the search finds: the same bits,
+    /// for angles in order either way, at the knots themselves, and out of order.
+    #[test]
+    fn evaluation_along_angles_is_pointwise_evaluation() {
+        let (psi, s) = five_point_spline();
+        let knots: Vec<f64> = psi
+            .iter()
+            .flat_map(|&k| [k, k + TAU, k - 3.0 * TAU])
+            .collect();
+        let rising: Vec<f64> = (0..400).map(|j| -9.0 + 0.047 * j as f64).collect();
+        let falling: Vec<f64> = rising.iter().rev().copied().collect();
+        let scattered: Vec<f64> = (0..200).map(|j| (j as f64 * 2.399).sin() * 20.0).collect();
+        for angles in [&knots, &rising, &falling, &scattered] {
+            let along = s.eval_each(angles.iter().copied());
+            for (&a, p) in angles.iter().zip(&along) {
+                let q = s.eval(a);
+                assert_eq!(
+                    [p.rho, p.d1, p.d2].map(f64::to_bits),
+                    [q.rho, q.d1, q.d2].map(f64::to_bits),
+                    "at {a}"
                 );
             }
         }
