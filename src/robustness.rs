@@ -3,9 +3,9 @@
 //! person or a program reads.
 
 use noncirc_core::{
-    analyse, saltelli_points, sobol_indices_sharing, Evaluator, Measure, Measured, Resamples,
-    Scene, SceneKind, SceneProblem, SobolIndices, ToleranceReport, Tolerances, Unreliable,
-    REPORTED_QUANTILES,
+    analyse, saltelli_points, sobol_indices_sharing, Evaluator, KeptGears, Measure, Measured,
+    Resamples, Scene, SceneKind, SceneProblem, SobolIndices, ToleranceReport, Tolerances,
+    Unreliable, REPORTED_QUANTILES,
 };
 use rayon::prelude::*;
 use serde::Serialize;
@@ -337,18 +337,35 @@ pub fn sensitivity(
     let measures = outputs(scene);
     let pool = thread_pool(threads)?;
     let planned = Evaluator::planned(&scene.resolution);
-    let y: Vec<Vec<f64>> = map_batch(&pool, &planned, scene, &points, |(ev, s), u| {
-        problem.apply(u, s);
-        match ev.evaluate(s) {
-            Ok(e) => {
-                let on = Measured::new(&e, s);
-                (measures.iter())
-                    .map(|m| m.value(&on).unwrap_or(f64::NAN))
-                    .collect()
-            }
-            Err(_) => vec![f64::NAN; measures.len()],
-        }
-    });
+    // One task per base point's k + 2 designs, A first: the designs that change only the
+    // train's assembly (A_B^i of Φ0, β0, S, H1, γ0) take A's gears reassembled. A task
+    // keeps nothing from the one before, so the results do not depend on the threads.
+    let blocks: Vec<&[Vec<f64>]> = points.chunks(k + 2).collect();
+    let y: Vec<Vec<f64>> = map_batch(&pool, &planned, scene, &blocks, |(ev, s), block| {
+        let mut kept = None;
+        (block.iter().enumerate())
+            .map(|(i, u)| {
+                problem.apply(u, s);
+                let eval = ev.evaluate_keeping(s, kept.as_ref());
+                let row = match &eval {
+                    Ok(e) => {
+                        let on = Measured::new(e, s);
+                        (measures.iter())
+                            .map(|m| m.value(&on).unwrap_or(f64::NAN))
+                            .collect()
+                    }
+                    Err(_) => vec![f64::NAN; measures.len()],
+                };
+                if i == 0 {
+                    kept = eval.ok().and_then(|e| KeptGears::of(s, e));
+                }
+                row
+            })
+            .collect::<Vec<Vec<f64>>>()
+    })
+    .into_iter()
+    .flatten()
+    .collect();
     let refused = y.iter().filter(|r| r.iter().all(|v| v.is_nan())).count();
     // Each output's indices and bootstrap on its own (the same seed each): in parallel,
     // in the outputs' order whatever the threads. The outputs with every base point share

@@ -16,7 +16,7 @@ use crate::params::pulled_values;
 use crate::planetary::Kinematics;
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
-use crate::scene::{Scene, SceneKind};
+use crate::scene::{GearSpec, Scene, SceneKind};
 use crate::strength::train_strength;
 use crate::target::{PreparedTarget, Target};
 use crate::teeth::{TeethReport, ToothedPair};
@@ -40,6 +40,28 @@ pub struct StageCounts {
     /// Strength checks (dynamics at working speed, teeth cut, stresses) run for the
     /// objectives `bending_safety` and `contact_safety`.
     pub strength: u64,
+}
+
+/// A design's solved train, kept with the gear section and resolution it was solved for,
+/// so that designs with the same gears are evaluated on them reassembled
+/// ([`Evaluator::evaluate_keeping`]): the Sobol designs that change only the train's
+/// assembly.
+#[derive(Debug, Clone)]
+pub struct KeptGears {
+    gear: GearSpec,
+    resolution: Resolution,
+    kin: Kinematics,
+}
+
+impl KeptGears {
+    /// `eval`'s train, `scene` the scene evaluated (`None`: no train was solved).
+    pub fn of(scene: &Scene, eval: Evaluation) -> Option<Self> {
+        Some(Self {
+            gear: scene.gear.clone(),
+            resolution: eval.resolution,
+            kin: eval.kinematics?,
+        })
+    }
 }
 
 /// Runs scenes through the stages they need, counting each stage. Keep one per thread:
@@ -173,6 +195,29 @@ impl Evaluator {
         }
         self.counts.kinematics += 1;
         let mut out = Evaluation::empty(scene, kin.resolution());
+        self.mechanism(scene, kin, &mut out)?;
+        Ok(out)
+    }
+
+    /// As [`Evaluator::evaluate`], on the gears `kept` when they are the scene's (the same
+    /// gear section and resolution, and a train that [`Kinematics::reassembled`] takes): no
+    /// sampling, closure or module again, and the results within rounding of a train
+    /// solved anew.
+    pub fn evaluate_keeping(
+        &mut self,
+        scene: &Scene,
+        kept: Option<&KeptGears>,
+    ) -> Result<Evaluation> {
+        let fits = |k: &&KeptGears| k.gear == scene.gear && k.resolution == scene.resolution;
+        let Some(kept) = kept.filter(fits) else {
+            return self.evaluate(scene);
+        };
+        scene.validate()?;
+        let Ok(kin) = kept.kin.reassembled(&scene.train, 0.0) else {
+            return self.evaluate(scene);
+        };
+        self.counts.kinematics += 1;
+        let mut out = Evaluation::empty(scene, scene.resolution);
         self.mechanism(scene, kin, &mut out)?;
         Ok(out)
     }
@@ -329,7 +374,67 @@ impl Evaluator {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::curve::CurveSpec;
     use crate::events::housing_radius;
+
+    /// The objectives' values, as bits.
+    fn objective_bits(e: &Evaluation) -> Vec<u64> {
+        e.objectives.iter().map(|o| o.value.to_bits()).collect()
+    }
+
+    /// A design that changes only the train's assembly is evaluated on the kept gears
+    /// (no closure), within rounding of the train solved anew; one with other gears, or a
+    /// train the reassembly refuses, is solved anew, bit for bit as `evaluate`.
+    #[test]
+    fn kept_gears_serve_the_designs_that_change_only_the_assembly() {
+        let scene = Scene::default();
+        let mut evaluator = Evaluator::new();
+        let nominal = evaluator.evaluate(&scene).unwrap();
+        let kept = KeptGears::of(&scene, nominal.clone()).unwrap();
+        type Change = fn(&mut Scene);
+        let assembly: [Change; 5] = [
+            |s| s.train.phi0_deg += 2.0,
+            |s| s.train.beta0_deg -= 3.0,
+            |s| s.train.arm_length_mm += 4.0,
+            |s| s.train.pusher_offset_mm -= 2.0,
+            |s| s.train.gamma0_deg += 1.5,
+        ];
+        for change in assembly {
+            let mut varied = scene.clone();
+            change(&mut varied);
+            let closures = evaluator.counts().closure;
+            let on_kept = evaluator.evaluate_keeping(&varied, Some(&kept)).unwrap();
+            assert_eq!(
+                evaluator.counts().closure,
+                closures,
+                "the gears were closed again"
+            );
+            let anew = evaluator.evaluate(&varied).unwrap();
+            assert_ne!(objective_bits(&anew), objective_bits(&nominal));
+            for (a, b) in on_kept.objectives.iter().zip(&anew.objectives) {
+                let (a, b) = (a.value, b.value);
+                assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{a} vs {b}");
+            }
+        }
+        let mut other_gears = scene.clone();
+        if let CurveSpec::Spline { radii_mm, .. } = &mut other_gears.gear.curve {
+            radii_mm[3] += 0.5;
+        }
+        let mut two_pairs = scene.clone();
+        two_pairs.gear.second_curve = Some(CurveSpec::Ellipse {
+            semi_major_mm: 30.0,
+            eccentricity: 0.2,
+        });
+        let kept_two = KeptGears::of(&two_pairs, evaluator.evaluate(&two_pairs).unwrap()).unwrap();
+        two_pairs.train.gamma0_deg += 1.5;
+        for (varied, kept) in [(&other_gears, &kept), (&two_pairs, &kept_two)] {
+            let closures = evaluator.counts().closure;
+            let on_kept = evaluator.evaluate_keeping(varied, Some(kept)).unwrap();
+            assert!(evaluator.counts().closure > closures);
+            let anew = evaluator.evaluate(varied).unwrap();
+            assert_eq!(objective_bits(&on_kept), objective_bits(&anew));
+        }
+    }
 
     #[test]
     fn a_fit_is_measured_once_per_evaluation_of_a_scene_with_a_target() {
