@@ -1,7 +1,7 @@
 //! Robust design: the tolerance analysis converges and its worst case holds, the Sobol
 //! indices do not depend on the threads (robust searches: tests/search.rs).
 
-use noncirc::core::{ObjectiveKind, Scene, Spread};
+use noncirc::core::{Evaluator, Measure, Measured, ObjectiveKind, Scene, Spread};
 use noncirc::robustness::{robustness, sensitivity};
 use noncirc::scene_file::load_scene;
 
@@ -110,6 +110,43 @@ fn the_linearised_worst_case_holds_at_its_corner_and_bounds_the_samples() {
         let w = o.worst_case.as_ref().unwrap();
         assert_eq!(w.predicted_margin, o.nominal_margin, "{:?}", o.objective);
     }
+}
+
+/// The sensitivity's outputs are its designs' own: each of the first blocks' designs
+/// evaluated anew gives its row within rounding (the designs that change only the
+/// assembly run on their base point's gears reassembled), and a refused design is NaN.
+#[test]
+fn sobol_outputs_are_the_designs_evaluated_anew() {
+    let scene = load_scene(None).unwrap();
+    let s = sensitivity(&scene, 8, 0, 0.25, 1).unwrap();
+    let problem = noncirc::core::SceneProblem::new(&scene).unwrap();
+    let measures: Vec<Measure> = (s.output_names.iter())
+        .map(|name| {
+            (Measure::all().into_iter())
+                .find(|m| m.name() == name.as_str())
+                .unwrap()
+        })
+        .collect();
+    let (mut evaluator, mut design) = (Evaluator::new(), scene.clone());
+    let mut compared = 0;
+    for (x, row) in s.x.iter().zip(&s.y) {
+        problem.apply(&problem.encode(x), &mut design);
+        let Ok(eval) = evaluator.evaluate(&design) else {
+            assert!(row.iter().all(|v| v.is_nan()));
+            continue;
+        };
+        let on = Measured::new(&eval, &design);
+        for (m, &got) in measures.iter().zip(row) {
+            let want = m.value(&on).unwrap_or(f64::NAN);
+            assert!(
+                got.to_bits() == want.to_bits() || (got - want).abs() <= 1e-9 * want.abs().max(1.0),
+                "{}: {got} against {want}",
+                m.name()
+            );
+            compared += 1;
+        }
+    }
+    assert!(compared > 100 * measures.len());
 }
 
 #[test]
