@@ -24,7 +24,9 @@ use crate::{Error, Result};
 /// leave work to steal. Each piece clones a planned evaluator and the scene to edit, so
 /// they are not made smaller.
 pub fn batch_piece(len: usize, threads: usize) -> usize {
-    len.div_ceil(32 * threads).max(1)
+    len.div_ceil(32 * threads)
+        .max(len.div_ceil(4 * threads).min(8))
+        .max(1)
 }
 
 /// Evaluates batches in parallel on a private rayon pool; results keep the input order,
