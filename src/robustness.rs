@@ -369,14 +369,14 @@ pub fn sensitivity(
     let refused = y.iter().filter(|r| r.iter().all(|v| v.is_nan())).count();
     // Each output's indices and bootstrap on its own (the same seed each): in parallel,
     // in the outputs' order whatever the threads. The outputs with every base point share
-    // one draw of the resamples.
+    // one draw of the resamples (where it is small enough to keep).
     let shared = Resamples::new(base_samples, bootstrap, seed);
     let indices: Vec<_> = pool.install(|| {
         (0..measures.len())
             .into_par_iter()
             .map(|m| {
                 let column: Vec<f64> = y.iter().map(|r| r[m]).collect();
-                sobol_indices_sharing(&column, k, bootstrap, seed, Some(&shared))
+                sobol_indices_sharing(&column, k, bootstrap, seed, shared.as_ref())
             })
             .collect()
     });

@@ -208,7 +208,9 @@ impl Evaluator {
         scene: &Scene,
         kept: Option<&KeptGears>,
     ) -> Result<Evaluation> {
-        let fits = |k: &&KeptGears| k.gear == scene.gear && k.resolution == scene.resolution;
+        let three_arm = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
+        let fits =
+            |k: &&KeptGears| three_arm && k.gear == scene.gear && k.resolution == scene.resolution;
         let Some(kept) = kept.filter(fits) else {
             return self.evaluate(scene);
         };
@@ -434,6 +436,14 @@ mod tests {
             let anew = evaluator.evaluate(varied).unwrap();
             assert_eq!(objective_bits(&on_kept), objective_bits(&anew));
         }
+        // The same gears in a scene of another kind: that kind's evaluation, no train.
+        let mut gear_only = scene.clone();
+        gear_only.kind = SceneKind::Gear;
+        gear_only.objectives = vec![ObjectiveKind::Module];
+        let on_kept = evaluator.evaluate_keeping(&gear_only, Some(&kept)).unwrap();
+        assert!(on_kept.kinematics.is_none() && on_kept.gear_pair.is_some());
+        let anew = evaluator.evaluate(&gear_only).unwrap();
+        assert_eq!(objective_bits(&on_kept), objective_bits(&anew));
     }
 
     #[test]

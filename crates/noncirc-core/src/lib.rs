@@ -133,7 +133,7 @@ pub use robustness::{
 };
 pub use sensitivity::{
     saltelli_points, sobol_indices, sobol_indices_sharing, Resamples, SobolIndices, Unreliable,
-    FEWEST_ROWS, READABLE_HALF_WIDTH,
+    FEWEST_ROWS, MAX_SHARED_POSITIONS, READABLE_HALF_WIDTH,
 };
 pub use tolerance::{Spread, Tolerances};
 

@@ -86,10 +86,15 @@ struct Terms {
 /// Terms summed side by side in registers.
 const LANES: usize = 16;
 
+/// The terms per base point for `k` parameters, padded to whole lanes.
+fn padded_width(k: usize) -> usize {
+    (2 * k).div_ceil(LANES) * LANES
+}
+
 impl Terms {
     /// The terms per base point, padded.
     fn width(&self) -> usize {
-        (2 * self.k).div_ceil(LANES) * LANES
+        padded_width(self.k)
     }
 
     /// The terms of `y` (laid out as [`saltelli_points`] lays out the points), `centre`
@@ -98,7 +103,7 @@ impl Terms {
         let step = k + 2;
         let n = y.len() / step;
         let (mut a, mut b) = (Vec::with_capacity(n), Vec::with_capacity(n));
-        let width = (2 * k).div_ceil(LANES) * LANES;
+        let width = padded_width(k);
         let mut sums = Vec::with_capacity(width * n);
         for block in y.chunks_exact(step) {
             let (fa, fb) = (block[0], block[k + 1]);
@@ -161,18 +166,27 @@ pub struct Resamples {
     bootstrap: usize,
     seed: u64,
     /// `bootstrap` rows of `m`.
-    positions: Vec<usize>,
+    positions: Vec<u32>,
 }
 
+/// Most positions a shared draw keeps (16 MB): the default study draws 102 400; a larger
+/// one (up to 65 536 base points and 10 000 resamples) draws for each output as it goes.
+pub const MAX_SHARED_POSITIONS: usize = 1 << 22;
+
 impl Resamples {
-    pub fn new(m: usize, bootstrap: usize, seed: u64) -> Self {
+    /// The draw [`sobol_indices`] makes for `m` base points used, `bootstrap` resamples and
+    /// `seed`; `None` beyond [`MAX_SHARED_POSITIONS`].
+    pub fn new(m: usize, bootstrap: usize, seed: u64) -> Option<Self> {
+        if m.saturating_mul(bootstrap) > MAX_SHARED_POSITIONS {
+            return None;
+        }
         let mut rng = Rng::new(seed);
-        Self {
+        Some(Self {
             m,
             bootstrap,
             seed,
-            positions: (0..bootstrap * m).map(|_| rng.below(m)).collect(),
-        }
+            positions: (0..bootstrap * m).map(|_| rng.below(m) as u32).collect(),
+        })
     }
 
     fn fits(&self, m: usize, bootstrap: usize, seed: u64) -> bool {
@@ -224,19 +238,20 @@ pub fn sobol_indices_sharing(
         / (rows.len() * step) as f64;
     let terms = Terms::new(y, k, centre);
     let (first, total, variance) = terms.indices_on(&rows);
-    let own;
-    let draws = match shared {
-        Some(draws) if draws.fits(rows.len(), bootstrap, seed) => draws,
-        _ => {
-            own = Resamples::new(rows.len(), bootstrap, seed);
-            &own
-        }
-    };
+    // The shared draw where it is this output's, else this output's own as it goes.
+    let shared = shared.filter(|d| d.fits(rows.len(), bootstrap, seed));
+    let mut rng = Rng::new(seed);
     let (mut s1, mut st) = (vec![Vec::new(); k], vec![Vec::new(); k]);
     let mut resample = vec![0; rows.len()];
-    for positions in draws.positions.chunks_exact(rows.len()) {
-        for (r, &p) in resample.iter_mut().zip(positions) {
-            *r = rows[p];
+    for r in 0..bootstrap {
+        match shared {
+            Some(draws) => {
+                let positions = &draws.positions[r * rows.len()..(r + 1) * rows.len()];
+                for (row, &p) in resample.iter_mut().zip(positions) {
+                    *row = rows[p as usize];
+                }
+            }
+            None => resample.fill_with(|| rows[rng.below(rows.len())]),
         }
         let (f, t, _) = terms.indices_on(&resample);
         for i in 0..k {
@@ -561,7 +576,7 @@ mod tests {
         let whole: Vec<f64> = points.iter().map(|p| p[0] + 2.0 * p[1] * p[0]).collect();
         let mut refused = whole.clone();
         refused[9] = f64::NAN;
-        let shared = Resamples::new(64, 50, 3);
+        let shared = Resamples::new(64, 50, 3).unwrap();
         for y in [&whole, &refused] {
             let own = sobol_indices(y, 2, 50, 3).unwrap();
             assert_eq!(
@@ -572,6 +587,9 @@ mod tests {
             assert_eq!(other_seed, sobol_indices(y, 2, 50, 4).unwrap());
             assert_ne!(other_seed.first_conf, own.first_conf);
         }
+        // A draw too large to keep is not made: each output draws its own as it goes.
+        assert!(Resamples::new(65_536, 10_000, 3).is_none());
+        assert!(Resamples::new(1 << 11, 1 << 11, 3).is_some());
         assert_ne!(
             sobol_indices(&refused, 2, 50, 3).unwrap().first_conf,
             sobol_indices(&whole, 2, 50, 3).unwrap().first_conf
