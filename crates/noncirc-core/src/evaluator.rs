@@ -42,14 +42,12 @@ pub struct StageCounts {
     pub strength: u64,
 }
 
-/// A design's solved train, kept with the gear section and resolution it was solved for,
-/// so that designs with the same gears are evaluated on them reassembled
-/// ([`Evaluator::evaluate_keeping`]): the Sobol designs that change only the train's
-/// assembly.
+/// A design's solved train, kept with the gear section it was solved for, so that designs
+/// with the same gears are evaluated on them reassembled ([`Evaluator::evaluate_keeping`]):
+/// the Sobol designs that change only the train's assembly.
 #[derive(Debug, Clone)]
 pub struct KeptGears {
     gear: GearSpec,
-    resolution: Resolution,
     kin: Kinematics,
 }
 
@@ -58,7 +56,6 @@ impl KeptGears {
     pub fn of(scene: &Scene, eval: Evaluation) -> Option<Self> {
         Some(Self {
             gear: scene.gear.clone(),
-            resolution: eval.resolution,
             kin: eval.kinematics?,
         })
     }
@@ -209,19 +206,17 @@ impl Evaluator {
         kept: Option<&KeptGears>,
     ) -> Result<Evaluation> {
         let three_arm = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
-        let fits =
-            |k: &&KeptGears| three_arm && k.gear == scene.gear && k.resolution == scene.resolution;
+        let fits = |k: &&KeptGears| {
+            three_arm && k.gear == scene.gear && k.kin.resolution() == scene.resolution
+        };
         let Some(kept) = kept.filter(fits) else {
             return self.evaluate(scene);
         };
         scene.validate()?;
-        let Ok(kin) = kept.kin.reassembled(&scene.train, 0.0) else {
-            return self.evaluate(scene);
-        };
-        self.counts.kinematics += 1;
-        let mut out = Evaluation::empty(scene, scene.resolution);
-        self.mechanism(scene, kin, &mut out)?;
-        Ok(out)
+        match kept.kin.reassembled(&scene.train, 0.0) {
+            Ok(kin) => self.evaluate_solved(scene, kin),
+            Err(_) => self.evaluate(scene),
+        }
     }
 
     /// The three-arm stages after the train is solved: events, objectives, moving box,
