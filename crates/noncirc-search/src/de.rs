@@ -1,7 +1,7 @@
 //! Differential evolution, rand/1/bin with dithered F, feasibility-first selection.
 
 use crate::check::{check_candidate, check_len, state_error};
-use crate::fitness::{evaluate_all, BatchEvaluator, Candidate};
+use crate::fitness::{evaluate_all, BatchEvaluator, Candidate, Fitness};
 use crate::rng::Rng;
 use crate::solver::{SolverState, MAX_POPULATION};
 use serde::{Deserialize, Serialize};
@@ -78,10 +78,15 @@ impl SolverState for DifferentialEvolution {
             self.population = evaluate_all(eval, points);
             return self.population.clone();
         }
-        let trials = (0..self.population.len())
+        let trials: Vec<Vec<f64>> = (0..self.population.len())
             .map(|i| trial(&self.population, i, self.crossover, &mut self.rng))
             .collect();
-        let evaluated = evaluate_all(eval, trials);
+        // Each trial against its target: a trial that loses may be scored part-way.
+        let rivals: Vec<Fitness> = self.population.iter().map(|c| c.fitness.clone()).collect();
+        let fitness = eval.evaluate_against(&trials, &rivals);
+        let evaluated: Vec<Candidate> = (trials.into_iter().zip(fitness))
+            .map(|(u, fitness)| Candidate { u, fitness })
+            .collect();
         for (i, t) in evaluated.iter().enumerate() {
             if !self.population[i].fitness.better_than(&t.fitness) {
                 self.population[i] = t.clone();
@@ -128,4 +133,94 @@ pub(super) fn trial(population: &[Candidate], i: usize, crossover: f64, rng: &mu
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{execute, Algorithm, SearchState};
+
+    /// The sphere about 0.3 as the goal, outside the ball of radius 0.4 about 0.7 as the
+    /// violation: the search meets both feasible and infeasible trials.
+    fn score(p: &[f64]) -> Fitness {
+        let dist = |c: f64| p.iter().map(|x| (x - c).powi(2)).sum::<f64>().sqrt();
+        Fitness {
+            cv: (dist(0.7) - 0.4).max(0.0),
+            f: vec![dist(0.3)],
+        }
+    }
+
+    /// Scores the trials that lose to their target by a bound halfway between the
+    /// target's violation and their own, as a problem that stops part-way may.
+    struct Bounding {
+        bounded: usize,
+    }
+
+    impl BatchEvaluator for Bounding {
+        fn dim(&self) -> usize {
+            4
+        }
+        fn goals(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+            points.iter().map(|p| score(p)).collect()
+        }
+        fn evaluate_against(&mut self, points: &[Vec<f64>], rivals: &[Fitness]) -> Vec<Fitness> {
+            (points.iter().zip(rivals))
+                .map(|(p, rival)| {
+                    let full = score(p);
+                    if full.cv > rival.cv {
+                        self.bounded += 1;
+                        Fitness {
+                            cv: rival.cv + 0.5 * (full.cv - rival.cv),
+                            f: vec![1e5],
+                        }
+                    } else {
+                        full
+                    }
+                })
+                .collect()
+        }
+    }
+
+    /// Plain fitness only (the trait's default `evaluate_against`).
+    struct Plain;
+
+    impl BatchEvaluator for Plain {
+        fn dim(&self) -> usize {
+            4
+        }
+        fn goals(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+            points.iter().map(|p| score(p)).collect()
+        }
+    }
+
+    /// Trials scored by a bound where they lose leave the search as it is: the same
+    /// population, best designs, confirmations and history, generation by generation.
+    #[test]
+    fn trials_scored_by_a_bound_leave_the_search_unchanged() {
+        let mut bounding = Bounding { bounded: 0 };
+        let mut bounded = SearchState::new(Algorithm::De, 4, 1, 12, 3);
+        let mut plain = SearchState::new(Algorithm::De, 4, 1, 12, 3);
+        for budget in (120..=2400).step_by(120) {
+            execute(&mut bounded, &mut bounding, budget, &mut []);
+            execute(&mut plain, &mut Plain, budget, &mut []);
+            assert_eq!(format!("{bounded:?}"), format!("{plain:?}"), "at {budget}");
+        }
+        assert!(
+            bounding.bounded > 200,
+            "{} trials bounded",
+            bounding.bounded
+        );
+        let best = plain.best.unwrap().fitness;
+        // The nearest point of the ball to 0.3 is 0.4 away (the centres are 0.8 apart).
+        assert!(
+            best.feasible() && (best.f[0] - 0.4).abs() < 1e-3,
+            "{best:?}"
+        );
+    }
 }

@@ -71,6 +71,17 @@ pub trait BatchEvaluator {
     fn goals(&self) -> usize;
     /// Fitness of each point, in the same order (at the screening resolution).
     fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness>;
+    /// Fitness of each point that competes with the rival of the same index (differential
+    /// evolution's trial against its target). Each point gets its fitness as `evaluate`
+    /// gives it, except that a point whose evaluation shows part-way that it loses may get
+    /// a bound instead: an infeasible fitness whose violation is a lower bound of the
+    /// point's own and already above the rival's (so `rival.better_than(bound)`, as of the
+    /// whole fitness). Such a point is kept by no selection, no best and no confirmation,
+    /// so the search runs exactly as with `evaluate`. By default, `evaluate`.
+    fn evaluate_against(&mut self, points: &[Vec<f64>], rivals: &[Fitness]) -> Vec<Fitness> {
+        debug_assert_eq!(points.len(), rivals.len());
+        self.evaluate(points)
+    }
     /// Fitness at the confirming (default) resolution; the same as `evaluate` unless the
     /// problem screens at a coarser one.
     fn confirm(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
