@@ -93,7 +93,14 @@ impl<'a> ParallelEvaluator<'a> {
         Self { stop, ..self }
     }
 
-    fn run(&mut self, points: &[Vec<f64>], resolution: Resolution) -> Vec<Fitness> {
+    /// Each point's fitness at `resolution`; with `rivals`, each against its rival
+    /// ([`SceneProblem::fitness_against`]).
+    fn run(
+        &mut self,
+        points: &[Vec<f64>],
+        rivals: Option<&[Fitness]>,
+        resolution: Resolution,
+    ) -> Vec<Fitness> {
         let problem = self.problem;
         let planned = if resolution == self.confirm_at {
             &self.planned[1]
@@ -101,18 +108,23 @@ impl<'a> ParallelEvaluator<'a> {
             &self.planned[0]
         };
         let (stop, skipped) = (&*self.stop, AtomicBool::new(false));
+        let items: Vec<(&[f64], Option<&Fitness>)> = (points.iter().enumerate())
+            .map(|(i, u)| (&u[..], rivals.and_then(|r| r.get(i))))
+            .collect();
         let fitness = map_batch(
             &self.pool,
             planned,
             problem.base(),
-            points,
-            |(evaluator, scratch), u| {
+            &items,
+            |(evaluator, scratch), &(u, rival)| {
                 if stop.load(Ordering::Relaxed) {
                     skipped.store(true, Ordering::Relaxed);
                     Fitness {
                         cv: f64::INFINITY,
                         f: vec![f64::INFINITY; problem.goals()],
                     }
+                } else if let Some(rival) = rival {
+                    problem.fitness_against(u, rival, evaluator, scratch, &resolution)
                 } else {
                     problem.fitness(u, evaluator, scratch, &resolution).0
                 }
@@ -161,10 +173,13 @@ impl BatchEvaluator for ParallelEvaluator<'_> {
         self.problem.goals()
     }
     fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
-        self.run(points, self.problem.screening())
+        self.run(points, None, self.problem.screening())
+    }
+    fn evaluate_against(&mut self, points: &[Vec<f64>], rivals: &[Fitness]) -> Vec<Fitness> {
+        self.run(points, Some(rivals), self.problem.screening())
     }
     fn confirm(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
-        self.run(points, self.confirm_at)
+        self.run(points, None, self.confirm_at)
     }
     fn interrupted(&self) -> bool {
         self.skipped

@@ -259,6 +259,98 @@ fn the_serial_evaluator_run_a_generation_at_a_time_is_the_cli_run() {
     }
 }
 
+/// DE scores each trial against its target, and a trial whose module alone puts its
+/// violation above the target's is not assembled (`evaluate_against`). On every trial of a
+/// search of the default space: the bound is the whole evaluation's fitness, or an
+/// infeasible lower bound of its violation above the target's; and the search (population,
+/// best designs, confirmations, history) is the one that evaluates every trial whole.
+#[test]
+fn de_trials_stopped_at_their_module_leave_the_search_as_whole_evaluations_do() {
+    use noncirc::core::{execute, SceneProblem, SerialEvaluator};
+
+    /// Each trial evaluated both ways; the bounded fitness goes to the search.
+    struct Checked {
+        bounded: SerialEvaluator,
+        whole: SerialEvaluator,
+        stopped: usize,
+    }
+    impl BatchEvaluator for Checked {
+        fn dim(&self) -> usize {
+            self.whole.dim()
+        }
+        fn goals(&self) -> usize {
+            self.whole.goals()
+        }
+        fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+            self.whole.evaluate(points)
+        }
+        fn confirm(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+            self.whole.confirm(points)
+        }
+        fn evaluate_against(&mut self, points: &[Vec<f64>], rivals: &[Fitness]) -> Vec<Fitness> {
+            let bounded = self.bounded.evaluate_against(points, rivals);
+            let whole = self.whole.evaluate(points);
+            for ((b, w), rival) in bounded.iter().zip(&whole).zip(rivals) {
+                if b != w {
+                    self.stopped += 1;
+                    assert!(
+                        !b.feasible() && b.cv <= w.cv && b.cv > rival.cv,
+                        "bound {b:?}, whole {w:?}, rival {rival:?}"
+                    );
+                    assert!(
+                        rival.better_than(w) && rival.better_than(b),
+                        "{w:?} {rival:?}"
+                    );
+                }
+            }
+            bounded
+        }
+    }
+    /// Every trial evaluated whole (the trait's default `evaluate_against`).
+    struct Whole(SerialEvaluator);
+    impl BatchEvaluator for Whole {
+        fn dim(&self) -> usize {
+            self.0.dim()
+        }
+        fn goals(&self) -> usize {
+            self.0.goals()
+        }
+        fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+            self.0.evaluate(points)
+        }
+        fn confirm(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
+            self.0.confirm(points)
+        }
+    }
+
+    let scene = short_search(Algorithm::De);
+    let problem = SceneProblem::new(&scene).unwrap();
+    let new_state = || SearchState::new(Algorithm::De, problem.dim(), problem.goals(), 24, 11);
+    let (mut checked_state, mut whole_state) = (new_state(), new_state());
+    let mut checked = Checked {
+        bounded: SerialEvaluator::new(problem.clone()),
+        whole: SerialEvaluator::new(problem.clone()),
+        stopped: 0,
+    };
+    execute(&mut checked_state, &mut checked, 2400, &mut []);
+    execute(
+        &mut whole_state,
+        &mut Whole(SerialEvaluator::new(problem)),
+        2400,
+        &mut [],
+    );
+    assert_eq!(
+        serde_json::to_string(&checked_state).unwrap(),
+        serde_json::to_string(&whole_state).unwrap()
+    );
+    // About half of the trials are stopped at their module.
+    assert!(
+        checked.stopped > 600,
+        "{} of 2376 trials stopped",
+        checked.stopped
+    );
+}
+
 /// NSGA-II and NSGA-III from random starts reach a feasible Pareto set of the default
 /// space with two goals (module up, picking tip speed down) in every one of 10 seeds at the
 /// default budget: their feasibility phase (differential-evolution trials while no member

@@ -10,10 +10,10 @@ use crate::fit::fit_report;
 use crate::gear::{GearPair, ModuleReading};
 use crate::measure_value::Measured;
 use crate::moving_box::evaluate_box_with;
-use crate::objective_kind::ObjectiveKind;
+use crate::objective_kind::{scale, ObjectiveKind};
 use crate::objectives::{objective_value, ObjectiveValue};
 use crate::params::pulled_values;
-use crate::planetary::Kinematics;
+use crate::planetary::{ClosedGears, Kinematics};
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use crate::scene::{GearSpec, Scene, SceneKind};
@@ -22,6 +22,19 @@ use crate::target::{PreparedTarget, Target};
 use crate::teeth::{TeethReport, ToothedPair};
 use serde::Serialize;
 use std::sync::Arc;
+
+/// What [`Evaluator::evaluate_unless_beaten`] gives.
+// Returned by value and moved once, as `Result<Evaluation>` is: a box would cost an
+// allocation per evaluation.
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug)]
+pub enum Screened {
+    /// The whole evaluation.
+    Evaluated(Evaluation),
+    /// Stopped part-way: the design's normalised violation is at least this, which is
+    /// above the cutoff.
+    Beaten { violation_at_least: f64 },
+}
 
 /// How many times each stage ran.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -164,12 +177,52 @@ impl Evaluator {
     /// Builds the scene's pitch curves, closes the pairs and solves the train at
     /// `resolution` (the stages before the events).
     pub fn solve_train(&mut self, scene: &Scene, resolution: &Resolution) -> Result<Kinematics> {
+        self.counts.kinematics += 1;
+        Ok(self.close_gears(scene, resolution)?.assemble())
+    }
+
+    /// Builds the scene's pitch curves and closes its pairs on the train's grids at
+    /// `resolution`, before the arm is placed.
+    fn close_gears(&mut self, scene: &Scene, resolution: &Resolution) -> Result<ClosedGears> {
         self.counts.pitch_curve += 1;
         let (curve, second) = scene.gear.curves()?;
         self.counts.closure += 1;
-        self.counts.kinematics += 1;
         let integrator = self.integrator(resolution.samples_per_turn);
-        Kinematics::solve_with(curve, second, &scene.train, resolution, integrator)
+        ClosedGears::solve_with(curve, second, &scene.train, resolution, integrator)
+    }
+
+    /// As [`Evaluator::evaluate_at`], but stops part-way a design whose normalised
+    /// violation ([`Evaluation::normalised_violation`]) is already known to exceed
+    /// `cutoff`: a search that keeps such a design nowhere need not finish it. The
+    /// module's violation is known once the gears are closed; a three-arm design whose
+    /// module alone exceeds `cutoff` is not assembled (about half of a DE search's trials).
+    /// Every other design is evaluated whole, as `evaluate_at` does.
+    pub fn evaluate_unless_beaten(
+        &mut self,
+        scene: &Scene,
+        resolution: &Resolution,
+        cutoff: f64,
+    ) -> Result<Screened> {
+        let three_arm = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
+        if !three_arm || !scene.objectives.contains(&ObjectiveKind::Module) {
+            return self.evaluate_at(scene, resolution).map(Screened::Evaluated);
+        }
+        scene.validate()?;
+        resolution.validate()?;
+        let gears = self.close_gears(scene, resolution)?;
+        // The objective's violation before its teeth's shortfalls, which only add to it.
+        let module = gears.module(&scene.gear.module).module_max_mm;
+        let module = ObjectiveValue::new(ObjectiveKind::Module, module, &scene.bounds);
+        let least = module.violation / scale(ObjectiveKind::Module, &scene.bounds);
+        if least > cutoff {
+            return Ok(Screened::Beaten {
+                violation_at_least: least,
+            });
+        }
+        self.counts.kinematics += 1;
+        let mut out = Evaluation::empty(scene, *resolution);
+        self.mechanism(scene, gears.assemble(), &mut out)?;
+        Ok(Screened::Evaluated(out))
     }
 
     /// Evaluates a three-arm scene on a train already solved for it (`kin`'s curve and
@@ -511,6 +564,53 @@ mod tests {
             "{e:?}"
         );
         assert!(Evaluator::new().evaluate(&scene).is_err());
+    }
+
+    /// A cutoff below the module's violation stops the design before the arm: its bound
+    /// is the module objective's normalised violation, no more than the whole design's.
+    /// A cutoff at or above it, or a scene without the module, gives `evaluate_at`'s
+    /// evaluation bit for bit.
+    #[test]
+    fn a_design_beaten_by_its_module_is_stopped_before_the_arm() {
+        let scene = Scene::default(); // its module is 2 mm short (the doctest above)
+        let res = scene.resolution;
+        let whole = Evaluator::new().evaluate(&scene).unwrap();
+        let module = whole.objective(ObjectiveKind::Module).unwrap();
+        let module = module.violation / scale(ObjectiveKind::Module, &scene.bounds);
+        let total = whole.normalised_violation(&scene.bounds);
+        assert!(module > 0.1 && total >= module, "{module} {total}");
+
+        let mut evaluator = Evaluator::new();
+        match evaluator.evaluate_unless_beaten(&scene, &res, 0.5 * module) {
+            Ok(Screened::Beaten { violation_at_least }) => {
+                assert_eq!(violation_at_least, module)
+            }
+            other => panic!("{other:?}"),
+        }
+        let counts = evaluator.counts();
+        assert_eq!(
+            (counts.closure, counts.kinematics, counts.events),
+            (1, 0, 0)
+        );
+
+        let mut without_module = scene.clone();
+        without_module
+            .objectives
+            .retain(|&k| k != ObjectiveKind::Module);
+        let plain = Evaluator::new().evaluate(&without_module).unwrap();
+        for (scene, whole, cutoff) in [
+            (&scene, &whole, module),
+            (&scene, &whole, f64::INFINITY),
+            (&without_module, &plain, 0.0),
+        ] {
+            match Evaluator::new().evaluate_unless_beaten(scene, &res, cutoff) {
+                Ok(Screened::Evaluated(e)) => {
+                    assert_eq!(objective_bits(&e), objective_bits(whole));
+                    assert_eq!(e.events.map(|e| e.picking), whole.events.map(|e| e.picking));
+                }
+                other => panic!("{cutoff}: {other:?}"),
+            }
+        }
     }
 
     #[test]

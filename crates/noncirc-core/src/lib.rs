@@ -121,7 +121,7 @@ pub use vec2::Vec2;
 pub use accuracy::{observed_order, output_errors, ErrorRow};
 pub use error::{Error, Result};
 pub use evaluation::{Evaluation, GearSummary, PairGeometry};
-pub use evaluator::{Evaluator, KeptGears, StageCounts};
+pub use evaluator::{Evaluator, KeptGears, Screened, StageCounts};
 pub use fit::{target_of, FitReport, PoseFit};
 pub use inverse::{invert, Branch, Condition, InverseOutcome, InverseSpec, Place};
 

@@ -349,6 +349,95 @@ struct SolvedGears {
     module: Mutex<Option<(ModuleRule, ModuleReport)>>,
 }
 
+impl SolvedGears {
+    /// The train's module under `rule` (spec §1.4): the report of the pair that limits
+    /// it (the first on a tie), computed once per rule for the gears and every reassembly
+    /// of them.
+    fn module(&self, rule: &ModuleRule) -> ModuleReport {
+        let mut cache = self.module.lock().unwrap_or_else(|e| e.into_inner());
+        match *cache {
+            Some((r, report)) if r == *rule => report,
+            _ => {
+                let first = self.first.pair.module(rule);
+                let report = match self.second.as_ref().map(|p| p.pair.module(rule)) {
+                    Some(second) if second.module_max_mm < first.module_max_mm => second,
+                    _ => first,
+                };
+                *cache = Some((*rule, report));
+                report
+            }
+        }
+    }
+}
+
+/// A train's gear pairs closed on their grids, before the arm is placed on them: the
+/// first stage of [`Kinematics::solve_with`]. A search asks their module here, before the
+/// arm's stages, to stop a design the module already rules out.
+pub(crate) struct ClosedGears {
+    gears: Arc<SolvedGears>,
+    /// The train the grids are for.
+    spec: TrainSpec,
+}
+
+impl ClosedGears {
+    /// Closes the pairs of `curve` (and `second`, for a train with two pairs) on the
+    /// grids of `spec` at `resolution`.
+    pub(crate) fn solve_with(
+        curve: PitchCurve,
+        second: Option<PitchCurve>,
+        spec: &TrainSpec,
+        resolution: &Resolution,
+        integrator: &mut SpectralIntegrator,
+    ) -> Result<Self> {
+        spec.validate()?;
+        let n = resolution.samples_per_turn;
+        if !n.is_multiple_of(spec.arms) {
+            return Err(Error::OutOfRange {
+                name: "resolution.samples_per_turn".into(),
+                value: n as f64,
+                expected: format!(
+                    "a multiple of train.arms = {} (each arm a whole number of samples behind \
+                     the last)",
+                    spec.arms
+                ),
+            });
+        }
+        let grid = SampleGrid {
+            start: spec.psi_start(),
+            sense: spec.rotation,
+        };
+        let first = SolvedPair::new(GearPair::solve_on(curve, *resolution, grid, integrator)?);
+        let second = match second {
+            Some(curve) => {
+                let grid = SampleGrid {
+                    start: spec.gamma0_deg.to_radians() - std::f64::consts::PI,
+                    sense: spec.rotation.reversed(),
+                };
+                let pair = GearPair::solve_on(curve, *resolution, grid, integrator)
+                    .map_err(|e| Error::SecondPair(Box::new(e)))?;
+                Some(SolvedPair::new(pair))
+            }
+            None => None,
+        };
+        let gears = Arc::new(SolvedGears {
+            first,
+            second,
+            module: Mutex::new(None),
+        });
+        Ok(Self { gears, spec: *spec })
+    }
+
+    /// The train's module under `rule`, as [`Kinematics::module`] gives it (one cache).
+    pub(crate) fn module(&self, rule: &ModuleRule) -> ModuleReport {
+        self.gears.module(rule)
+    }
+
+    /// The arm placed on the gears for their train.
+    pub(crate) fn assemble(self) -> Kinematics {
+        Kinematics::assemble(self.gears, &self.spec, 0.0, None)
+    }
+}
+
 /// The sampled motion of arm I over one carrier turn, plus what is needed to evaluate it at
 /// any carrier angle. Arm k (of n) follows at `θ − k·360°/n`: with three, II and III at
 /// `θ − 120°` and `θ − 240°`.
@@ -434,42 +523,7 @@ impl Kinematics {
         resolution: &Resolution,
         integrator: &mut SpectralIntegrator,
     ) -> Result<Self> {
-        spec.validate()?;
-        let n = resolution.samples_per_turn;
-        if !n.is_multiple_of(spec.arms) {
-            return Err(Error::OutOfRange {
-                name: "resolution.samples_per_turn".into(),
-                value: n as f64,
-                expected: format!(
-                    "a multiple of train.arms = {} (each arm a whole number of samples behind \
-                     the last)",
-                    spec.arms
-                ),
-            });
-        }
-        let grid = SampleGrid {
-            start: spec.psi_start(),
-            sense: spec.rotation,
-        };
-        let first = SolvedPair::new(GearPair::solve_on(curve, *resolution, grid, integrator)?);
-        let second = match second {
-            Some(curve) => {
-                let grid = SampleGrid {
-                    start: spec.gamma0_deg.to_radians() - std::f64::consts::PI,
-                    sense: spec.rotation.reversed(),
-                };
-                let pair = GearPair::solve_on(curve, *resolution, grid, integrator)
-                    .map_err(|e| Error::SecondPair(Box::new(e)))?;
-                Some(SolvedPair::new(pair))
-            }
-            None => None,
-        };
-        let gears = Arc::new(SolvedGears {
-            first,
-            second,
-            module: Mutex::new(None),
-        });
-        Ok(Self::assemble(gears, spec, 0.0, None))
+        Ok(ClosedGears::solve_with(curve, second, spec, resolution, integrator)?.assemble())
     }
 
     /// The same gears assembled anew: another `spec` (its `Φ0`, `β0`, `γ0`, `S`, `H1`) and
@@ -654,19 +708,7 @@ impl Kinematics {
     /// it (the first on a tie), computed once per rule for the gears and every
     /// reassembly of them.
     pub fn module(&self, rule: &ModuleRule) -> ModuleReport {
-        let mut cache = self.gears.module.lock().unwrap_or_else(|e| e.into_inner());
-        match *cache {
-            Some((r, report)) if r == *rule => report,
-            _ => {
-                let first = self.gears.first.pair.module(rule);
-                let report = match self.second_pair().map(|p| p.module(rule)) {
-                    Some(second) if second.module_max_mm < first.module_max_mm => second,
-                    _ => first,
-                };
-                *cache = Some((*rule, report));
-                report
-            }
-        }
+        self.gears.module(rule)
     }
 
     /// Centre distance of the sun–intermediate pair (mm); in the paper's train both

@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::evaluation::Evaluation;
-use crate::evaluator::Evaluator;
+use crate::evaluator::{Evaluator, Screened};
 use crate::goal::{Goal, GoalQuantity, INVALID_CV};
 use crate::measure_value::Measured;
 use crate::objective_kind::scale;
@@ -264,6 +264,34 @@ impl SceneProblem {
         (fitness, outcome.ok())
     }
 
+    /// As [`SceneProblem::fitness`] for a design that competes with a `rival` (DE's trial
+    /// against its target): a design whose violation part-way already exceeds the rival's
+    /// is not finished, and gets that lower bound of its violation with every goal at
+    /// [`INVALID_CV`] (it loses to the rival either way; `BatchEvaluator::evaluate_against`).
+    pub fn fitness_against(
+        &self,
+        u: &[f64],
+        rival: &Fitness,
+        evaluator: &mut Evaluator,
+        scratch: &mut Scene,
+        resolution: &Resolution,
+    ) -> Fitness {
+        // A violation above INVALID_CV scores INVALID_CV: a rival there cannot be beaten
+        // by the violation alone.
+        if rival.cv.is_nan() || rival.cv >= INVALID_CV {
+            return self.fitness(u, evaluator, scratch, resolution).0;
+        }
+        self.apply(u, scratch);
+        match evaluator.evaluate_unless_beaten(scratch, resolution, rival.cv) {
+            Ok(Screened::Beaten { violation_at_least }) => Fitness {
+                cv: violation_at_least.min(INVALID_CV),
+                f: vec![INVALID_CV; self.goals.len()],
+            },
+            Ok(Screened::Evaluated(eval)) => self.scored(evaluator, scratch, Ok(eval)).0,
+            Err(e) => self.scored(evaluator, scratch, Err(e)).0,
+        }
+    }
+
     /// How many residuals [`SceneProblem::fit_residuals`] gives at `resolution`: the
     /// target's ([`FitReport::residuals`](crate::fit::FitReport)), then one per objective
     /// and one per constraint.
@@ -331,7 +359,18 @@ impl SceneProblem {
         scratch: &Scene,
         resolution: &Resolution,
     ) -> (Fitness, Result<Evaluation>) {
-        match evaluator.evaluate_at(scratch, resolution) {
+        let outcome = evaluator.evaluate_at(scratch, resolution);
+        self.scored(evaluator, scratch, outcome)
+    }
+
+    /// The fitness of an evaluation of `scratch`, or of the model's refusal.
+    fn scored(
+        &self,
+        evaluator: &mut Evaluator,
+        scratch: &Scene,
+        outcome: Result<Evaluation>,
+    ) -> (Fitness, Result<Evaluation>) {
+        match outcome {
             Ok(eval) => {
                 let cv = eval.normalised_violation(&scratch.bounds);
                 let cv = if cv.is_finite() {

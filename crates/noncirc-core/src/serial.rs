@@ -61,6 +61,20 @@ impl BatchEvaluator for SerialEvaluator {
     fn evaluate(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
         self.run(points, false)
     }
+    fn evaluate_against(&mut self, points: &[Vec<f64>], rivals: &[Fitness]) -> Vec<Fitness> {
+        let resolution = self.problem.screening();
+        (points.iter().zip(rivals))
+            .map(|(u, rival)| {
+                (self.problem).fitness_against(
+                    u,
+                    rival,
+                    &mut self.planned[0],
+                    &mut self.scratch,
+                    &resolution,
+                )
+            })
+            .collect()
+    }
     fn confirm(&mut self, points: &[Vec<f64>]) -> Vec<Fitness> {
         self.run(points, true)
     }
