@@ -13,7 +13,7 @@ use crate::moving_box::evaluate_box_with;
 use crate::objective_kind::{scale, ObjectiveKind};
 use crate::objectives::{objective_value, ObjectiveValue};
 use crate::params::pulled_values;
-use crate::planetary::{ClosedGears, Kinematics};
+use crate::planetary::{ClosedGears, Kinematics, SampledTrain};
 use crate::quadrature::SpectralIntegrator;
 use crate::resolution::Resolution;
 use crate::scene::{GearSpec, Scene, SceneKind};
@@ -184,19 +184,31 @@ impl Evaluator {
     /// Builds the scene's pitch curves and closes its pairs on the train's grids at
     /// `resolution`, before the arm is placed.
     fn close_gears(&mut self, scene: &Scene, resolution: &Resolution) -> Result<ClosedGears> {
+        let sampled = self.sample_train(scene, resolution)?;
+        self.close(sampled)
+    }
+
+    /// Builds the scene's pitch curves and samples the sun on the train's grid.
+    fn sample_train(&mut self, scene: &Scene, resolution: &Resolution) -> Result<SampledTrain> {
         self.counts.pitch_curve += 1;
         let (curve, second) = scene.gear.curves()?;
+        SampledTrain::sample(curve, second, &scene.train, resolution)
+    }
+
+    /// Closes the sampled train's pairs.
+    fn close(&mut self, sampled: SampledTrain) -> Result<ClosedGears> {
         self.counts.closure += 1;
-        let integrator = self.integrator(resolution.samples_per_turn);
-        ClosedGears::solve_with(curve, second, &scene.train, resolution, integrator)
+        let integrator = self.integrator(sampled.resolution().samples_per_turn);
+        sampled.close(integrator)
     }
 
     /// As [`Evaluator::evaluate_at`], but stops part-way a design whose normalised
     /// violation ([`Evaluation::normalised_violation`]) is already known to exceed
     /// `cutoff`: a search that keeps such a design nowhere need not finish it. The
-    /// module's violation is known once the gears are closed; a three-arm design whose
-    /// module alone exceeds `cutoff` is not assembled (about half of a DE search's trials).
-    /// Every other design is evaluated whole, as `evaluate_at` does.
+    /// module's violation is bounded below once the sun is sampled (by its own curvature)
+    /// and known once the gears are closed: a three-arm design whose module alone exceeds
+    /// `cutoff` is stopped there (about half of a DE search's trials, a third before the
+    /// closure). Every other design is evaluated whole, as `evaluate_at` does.
     pub fn evaluate_unless_beaten(
         &mut self,
         scene: &Scene,
@@ -209,15 +221,24 @@ impl Evaluator {
         }
         scene.validate()?;
         resolution.validate()?;
-        let gears = self.close_gears(scene, resolution)?;
-        // The objective's violation before its teeth's shortfalls, which only add to it.
-        let module = gears.module(&scene.gear.module).module_max_mm;
-        let module = ObjectiveValue::new(ObjectiveKind::Module, module, &scene.bounds);
-        let least = module.violation / scale(ObjectiveKind::Module, &scene.bounds);
-        if least > cutoff {
-            return Ok(Screened::Beaten {
+        // The objective's normalised violation for a module of `mm`, before its teeth's
+        // shortfalls (which only add to it); it grows as the module shrinks.
+        let violation = |mm: f64| {
+            let value = ObjectiveValue::new(ObjectiveKind::Module, mm, &scene.bounds);
+            value.violation / scale(ObjectiveKind::Module, &scene.bounds)
+        };
+        let beaten = |least: f64| {
+            (least > cutoff).then_some(Screened::Beaten {
                 violation_at_least: least,
-            });
+            })
+        };
+        let sampled = self.sample_train(scene, resolution)?;
+        if let Some(b) = beaten(violation(sampled.module_bound(&scene.gear.module))) {
+            return Ok(b);
+        }
+        let gears = self.close(sampled)?;
+        if let Some(b) = beaten(violation(gears.module(&scene.gear.module).module_max_mm)) {
+            return Ok(b);
         }
         self.counts.kinematics += 1;
         let mut out = Evaluation::empty(scene, *resolution);
@@ -566,10 +587,11 @@ mod tests {
         assert!(Evaluator::new().evaluate(&scene).is_err());
     }
 
-    /// A cutoff below the module's violation stops the design before the arm: its bound
-    /// is the module objective's normalised violation, no more than the whole design's.
-    /// A cutoff at or above it, or a scene without the module, gives `evaluate_at`'s
-    /// evaluation bit for bit.
+    /// The module's violation stops a design at two stages: bounded by the sun's
+    /// curvature before the closure, and known once the gears are closed. The bound is no
+    /// more than the whole design's violation. A cutoff at or above the module's
+    /// violation, or a scene without the module, gives `evaluate_at`'s evaluation bit for
+    /// bit.
     #[test]
     fn a_design_beaten_by_its_module_is_stopped_before_the_arm() {
         let scene = Scene::default(); // its module is 2 mm short (the doctest above)
@@ -580,18 +602,22 @@ mod tests {
         let total = whole.normalised_violation(&scene.bounds);
         assert!(module > 0.1 && total >= module, "{module} {total}");
 
-        let mut evaluator = Evaluator::new();
-        match evaluator.evaluate_unless_beaten(&scene, &res, 0.5 * module) {
-            Ok(Screened::Beaten { violation_at_least }) => {
-                assert_eq!(violation_at_least, module)
-            }
-            other => panic!("{other:?}"),
-        }
-        let counts = evaluator.counts();
-        assert_eq!(
-            (counts.closure, counts.kinematics, counts.events),
-            (1, 0, 0)
-        );
+        // Stages run: (closures, arms, events).
+        let stopped = |cutoff: f64| {
+            let mut evaluator = Evaluator::new();
+            let least = match evaluator.evaluate_unless_beaten(&scene, &res, cutoff) {
+                Ok(Screened::Beaten { violation_at_least }) => violation_at_least,
+                other => panic!("{cutoff}: {other:?}"),
+            };
+            let c = evaluator.counts();
+            (least, (c.closure, c.kinematics, c.events))
+        };
+        // A cutoff below any violation: stopped at the sun's bound, before the closure.
+        let (sun, stages) = stopped(-1.0);
+        assert_eq!(stages, (0, 0, 0));
+        assert!(sun > 0.0 && sun < module, "{sun} {module}");
+        // Between the bound and the module's violation: stopped after the closure.
+        assert_eq!(stopped(sun), (module, (1, 0, 0)));
 
         let mut without_module = scene.clone();
         without_module

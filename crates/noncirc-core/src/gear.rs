@@ -288,64 +288,78 @@ pub(crate) fn module_max(
     }
 }
 
-/// Least convex and least concave |R_c| of the driver and its conjugate at the given
-/// uniform samples, each refined by the parabola through the extreme sample of the
-/// curvature and its neighbours. One pass per gear, no allocation.
-///
-/// The scan for the extreme samples orders them by the curvature's signed square
-/// ([`curvature_order`]): one division per sample and gear, where `κ` itself costs a root
-/// and two divisions (three for the conjugate). The divider is the scan's bottleneck. Only
-/// the three samples around each extreme take `κ` itself.
-pub(crate) fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
+/// The driver's least convex and least concave |R_c| (mm; infinite where it has none):
+/// known before the closure. Its scan takes lengths in units of the largest sample
+/// radius, so that no power overflows.
+pub(crate) fn driver_curvature_extremes(samples: &[Polar]) -> (f64, f64) {
+    let largest = samples.iter().fold(0.0, |m: f64, p| m.max(p.rho));
+    extremes_of(samples, 1.0 / largest, |p| p.curvature(), false)
+}
+
+/// The least convex and least concave |R_c| of the driver's conjugate at centre
+/// distance `a` (mm), at the contacts of `samples`.
+pub(crate) fn conjugate_curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
+    extremes_of(
+        samples,
+        1.0 / a,
+        |p| conjugate_polar(p, a).curvature(),
+        true,
+    )
+}
+
+/// One gear's least convex and concave |R_c|. The scan for the extreme samples orders
+/// them by the curvature's signed square ([`curvature_order`]) in units of `1/inv_unit`:
+/// one division per sample, where `κ` itself costs a root and two divisions (three for
+/// the conjugate). The divider is the scan's bottleneck. Only the three samples around
+/// each extreme take `κ` itself.
+fn extremes_of(
+    samples: &[Polar],
+    inv_unit: f64,
+    kappa_at: impl Fn(Polar) -> f64,
+    driven: bool,
+) -> (f64, f64) {
     let n = samples.len();
     // `j` is at most 2n − 1 here: a subtraction wraps it (no integer division per sample).
-    let kappa = |driven: bool, j: usize| {
-        let p = samples[if j < n { j } else { j - n }];
-        (if driven { conjugate_polar(p, a) } else { p }).curvature()
+    let kappa = |j: usize| kappa_at(samples[if j < n { j } else { j - n }]);
+    let (mut jmax, mut kmax, mut jmin, mut kmin) = (0, f64::NEG_INFINITY, 0, f64::INFINITY);
+    for (j, &p) in samples.iter().enumerate() {
+        let k = curvature_order(p, inv_unit, driven);
+        if k > kmax {
+            (jmax, kmax) = (j, k);
+        }
+        if k < kmin {
+            (jmin, kmin) = (j, k);
+        }
+    }
+    let refine = |j: usize, sign: f64| {
+        let (ym, y0, yp) = (
+            sign * kappa(j + n - 1),
+            sign * kappa(j),
+            sign * kappa(j + 1),
+        );
+        sign * parabola_vertex(ym, y0, yp)
     };
-    let mut convex = f64::INFINITY;
-    let mut concave = f64::INFINITY;
-    let inv_a = 1.0 / a;
-    for driven in [false, true] {
-        let order = |j: usize| curvature_order(samples[j], inv_a, driven);
-        let (mut jmax, mut kmax, mut jmin, mut kmin) = (0, f64::NEG_INFINITY, 0, f64::INFINITY);
-        for j in 0..n {
-            let k = order(j);
-            if k > kmax {
-                (jmax, kmax) = (j, k);
-            }
-            if k < kmin {
-                (jmin, kmin) = (j, k);
-            }
-        }
-        let refine = |j: usize, sign: f64| {
-            let (ym, y0, yp) = (
-                sign * kappa(driven, j + n - 1),
-                sign * kappa(driven, j),
-                sign * kappa(driven, j + 1),
-            );
-            sign * parabola_vertex(ym, y0, yp)
-        };
-        if kmax > 0.0 {
-            convex = convex.min(1.0 / refine(jmax, -1.0));
-        }
-        if kmin < 0.0 {
-            concave = concave.min(-1.0 / refine(jmin, 1.0));
-        }
+    // `min` from infinity: a refinement that broke down (NaN) counts as none.
+    let (mut convex, mut concave) = (f64::INFINITY, f64::INFINITY);
+    if kmax > 0.0 {
+        convex = convex.min(1.0 / refine(jmax, -1.0));
+    }
+    if kmin < 0.0 {
+        concave = concave.min(-1.0 / refine(jmin, 1.0));
     }
     (convex, concave)
 }
 
-/// The signed square `(κa)|κa|` of the curvature `κ` of the driver at `p`, or of its
-/// conjugate at the same contact (`driven`), in units of the centre distance `a` (given
-/// as `inv_a = 1/a`, mm⁻¹): the same order as `κ`, without its root. In units of `a`, no
-/// power overflows for a curve that closes (`ρ < a`). With `S = ρ² + ρ'²` and the gap
-/// `g = a − ρ`, the driver's `κ` is `(ρ² + 2ρ'² − ρρ'')/S^{3/2}` and the conjugate's,
-/// [`conjugate_polar`]'s curve, is `(ρ³ + ρ'²(ρ − g) + ρρ''g)/(g·S^{3/2})` (its `ρ`-powers
-/// cleared).
+/// The signed square `(κu)|κu|` of the curvature `κ` of the driver at `p`, or of its
+/// conjugate at the same contact (`driven`), in units of a length `u` (given as
+/// `inv_unit = 1/u`, mm⁻¹): the same order as `κ`, without its root. For the conjugate
+/// `u` is the centre distance `a`; for the driver, a radius no smaller than any sample's.
+/// In such units no power overflows. With `S = ρ² + ρ'²` and the gap `g = a − ρ`, the
+/// driver's `κ` is `(ρ² + 2ρ'² − ρρ'')/S^{3/2}` and the conjugate's, [`conjugate_polar`]'s
+/// curve, is `(ρ³ + ρ'²(ρ − g) + ρρ''g)/(g·S^{3/2})` (its `ρ`-powers cleared).
 #[inline]
-pub(crate) fn curvature_order(p: Polar, inv_a: f64, driven: bool) -> f64 {
-    let (r, d1, d2) = (p.rho * inv_a, p.d1 * inv_a, p.d2 * inv_a);
+pub(crate) fn curvature_order(p: Polar, inv_unit: f64, driven: bool) -> f64 {
+    let (r, d1, d2) = (p.rho * inv_unit, p.d1 * inv_unit, p.d2 * inv_unit);
     let s = r * r + d1 * d1;
     let (numerator, gap) = if driven {
         let g = 1.0 - r;
@@ -404,6 +418,112 @@ impl SampleGrid {
     };
 }
 
+/// A driver's pitch curve sampled on its grid, before the closure: the first stage of
+/// [`GearPair::solve_on`]. What the driver's own curvature allows of the module is known
+/// here; the conjugate's can only lower it.
+pub(crate) struct SampledDriver {
+    curve: PitchCurve,
+    resolution: Resolution,
+    grid: SampleGrid,
+    /// Driver samples at the grid's nodes, positive and finite.
+    samples: Vec<Polar>,
+    /// The pitch perimeter (mm), computed on first use.
+    perimeter: OnceLock<f64>,
+    /// The driver's least convex and concave |R_c| (mm), computed on first use.
+    driver_extremes: OnceLock<(f64, f64)>,
+}
+
+impl SampledDriver {
+    /// Samples `curve` on `grid` at `resolution`; the samples must be positive and finite.
+    pub(crate) fn sample(
+        curve: PitchCurve,
+        resolution: Resolution,
+        grid: SampleGrid,
+    ) -> Result<Self> {
+        resolution.validate()?;
+        let n = resolution.samples_per_turn;
+        let sense = grid.sense.sign();
+        let samples = curve.sample_uniform(grid.start, sense * TAU / n as f64, n);
+        if let Some((j, p)) = samples
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !(p.rho > 0.0 && p.d1.is_finite() && p.d2.is_finite()))
+        {
+            return Err(Error::NonPositiveRadius {
+                psi_deg: (grid.start.to_degrees() + sense * 360.0 * j as f64 / n as f64)
+                    .rem_euclid(360.0),
+                rho_mm: p.rho,
+            });
+        }
+        Ok(Self {
+            curve,
+            resolution,
+            grid,
+            samples,
+            perimeter: OnceLock::new(),
+            driver_extremes: OnceLock::new(),
+        })
+    }
+
+    /// The most that any pair of this driver can have as its module under `rule` (mm):
+    /// [`GearPair::module`]'s `module_max_mm` with the driver's curvature alone (the least
+    /// radii of both gears are no larger than the driver's, and the module grows with them).
+    pub(crate) fn module_bound(&self, rule: &ModuleRule) -> f64 {
+        let perimeter = *(self.perimeter).get_or_init(|| self.curve.perimeter(&self.samples));
+        let (convex, concave) =
+            *(self.driver_extremes).get_or_init(|| driver_curvature_extremes(&self.samples));
+        module_max(perimeter, convex, concave, rule).module_max_mm
+    }
+
+    /// Solves the closure and integrates the driven angle, reusing planned transforms
+    /// (re-planned if the length differs). The curve must stay inside the centre distance
+    /// between the samples too.
+    pub(crate) fn close(self, integrator: &mut SpectralIntegrator) -> Result<GearPair> {
+        let Self {
+            curve,
+            resolution,
+            grid,
+            samples,
+            perimeter,
+            driver_extremes,
+        } = self;
+        let n = samples.len();
+        // The radii for the closure first, then the ratio (one allocation).
+        let mut ratio_nodes: Vec<f64> = samples.iter().map(|p| p.rho).collect();
+        let closure = solve_closure(&ratio_nodes, &resolution)?;
+        let a = closure.centre_distance;
+        let radius_range = curve.radius_range(&samples);
+        if radius_range.1 >= a {
+            return Err(Error::SpikeBetweenSamples {
+                rho_max_mm: radius_range.1,
+                centre_distance_mm: a,
+            });
+        }
+        for (g, p) in ratio_nodes.iter_mut().zip(&samples) {
+            *g = p.rho / (a - p.rho);
+        }
+        let mut phi2_nodes = vec![0.0; n];
+        if integrator.len() != n {
+            *integrator = SpectralIntegrator::new(n);
+        }
+        let phi2_mean_rate = integrator.cumulative(&ratio_nodes, &mut phi2_nodes);
+        Ok(GearPair {
+            curve,
+            resolution,
+            grid,
+            samples,
+            closure,
+            radius_range,
+            ratio_nodes,
+            phi2_nodes,
+            phi2_mean_rate,
+            ratio_coeffs: OnceLock::new(),
+            perimeter,
+            driver_extremes,
+        })
+    }
+}
+
 /// A solved gear pair: the driver's pitch curve, its conjugate at the closing centre
 /// distance, sampled on one [`SampleGrid`].
 ///
@@ -442,6 +562,9 @@ pub struct GearPair {
     /// The pitch perimeter (mm), computed on first use: the module and the evaluation's
     /// summary both read it.
     perimeter: OnceLock<f64>,
+    /// The driver's least convex and concave |R_c| (mm), computed on first use (or by the
+    /// module's bound before the closure).
+    driver_extremes: OnceLock<(f64, f64)>,
 }
 
 impl GearPair {
@@ -471,53 +594,7 @@ impl GearPair {
         grid: SampleGrid,
         integrator: &mut SpectralIntegrator,
     ) -> Result<Self> {
-        resolution.validate()?;
-        let n = resolution.samples_per_turn;
-        let sense = grid.sense.sign();
-        let samples = curve.sample_uniform(grid.start, sense * TAU / n as f64, n);
-        if let Some((j, p)) = samples
-            .iter()
-            .enumerate()
-            .find(|(_, p)| !(p.rho > 0.0 && p.d1.is_finite() && p.d2.is_finite()))
-        {
-            return Err(Error::NonPositiveRadius {
-                psi_deg: (grid.start.to_degrees() + sense * 360.0 * j as f64 / n as f64)
-                    .rem_euclid(360.0),
-                rho_mm: p.rho,
-            });
-        }
-        // The radii for the closure first, then the ratio (one allocation).
-        let mut ratio_nodes: Vec<f64> = samples.iter().map(|p| p.rho).collect();
-        let closure = solve_closure(&ratio_nodes, &resolution)?;
-        let a = closure.centre_distance;
-        let radius_range = curve.radius_range(&samples);
-        if radius_range.1 >= a {
-            return Err(Error::SpikeBetweenSamples {
-                rho_max_mm: radius_range.1,
-                centre_distance_mm: a,
-            });
-        }
-        for (g, p) in ratio_nodes.iter_mut().zip(&samples) {
-            *g = p.rho / (a - p.rho);
-        }
-        let mut phi2_nodes = vec![0.0; n];
-        if integrator.len() != n {
-            *integrator = SpectralIntegrator::new(n);
-        }
-        let phi2_mean_rate = integrator.cumulative(&ratio_nodes, &mut phi2_nodes);
-        Ok(Self {
-            curve,
-            resolution,
-            grid,
-            samples,
-            closure,
-            radius_range,
-            ratio_nodes,
-            phi2_nodes,
-            phi2_mean_rate,
-            ratio_coeffs: OnceLock::new(),
-            perimeter: OnceLock::new(),
-        })
+        SampledDriver::sample(curve, resolution, grid)?.close(integrator)
     }
 
     /// The driver's pitch curve.
@@ -664,8 +741,16 @@ impl GearPair {
 
     /// Largest admissible module over the pair's teeth.
     pub fn module(&self, rule: &ModuleRule) -> ModuleReport {
-        let (convex, concave) = curvature_extremes(&self.samples, self.centre_distance());
-        module_max(self.perimeter(), convex, concave, rule)
+        let (convex, concave) =
+            *(self.driver_extremes).get_or_init(|| driver_curvature_extremes(&self.samples));
+        let (conj_convex, conj_concave) =
+            conjugate_curvature_extremes(&self.samples, self.centre_distance());
+        module_max(
+            self.perimeter(),
+            convex.min(conj_convex),
+            concave.min(conj_concave),
+            rule,
+        )
     }
 }
 
@@ -673,6 +758,16 @@ impl GearPair {
 mod tests {
     use super::*;
     use crate::curve::{CurveSpec, Ellipse};
+
+    /// Least convex and least concave |R_c| of the driver and its conjugate at the given
+    /// uniform samples, each refined by the parabola through the extreme sample of the
+    /// curvature and its neighbours: the least of [`driver_curvature_extremes`] and
+    /// [`conjugate_curvature_extremes`], as [`GearPair::module`] takes them.
+    fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
+        let (convex, concave) = driver_curvature_extremes(samples);
+        let (conj_convex, conj_concave) = conjugate_curvature_extremes(samples, a);
+        (convex.min(conj_convex), concave.min(conj_concave))
+    }
 
     fn ellipse_pair(k: f64, n: usize) -> GearPair {
         let res = Resolution {
@@ -771,6 +866,47 @@ mod tests {
                 (cc / scale - concave).abs() <= 1e-12 * concave,
                 "{scale}: {cc}"
             );
+        }
+    }
+
+    proptest::proptest! {
+        /// The module's bound from the driver alone, before the closure, is never below
+        /// the pair's module: random 12-point splines (convex, concave and spiky), every
+        /// reading, with and without a shaper, on either sense of the grid.
+        #[test]
+        fn the_drivers_module_bound_is_never_below_the_pairs_module(
+            radii in proptest::collection::vec(20.0f64..70.0, 12),
+            reading in 0usize..3,
+            teeth in proptest::option::of(8u32..60),
+            z_min in 8.0f64..30.0,
+            cutter in proptest::option::of(10.0f64..40.0),
+            reversed in proptest::bool::ANY,
+        ) {
+            let angles: Vec<f64> = (0..12).map(|k| 30.0 * k as f64 + 7.0).collect();
+            let curve = CurveSpec::Spline { radii_mm: radii, angles_deg: angles }.build().unwrap();
+            let rule = ModuleRule {
+                rule: [ModuleReading::Undercut, ModuleReading::Perimeter, ModuleReading::Teeth]
+                    [reading],
+                teeth,
+                z_min,
+                cutter_teeth: cutter,
+            };
+            let grid = SampleGrid {
+                start: 0.4,
+                sense: if reversed { Rotation::Clockwise } else { Rotation::Counterclockwise },
+            };
+            let res = Resolution { samples_per_turn: 90, ..Resolution::DEFAULT };
+            let sampled = SampledDriver::sample(curve, res, grid).unwrap();
+            let bound = sampled.module_bound(&rule);
+            let mut integrator = SpectralIntegrator::new(90);
+            if let Ok(pair) = sampled.close(&mut integrator) {
+                let module = pair.module(&rule).module_max_mm;
+                proptest::prop_assert!(bound >= module, "{} < {}", bound, module);
+                // The driver's extremes found before the closure are the pair's.
+                let solved = GearPair::solve_on(pair.curve().clone(), res, grid, &mut integrator)
+                    .unwrap();
+                proptest::prop_assert_eq!(solved.module(&rule), pair.module(&rule));
+            }
         }
     }
 

@@ -9,7 +9,7 @@ use crate::angle::unit;
 use crate::blank::Blank;
 use crate::curve::{PitchCurve, Polar, TAU};
 use crate::error::{finite, length, positive, Error, Result};
-use crate::gear::{GearPair, ModuleReport, ModuleRule, Rotation, SampleGrid};
+use crate::gear::{GearPair, ModuleReport, ModuleRule, Rotation, SampleGrid, SampledDriver};
 use crate::quadrature::{DriftInverse, MonotoneDrift, SpectralIntegrator};
 use crate::resolution::Resolution;
 use crate::vec2::Vec2;
@@ -370,24 +370,24 @@ impl SolvedGears {
     }
 }
 
-/// A train's gear pairs closed on their grids, before the arm is placed on them: the
-/// first stage of [`Kinematics::solve_with`]. A search asks their module here, before the
-/// arm's stages, to stop a design the module already rules out.
-pub(crate) struct ClosedGears {
-    gears: Arc<SolvedGears>,
-    /// The train the grids are for.
+/// A train's first pair sampled on its grid, before any closure: the first stage of
+/// [`Kinematics::solve_with`]. A search asks the module's bound here, to stop a design
+/// that the sun's curvature already rules out.
+pub(crate) struct SampledTrain {
+    first: SampledDriver,
+    /// The second pair's driver (layer B of the intermediate), for a train with two pairs.
+    second: Option<PitchCurve>,
     spec: TrainSpec,
+    resolution: Resolution,
 }
 
-impl ClosedGears {
-    /// Closes the pairs of `curve` (and `second`, for a train with two pairs) on the
-    /// grids of `spec` at `resolution`.
-    pub(crate) fn solve_with(
+impl SampledTrain {
+    /// Samples `curve`, the sun, on the grid of `spec` at `resolution`.
+    pub(crate) fn sample(
         curve: PitchCurve,
         second: Option<PitchCurve>,
         spec: &TrainSpec,
         resolution: &Resolution,
-        integrator: &mut SpectralIntegrator,
     ) -> Result<Self> {
         spec.validate()?;
         let n = resolution.samples_per_turn;
@@ -406,14 +406,35 @@ impl ClosedGears {
             start: spec.psi_start(),
             sense: spec.rotation,
         };
-        let first = SolvedPair::new(GearPair::solve_on(curve, *resolution, grid, integrator)?);
-        let second = match second {
+        Ok(Self {
+            first: SampledDriver::sample(curve, *resolution, grid)?,
+            second,
+            spec: *spec,
+            resolution: *resolution,
+        })
+    }
+
+    /// The most that the train's module can be under `rule` (mm): the sun's curvature
+    /// alone allows it ([`SampledDriver::module_bound`]); the other gears only lower it.
+    pub(crate) fn module_bound(&self, rule: &ModuleRule) -> f64 {
+        self.first.module_bound(rule)
+    }
+
+    /// The resolution the train is sampled at.
+    pub(crate) fn resolution(&self) -> Resolution {
+        self.resolution
+    }
+
+    /// Closes the pairs on their grids, reusing a planned integrator.
+    pub(crate) fn close(self, integrator: &mut SpectralIntegrator) -> Result<ClosedGears> {
+        let first = SolvedPair::new(self.first.close(integrator)?);
+        let second = match self.second {
             Some(curve) => {
                 let grid = SampleGrid {
-                    start: spec.gamma0_deg.to_radians() - std::f64::consts::PI,
-                    sense: spec.rotation.reversed(),
+                    start: self.spec.gamma0_deg.to_radians() - std::f64::consts::PI,
+                    sense: self.spec.rotation.reversed(),
                 };
-                let pair = GearPair::solve_on(curve, *resolution, grid, integrator)
+                let pair = GearPair::solve_on(curve, self.resolution, grid, integrator)
                     .map_err(|e| Error::SecondPair(Box::new(e)))?;
                 Some(SolvedPair::new(pair))
             }
@@ -424,9 +445,22 @@ impl ClosedGears {
             second,
             module: Mutex::new(None),
         });
-        Ok(Self { gears, spec: *spec })
+        Ok(ClosedGears {
+            gears,
+            spec: self.spec,
+        })
     }
+}
 
+/// A train's gear pairs closed on their grids, before the arm is placed on them: the
+/// second stage of [`Kinematics::solve_with`].
+pub(crate) struct ClosedGears {
+    gears: Arc<SolvedGears>,
+    /// The train the grids are for.
+    spec: TrainSpec,
+}
+
+impl ClosedGears {
     /// The train's module under `rule`, as [`Kinematics::module`] gives it (one cache).
     pub(crate) fn module(&self, rule: &ModuleRule) -> ModuleReport {
         self.gears.module(rule)
@@ -523,7 +557,8 @@ impl Kinematics {
         resolution: &Resolution,
         integrator: &mut SpectralIntegrator,
     ) -> Result<Self> {
-        Ok(ClosedGears::solve_with(curve, second, spec, resolution, integrator)?.assemble())
+        let sampled = SampledTrain::sample(curve, second, spec, resolution)?;
+        Ok(sampled.close(integrator)?.assemble())
     }
 
     /// The same gears assembled anew: another `spec` (its `Φ0`, `β0`, `γ0`, `S`, `H1`) and
