@@ -260,9 +260,10 @@ pub(crate) fn curvature_limit(min_convex: f64, min_concave: f64, rule: &ModuleRu
 }
 
 /// Largest module for a ratio-1 train whose gears show the given curvature radii and share
-/// the pitch perimeter `perimeter` (mm).
+/// the pitch perimeter (mm) that `perimeter` gives: asked only when the module depends on
+/// it (not when the curvature allows no module at all).
 pub(crate) fn module_max(
-    perimeter: f64,
+    perimeter: impl FnOnce() -> f64,
     min_convex: f64,
     min_concave: f64,
     rule: &ModuleRule,
@@ -270,8 +271,9 @@ pub(crate) fn module_max(
     let limit = curvature_limit(min_convex, min_concave, rule);
     let by_count = matches!(rule.rule, ModuleReading::Perimeter | ModuleReading::Teeth);
     let (teeth, module) = if let (true, Some(z)) = (by_count, rule.teeth) {
-        (z, perimeter / (std::f64::consts::PI * f64::from(z)))
+        (z, perimeter() / (std::f64::consts::PI * f64::from(z)))
     } else if limit > 0.0 {
+        let perimeter = perimeter();
         let z = (perimeter / (std::f64::consts::PI * limit) - 1e-9)
             .ceil()
             .max(1.0);
@@ -469,7 +471,7 @@ impl SampledDriver {
     /// [`GearPair::module`]'s `module_max_mm` with the driver's curvature alone (the least
     /// radii of both gears are no larger than the driver's, and the module grows with them).
     pub(crate) fn module_bound(&self, rule: &ModuleRule) -> f64 {
-        let perimeter = *(self.perimeter).get_or_init(|| self.curve.perimeter(&self.samples));
+        let perimeter = || *(self.perimeter).get_or_init(|| self.curve.perimeter(&self.samples));
         let (convex, concave) =
             *(self.driver_extremes).get_or_init(|| driver_curvature_extremes(&self.samples));
         module_max(perimeter, convex, concave, rule).module_max_mm
@@ -746,7 +748,7 @@ impl GearPair {
         let (conj_convex, conj_concave) =
             conjugate_curvature_extremes(&self.samples, self.centre_distance());
         module_max(
-            self.perimeter(),
+            || self.perimeter(),
             convex.min(conj_convex),
             concave.min(conj_concave),
             rule,
@@ -912,13 +914,13 @@ mod tests {
 
     #[test]
     fn module_rounds_to_whole_teeth() {
-        let r = module_max(100.0, 30.0, f64::INFINITY, &ModuleRule::default());
+        let r = module_max(|| 100.0, 30.0, f64::INFINITY, &ModuleRule::default());
         assert!(r.module_max_mm <= r.module_limit_mm + 1e-12);
         assert!((r.module_max_mm * std::f64::consts::PI * r.teeth as f64 - 100.0).abs() < 1e-9);
         let forbid = ModuleRule {
             cutter_teeth: None,
             ..ModuleRule::default()
         };
-        assert_eq!(module_max(100.0, 30.0, 5.0, &forbid).module_max_mm, 0.0);
+        assert_eq!(module_max(|| 100.0, 30.0, 5.0, &forbid).module_max_mm, 0.0);
     }
 }
