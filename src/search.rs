@@ -5,23 +5,29 @@ use noncirc_core::{
     Checkpoint, Control, Ending, Evaluation, Evaluator, Fitness, ModuleReading, Observer,
     Resolution, Scene, SceneProblem, SearchState, CHECKPOINT_FORMAT,
 };
+use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use crate::files::{create_dir, json_text, read_limited, toml_text, write_atomic, write_file};
 use crate::report::RequirementRow;
 use crate::{Error, Result};
 
-/// Most designs per parallel piece of a batch of `len` on `threads` ([`map_batch`]):
-/// about 32 pieces per thread. Designs differ in cost, so a batch cut into one part per
-/// thread leaves one thread idle at the end (10 % of a batch was measured); small pieces
-/// let the threads finish together. A piece costs one atomic increment.
+/// Most designs per parallel piece of a batch of `len` on `threads` ([`map_batch`] passes
+/// it to rayon's `with_max_len`): about 32 pieces per thread. Uncapped, rayon splits a
+/// batch only until every thread has a part, one half each on 2 threads; designs differ in
+/// cost, so one thread then idles at the end (10 % of a batch was measured). Small pieces
+/// leave work to steal. Each piece clones a planned evaluator and the scene to edit, so a
+/// small batch (a search's generation: 48 designs) is cut into about 4 pieces per thread
+/// of up to 8 designs, not into single designs.
 pub fn batch_piece(len: usize, threads: usize) -> usize {
-    len.div_ceil(32 * threads).max(1)
+    len.div_ceil(32 * threads)
+        .max(len.div_ceil(4 * threads).min(8))
+        .max(1)
 }
 
 /// Evaluates batches in parallel on a private rayon pool; results keep the input order,
@@ -130,14 +136,8 @@ impl<'a> ParallelEvaluator<'a> {
 }
 
 /// Maps `f` over `items` on `pool`, keeping their order. The batch is cut into pieces of at
-/// most [`batch_piece`] items, which the caller's thread and `threads − 1` of the pool's
-/// take in turn; each starts from its own clones of a `planned` evaluator and of the `base`
-/// scene to edit.
-///
-/// The caller works too: it does not hand the whole batch to the pool and sleep until it
-/// comes back. A search's generation is a small batch (48 designs: a fraction of a
-/// millisecond), and that hand-over each way cost a DE search on two threads a tenth of
-/// its time (docs/performance.md).
+/// most [`batch_piece`] items, and each piece's worker starts from its own clones of a
+/// `planned` evaluator and of the `base` scene to edit.
 pub fn map_batch<T: Sync, R: Send>(
     pool: &rayon::ThreadPool,
     planned: &Evaluator,
@@ -145,38 +145,24 @@ pub fn map_batch<T: Sync, R: Send>(
     items: &[T],
     f: impl Fn(&mut (Evaluator, Scene), &T) -> R + Sync + Send,
 ) -> Vec<R> {
+    let piece = batch_piece(items.len(), pool.current_num_threads());
     // The scene's target prepared once for the batch, not once per piece.
     let mut planned = planned.clone();
     planned.prepare_target(base);
-    let threads = pool.current_num_threads().min(items.len()).max(1);
-    if threads == 1 {
+    // One thread: on the caller's, with no hand-over to the pool's worker and back per
+    // batch (a search's generations are small batches: the hand-over cost about 10 % of a
+    // one-thread DE run in kernel scheduling).
+    if pool.current_num_threads() == 1 {
         let mut state = (planned, base.clone());
         return items.iter().map(|item| f(&mut state, item)).collect();
     }
-    let pieces: Vec<&[T]> = items.chunks(batch_piece(items.len(), threads)).collect();
-    let next = AtomicUsize::new(0);
-    let done = Mutex::new(Vec::with_capacity(pieces.len()));
-    // Takes pieces until none is left.
-    let work = || {
-        let mut state = (planned.clone(), base.clone());
-        let mut mine = Vec::new();
-        loop {
-            let i = next.fetch_add(1, Ordering::Relaxed);
-            let Some(piece) = pieces.get(i) else { break };
-            mine.push((i, piece.iter().map(|item| f(&mut state, item)).collect()));
-        }
-        done.lock().unwrap_or_else(|e| e.into_inner()).extend(mine);
-    };
-    pool.in_place_scope(|scope| {
-        for _ in 1..threads {
-            scope.spawn(|_| work());
-        }
-        work();
-    });
-    // Every piece was taken once, and its thread finished before the scope ended.
-    let mut done: Vec<(usize, Vec<R>)> = done.into_inner().unwrap_or_else(|e| e.into_inner());
-    done.sort_unstable_by_key(|&(i, _)| i);
-    done.into_iter().flat_map(|(_, out)| out).collect()
+    pool.install(|| {
+        items
+            .par_iter()
+            .with_max_len(piece)
+            .map_init(|| (planned.clone(), base.clone()), f)
+            .collect()
+    })
 }
 
 impl BatchEvaluator for ParallelEvaluator<'_> {
