@@ -291,11 +291,10 @@ pub(crate) fn module_max(
 }
 
 /// The driver's least convex and least concave |R_c| (mm; infinite where it has none):
-/// known before the closure. Its scan takes lengths in units of the largest sample
-/// radius, so that no power overflows.
-pub(crate) fn driver_curvature_extremes(samples: &[Polar]) -> (f64, f64) {
-    let largest = samples.iter().fold(0.0, |m: f64, p| m.max(p.rho));
-    extremes_of(samples, 1.0 / largest, |p| p.curvature(), false)
+/// known before the closure. Its scan takes lengths in units of the curve's largest radius
+/// `rho_max` (mm), so that no power overflows.
+pub(crate) fn driver_curvature_extremes(samples: &[Polar], rho_max: f64) -> (f64, f64) {
+    extremes_of(samples, 1.0 / rho_max, |p| p.curvature(), false)
 }
 
 /// The least convex and least concave |R_c| of the driver's conjugate at centre
@@ -429,6 +428,8 @@ pub(crate) struct SampledDriver {
     grid: SampleGrid,
     /// Driver samples at the grid's nodes, positive and finite.
     samples: Vec<Polar>,
+    /// The curve's own least and largest radius (mm; exact or refined between samples).
+    radius_range: (f64, f64),
     /// The pitch perimeter (mm), computed on first use.
     perimeter: OnceLock<f64>,
     /// The driver's least convex and concave |R_c| (mm), computed on first use.
@@ -457,11 +458,13 @@ impl SampledDriver {
                 rho_mm: p.rho,
             });
         }
+        let radius_range = curve.radius_range(&samples);
         Ok(Self {
             curve,
             resolution,
             grid,
             samples,
+            radius_range,
             perimeter: OnceLock::new(),
             driver_extremes: OnceLock::new(),
         })
@@ -472,8 +475,8 @@ impl SampledDriver {
     /// radii of both gears are no larger than the driver's, and the module grows with them).
     pub(crate) fn module_bound(&self, rule: &ModuleRule) -> f64 {
         let perimeter = || *(self.perimeter).get_or_init(|| self.curve.perimeter(&self.samples));
-        let (convex, concave) =
-            *(self.driver_extremes).get_or_init(|| driver_curvature_extremes(&self.samples));
+        let (convex, concave) = *(self.driver_extremes)
+            .get_or_init(|| driver_curvature_extremes(&self.samples, self.radius_range.1));
         module_max(perimeter, convex, concave, rule).module_max_mm
     }
 
@@ -486,6 +489,7 @@ impl SampledDriver {
             resolution,
             grid,
             samples,
+            radius_range,
             perimeter,
             driver_extremes,
         } = self;
@@ -494,7 +498,6 @@ impl SampledDriver {
         let mut ratio_nodes: Vec<f64> = samples.iter().map(|p| p.rho).collect();
         let closure = solve_closure(&ratio_nodes, &resolution)?;
         let a = closure.centre_distance;
-        let radius_range = curve.radius_range(&samples);
         if radius_range.1 >= a {
             return Err(Error::SpikeBetweenSamples {
                 rho_max_mm: radius_range.1,
@@ -743,8 +746,8 @@ impl GearPair {
 
     /// Largest admissible module over the pair's teeth.
     pub fn module(&self, rule: &ModuleRule) -> ModuleReport {
-        let (convex, concave) =
-            *(self.driver_extremes).get_or_init(|| driver_curvature_extremes(&self.samples));
+        let (convex, concave) = *(self.driver_extremes)
+            .get_or_init(|| driver_curvature_extremes(&self.samples, self.radius_range.1));
         let (conj_convex, conj_concave) =
             conjugate_curvature_extremes(&self.samples, self.centre_distance());
         module_max(
@@ -766,7 +769,8 @@ mod tests {
     /// curvature and its neighbours: the least of [`driver_curvature_extremes`] and
     /// [`conjugate_curvature_extremes`], as [`GearPair::module`] takes them.
     fn curvature_extremes(samples: &[Polar], a: f64) -> (f64, f64) {
-        let (convex, concave) = driver_curvature_extremes(samples);
+        let largest = samples.iter().fold(0.0, |m: f64, p| m.max(p.rho));
+        let (convex, concave) = driver_curvature_extremes(samples, largest);
         let (conj_convex, conj_concave) = conjugate_curvature_extremes(samples, a);
         (convex.min(conj_convex), concave.min(conj_concave))
     }
