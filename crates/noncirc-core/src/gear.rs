@@ -354,8 +354,8 @@ fn extremes_of(
 /// The signed square `(κu)|κu|` of the curvature `κ` of the driver at `p`, or of its
 /// conjugate at the same contact (`driven`), in units of a length `u` (given as
 /// `inv_unit = 1/u`, mm⁻¹): the same order as `κ`, without its root. For the conjugate
-/// `u` is the centre distance `a`; for the driver, a radius no smaller than any sample's.
-/// In such units no power overflows. With `S = ρ² + ρ'²` and the gap `g = a − ρ`, the
+/// `u` is the centre distance `a`; for the driver, the curve's largest radius. In such
+/// units no power overflows. With `S = ρ² + ρ'²` and the gap `g = a − ρ`, the
 /// driver's `κ` is `(ρ² + 2ρ'² − ρρ'')/S^{3/2}` and the conjugate's, [`conjugate_polar`]'s
 /// curve, is `(ρ³ + ρ'²(ρ − g) + ρρ''g)/(g·S^{3/2})` (its `ρ`-powers cleared).
 #[inline]
