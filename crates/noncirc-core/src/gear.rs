@@ -421,7 +421,8 @@ impl SampleGrid {
 
 /// A driver's pitch curve sampled on its grid, before the closure: the first stage of
 /// [`GearPair::solve_on`]. What the driver's own curvature allows of the module is known
-/// here; the conjugate's can only lower it.
+/// here; the conjugate's can only lower it. A solved [`GearPair`] keeps it.
+#[derive(Debug, Clone)]
 pub(crate) struct SampledDriver {
     curve: PitchCurve,
     resolution: Resolution,
@@ -474,37 +475,37 @@ impl SampledDriver {
     /// [`GearPair::module`]'s `module_max_mm` with the driver's curvature alone (the least
     /// radii of both gears are no larger than the driver's, and the module grows with them).
     pub(crate) fn module_bound(&self, rule: &ModuleRule) -> f64 {
-        let perimeter = || *(self.perimeter).get_or_init(|| self.curve.perimeter(&self.samples));
-        let (convex, concave) = *(self.driver_extremes)
-            .get_or_init(|| driver_curvature_extremes(&self.samples, self.radius_range.1));
-        module_max(perimeter, convex, concave, rule).module_max_mm
+        let (convex, concave) = self.extremes();
+        module_max(|| self.perimeter(), convex, concave, rule).module_max_mm
+    }
+
+    /// The pitch perimeter (mm), computed once.
+    fn perimeter(&self) -> f64 {
+        *(self.perimeter).get_or_init(|| self.curve.perimeter(&self.samples))
+    }
+
+    /// The driver's least convex and concave |R_c| (mm), computed once.
+    fn extremes(&self) -> (f64, f64) {
+        *(self.driver_extremes)
+            .get_or_init(|| driver_curvature_extremes(&self.samples, self.radius_range.1))
     }
 
     /// Solves the closure and integrates the driven angle, reusing planned transforms
     /// (re-planned if the length differs). The curve must stay inside the centre distance
     /// between the samples too.
     pub(crate) fn close(self, integrator: &mut SpectralIntegrator) -> Result<GearPair> {
-        let Self {
-            curve,
-            resolution,
-            grid,
-            samples,
-            radius_range,
-            perimeter,
-            driver_extremes,
-        } = self;
-        let n = samples.len();
+        let n = self.samples.len();
         // The radii for the closure first, then the ratio (one allocation).
-        let mut ratio_nodes: Vec<f64> = samples.iter().map(|p| p.rho).collect();
-        let closure = solve_closure(&ratio_nodes, &resolution)?;
+        let mut ratio_nodes: Vec<f64> = self.samples.iter().map(|p| p.rho).collect();
+        let closure = solve_closure(&ratio_nodes, &self.resolution)?;
         let a = closure.centre_distance;
-        if radius_range.1 >= a {
+        if self.radius_range.1 >= a {
             return Err(Error::SpikeBetweenSamples {
-                rho_max_mm: radius_range.1,
+                rho_max_mm: self.radius_range.1,
                 centre_distance_mm: a,
             });
         }
-        for (g, p) in ratio_nodes.iter_mut().zip(&samples) {
+        for (g, p) in ratio_nodes.iter_mut().zip(&self.samples) {
             *g = p.rho / (a - p.rho);
         }
         let mut phi2_nodes = vec![0.0; n];
@@ -513,18 +514,12 @@ impl SampledDriver {
         }
         let phi2_mean_rate = integrator.cumulative(&ratio_nodes, &mut phi2_nodes);
         Ok(GearPair {
-            curve,
-            resolution,
-            grid,
-            samples,
+            driver: self,
             closure,
-            radius_range,
             ratio_nodes,
             phi2_nodes,
             phi2_mean_rate,
             ratio_coeffs: OnceLock::new(),
-            perimeter,
-            driver_extremes,
         })
     }
 }
@@ -547,14 +542,9 @@ impl SampledDriver {
 /// ```
 #[derive(Debug, Clone)]
 pub struct GearPair {
-    curve: PitchCurve,
-    resolution: Resolution,
-    grid: SampleGrid,
-    /// Driver samples at the grid's nodes.
-    samples: Vec<Polar>,
+    /// The driver as sampled on the grid, with what is known of it before the closure.
+    driver: SampledDriver,
     closure: Closure,
-    /// The curve's own least and largest radius (mm; exact or refined between samples).
-    radius_range: (f64, f64),
     /// `dφ2/du = ρ/(a − ρ)` at the nodes (`u`: the driver's turn along the grid).
     ratio_nodes: Vec<f64>,
     /// Driven angle at the nodes (rad, 0 at node 0).
@@ -564,12 +554,6 @@ pub struct GearPair {
     /// Fourier coefficients of the ratio (k ≥ 0) for `phi2` between nodes, computed on
     /// first use: the planetary train interpolates its own way and never pays for them.
     ratio_coeffs: OnceLock<Vec<Complex64>>,
-    /// The pitch perimeter (mm), computed on first use: the module and the evaluation's
-    /// summary both read it.
-    perimeter: OnceLock<f64>,
-    /// The driver's least convex and concave |R_c| (mm), computed on first use (or by the
-    /// module's bound before the closure).
-    driver_extremes: OnceLock<(f64, f64)>,
 }
 
 impl GearPair {
@@ -604,12 +588,12 @@ impl GearPair {
 
     /// The driver's pitch curve.
     pub fn curve(&self) -> &PitchCurve {
-        &self.curve
+        &self.driver.curve
     }
 
     /// The resolution that produced this pair.
     pub fn resolution(&self) -> Resolution {
-        self.resolution
+        self.driver.resolution
     }
 
     /// The closure solution (centre distance, error estimate, iterations).
@@ -624,22 +608,23 @@ impl GearPair {
 
     /// The grid the driver is sampled on.
     pub fn grid(&self) -> SampleGrid {
-        self.grid
+        self.driver.grid
     }
 
     /// Driver parameter of node `j` (rad): `start ± j·2π/N`, not wrapped.
     pub fn psi(&self, j: usize) -> f64 {
-        self.grid.start + self.grid.sense.sign() * TAU * j as f64 / self.samples.len() as f64
+        self.driver.grid.start
+            + self.driver.grid.sense.sign() * TAU * j as f64 / self.driver.samples.len() as f64
     }
 
     /// Driver samples at the grid's nodes.
     pub fn samples(&self) -> &[Polar] {
-        &self.samples
+        &self.driver.samples
     }
 
     /// The driver curve's least and largest radius (mm), exact or refined between samples.
     pub fn radius_range(&self) -> (f64, f64) {
-        self.radius_range
+        self.driver.radius_range
     }
 
     /// `dφ2/du = ρ/(a − ρ)` at the nodes, `u` being the driver's turn along the grid.
@@ -678,7 +663,7 @@ impl GearPair {
 
     /// The driver's pitch curve in its own frame (mm), at the grid's nodes.
     pub fn driver_points(&self) -> Vec<Vec2> {
-        (self.samples.iter().enumerate())
+        (self.driver.samples.iter().enumerate())
             .map(|(j, p)| {
                 let psi = self.psi(j);
                 Vec2::new(p.rho * psi.cos(), p.rho * psi.sin())
@@ -690,16 +675,17 @@ impl GearPair {
     /// angle and quadrature weight (rad) of a trapezoid rule over one turn
     /// ([`Blank::from_polar`](crate::blank::Blank::from_polar)).
     pub fn driver_polar(&self) -> impl Iterator<Item = (f64, f64, f64)> + '_ {
-        let h = TAU / self.samples.len() as f64;
-        (self.samples.iter().enumerate()).map(move |(j, p)| (p.rho, self.psi(j), h))
+        let h = TAU / self.driver.samples.len() as f64;
+        (self.driver.samples.iter().enumerate()).map(move |(j, p)| (p.rho, self.psi(j), h))
     }
 
     /// The driven pitch curve likewise: radius `a − ρ` at own angle `∓φ2` (as
     /// [`GearPair::driven_points`]), weight `dφ2 = g·dψ`.
     pub fn driven_polar(&self) -> impl Iterator<Item = (f64, f64, f64)> + '_ {
-        let (a, sense) = (self.centre_distance(), self.grid.sense.sign());
-        let h = TAU / self.samples.len() as f64;
+        let (a, sense) = (self.centre_distance(), self.driver.grid.sense.sign());
+        let h = TAU / self.driver.samples.len() as f64;
         (self
+            .driver
             .samples
             .iter()
             .zip(&self.phi2_nodes)
@@ -723,8 +709,8 @@ impl GearPair {
     /// node `j` sits at radius `a − ρ_j` and own angle `−sense·phi2_j`, angle 0 meeting node 0.
     pub fn driven_points(&self) -> Vec<Vec2> {
         let a = self.centre_distance();
-        let sense = self.grid.sense.sign();
-        (self.samples.iter().zip(&self.phi2_nodes))
+        let sense = self.driver.grid.sense.sign();
+        (self.driver.samples.iter().zip(&self.phi2_nodes))
             .map(|(p, phi2)| {
                 let (s, c) = (-sense * phi2).sin_cos();
                 Vec2::new((a - p.rho) * c, (a - p.rho) * s)
@@ -735,21 +721,20 @@ impl GearPair {
     /// Transmission ratio `i12 = ω1/ω2 = (a - ρ)/ρ` at the driver parameter `psi` (rad,
     /// absolute: not a turn along the grid as for [`GearPair::phi2`]).
     pub fn ratio(&self, psi: f64) -> f64 {
-        let r = self.curve.eval(psi).rho;
+        let r = self.driver.curve.eval(psi).rho;
         (self.centre_distance() - r) / r
     }
 
     /// Driver pitch perimeter (mm); the driven gear's is equal.
     pub fn perimeter(&self) -> f64 {
-        *(self.perimeter).get_or_init(|| self.curve.perimeter(&self.samples))
+        self.driver.perimeter()
     }
 
     /// Largest admissible module over the pair's teeth.
     pub fn module(&self, rule: &ModuleRule) -> ModuleReport {
-        let (convex, concave) = *(self.driver_extremes)
-            .get_or_init(|| driver_curvature_extremes(&self.samples, self.radius_range.1));
+        let (convex, concave) = self.driver.extremes();
         let (conj_convex, conj_concave) =
-            conjugate_curvature_extremes(&self.samples, self.centre_distance());
+            conjugate_curvature_extremes(&self.driver.samples, self.centre_distance());
         module_max(
             || self.perimeter(),
             convex.min(conj_convex),
