@@ -8,7 +8,7 @@ use crate::events::Events;
 use crate::fit::FitReport;
 use crate::gear::{GearPair, ModuleReport};
 use crate::moving_box::BoxReport;
-use crate::objective_kind::{scale, Bounds, ObjectiveKind};
+use crate::objective_kind::{Bounds, ObjectiveKind};
 use crate::objectives::ObjectiveValue;
 use crate::planetary::Kinematics;
 use crate::resolution::Resolution;
@@ -113,10 +113,11 @@ impl Evaluation {
     /// searches rank designs by before they meet everything (0: all met; infinite where a
     /// value is NaN).
     ///
+    /// [`scale`]: crate::objective_kind::scale
     /// [`Constraint::scale`]: crate::constraint::Constraint::scale
     pub fn normalised_violation(&self, bounds: &Bounds) -> f64 {
         let objectives = (self.objectives.iter())
-            .map(|o| o.violation / scale(o.kind, bounds))
+            .map(|o| o.normalised_violation(bounds))
             .sum::<f64>();
         let constraints = (self.constraints.iter())
             .map(|c| c.normalised_violation())

@@ -10,7 +10,7 @@ use crate::fit::fit_report;
 use crate::gear::{GearPair, ModuleReading};
 use crate::measure_value::Measured;
 use crate::moving_box::evaluate_box_with;
-use crate::objective_kind::{scale, ObjectiveKind};
+use crate::objective_kind::ObjectiveKind;
 use crate::objectives::{objective_value, ObjectiveValue};
 use crate::params::pulled_values;
 use crate::planetary::{ClosedGears, Kinematics, SampledTrain};
@@ -224,8 +224,8 @@ impl Evaluator {
         // The objective's normalised violation for a module of `mm`, before its teeth's
         // shortfalls (which only add to it); it grows as the module shrinks.
         let violation = |mm: f64| {
-            let value = ObjectiveValue::new(ObjectiveKind::Module, mm, &scene.bounds);
-            value.violation / scale(ObjectiveKind::Module, &scene.bounds)
+            ObjectiveValue::new(ObjectiveKind::Module, mm, &scene.bounds)
+                .normalised_violation(&scene.bounds)
         };
         let beaten = |least: f64| {
             (least > cutoff).then_some(Screened::Beaten {
@@ -598,7 +598,7 @@ mod tests {
         let res = scene.resolution;
         let whole = Evaluator::new().evaluate(&scene).unwrap();
         let module = whole.objective(ObjectiveKind::Module).unwrap();
-        let module = module.violation / scale(ObjectiveKind::Module, &scene.bounds);
+        let module = module.normalised_violation(&scene.bounds);
         let total = whole.normalised_violation(&scene.bounds);
         assert!(module > 0.1 && total >= module, "{module} {total}");
 

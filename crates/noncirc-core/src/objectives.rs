@@ -6,7 +6,7 @@ use crate::curve::{parabola_vertex, TAU};
 use crate::events::{events, housing_radius, Events};
 use crate::gear::{ModuleReport, ModuleRule};
 use crate::interference::interference_clearance;
-use crate::objective_kind::{Bounds, ObjectiveKind};
+use crate::objective_kind::{scale, Bounds, ObjectiveKind};
 use crate::planetary::Kinematics;
 use crate::strength::Strength;
 use serde::Serialize;
@@ -48,6 +48,12 @@ impl ObjectiveValue {
 }
 
 impl ObjectiveValue {
+    /// The violation over the kind's [`scale`] under `bounds`: this objective's term of an
+    /// evaluation's normalised violation, which searches rank designs by.
+    pub fn normalised_violation(&self, bounds: &Bounds) -> f64 {
+        self.violation / scale(self.kind, bounds)
+    }
+
     /// Adds the teeth's shortfalls (in modules, so × the module in mm) to the module
     /// objective's violation: a module whose teeth fail a check is not met.
     pub fn add_teeth(&mut self, teeth: Option<&crate::teeth::TeethReport>) {
