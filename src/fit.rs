@@ -219,7 +219,7 @@ const BISECTIONS: usize = 12;
 pub fn fit_scene(
     scene: &Scene,
     opts: &FitOptions,
-    observers: &mut [&mut dyn Observer],
+    observers: &mut [&mut (dyn Observer + Send)],
 ) -> Result<FitOutcome> {
     let scene = if opts.run.resume.is_some() {
         // The checkpoint holds the scene (with its target and goal) that ran.

@@ -161,7 +161,7 @@ pub fn repair_target(
 pub fn repair_scene(
     scene: &Scene,
     opts: &RepairOptions,
-    observers: &mut [&mut dyn Observer],
+    observers: &mut [&mut (dyn Observer + Send)],
 ) -> Result<RepairOutcome> {
     if opts.fit.run.resume.is_some() {
         return Err(Error::Input(
