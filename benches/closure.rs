@@ -91,5 +91,34 @@ fn closure_batch(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, closure, closure_batch);
+/// The pitch curve's construction as a search does it per design: 256 random valid
+/// 12-point splines of the paper's control angles built from their specification.
+fn pitch_curve_build(c: &mut Criterion) {
+    let mut rng = Rng::new(5);
+    let mut specs = Vec::with_capacity(256);
+    while specs.len() < 256 {
+        let mut spec = CurveSpec::paper();
+        if let CurveSpec::Spline { radii_mm, .. } = &mut spec {
+            for r in radii_mm.iter_mut() {
+                *r = 10.0 + 60.0 * rng.uniform();
+            }
+        }
+        if spec.build().is_ok() {
+            specs.push(spec);
+        }
+    }
+    let mut group = c.benchmark_group("pitch_curve_build");
+    group.throughput(Throughput::Elements(specs.len() as u64));
+    group.bench_function("spline_12", |b| {
+        b.iter(|| {
+            specs
+                .iter()
+                .map(|spec| black_box(spec).build().unwrap().eval(0.0).rho)
+                .sum::<f64>()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, closure, closure_batch, pitch_curve_build);
 criterion_main!(benches);
