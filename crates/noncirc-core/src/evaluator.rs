@@ -208,42 +208,55 @@ impl Evaluator {
     /// module's violation is bounded below once the sun is sampled (by its own curvature)
     /// and known once the gears are closed: a three-arm design whose module alone exceeds
     /// `cutoff` is stopped there (about half of a DE search's trials, a third before the
-    /// closure). Every other design is evaluated whole, as `evaluate_at` does.
+    /// closure). Once the events are located, the objectives but the interference bound it
+    /// again, and a design they put above `cutoff` is not scanned for interference (a sixth
+    /// of a DE search's trials). Every other design is evaluated whole, as `evaluate_at`
+    /// does.
     pub fn evaluate_unless_beaten(
         &mut self,
         scene: &Scene,
         resolution: &Resolution,
         cutoff: f64,
     ) -> Result<Screened> {
-        let three_arm = matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter);
-        if !three_arm || !scene.objectives.contains(&ObjectiveKind::Module) {
+        if !matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
             return self.evaluate_at(scene, resolution).map(Screened::Evaluated);
         }
         scene.validate()?;
         resolution.validate()?;
-        // The objective's normalised violation for a module of `mm`, before its teeth's
-        // shortfalls (which only add to it); it grows as the module shrinks.
-        let violation = |mm: f64| {
-            ObjectiveValue::new(ObjectiveKind::Module, mm, &scene.bounds)
-                .normalised_violation(&scene.bounds)
+        let gears = if scene.objectives.contains(&ObjectiveKind::Module) {
+            // The objective's normalised violation for a module of `mm`, before its teeth's
+            // shortfalls (which only add to it); it grows as the module shrinks.
+            let violation = |mm: f64| {
+                ObjectiveValue::new(ObjectiveKind::Module, mm, &scene.bounds)
+                    .normalised_violation(&scene.bounds)
+            };
+            let beaten = |least: f64| {
+                (least > cutoff).then_some(Screened::Beaten {
+                    violation_at_least: least,
+                })
+            };
+            let sampled = self.sample_train(scene, resolution)?;
+            if let Some(b) = beaten(violation(sampled.module_bound(&scene.gear.module))) {
+                return Ok(b);
+            }
+            let gears = self.close(sampled)?;
+            if let Some(b) = beaten(violation(gears.module(&scene.gear.module).module_max_mm)) {
+                return Ok(b);
+            }
+            gears
+        } else {
+            self.close_gears(scene, resolution)?
         };
-        let beaten = |least: f64| {
-            (least > cutoff).then_some(Screened::Beaten {
-                violation_at_least: least,
-            })
-        };
-        let sampled = self.sample_train(scene, resolution)?;
-        if let Some(b) = beaten(violation(sampled.module_bound(&scene.gear.module))) {
-            return Ok(b);
-        }
-        let gears = self.close(sampled)?;
-        if let Some(b) = beaten(violation(gears.module(&scene.gear.module).module_max_mm)) {
-            return Ok(b);
-        }
         self.counts.kinematics += 1;
         let mut out = Evaluation::empty(scene, *resolution);
-        self.mechanism(scene, gears.assemble(), &mut out)?;
-        Ok(Screened::Evaluated(out))
+        Ok(
+            match self.mechanism_unless_beaten(scene, gears.assemble(), &mut out, cutoff)? {
+                Some(least) => Screened::Beaten {
+                    violation_at_least: least,
+                },
+                None => Screened::Evaluated(out),
+            },
+        )
     }
 
     /// Evaluates a three-arm scene on a train already solved for it (`kin`'s curve and
@@ -296,6 +309,25 @@ impl Evaluator {
     /// The three-arm stages after the train is solved: events, objectives, moving box,
     /// then the search constraints.
     fn mechanism(&mut self, scene: &Scene, kin: Kinematics, out: &mut Evaluation) -> Result<()> {
+        match self.mechanism_unless_beaten(scene, kin, out, f64::INFINITY)? {
+            None => Ok(()),
+            Some(_) => unreachable!("no violation exceeds an infinite cutoff"),
+        }
+    }
+
+    /// As [`Evaluator::mechanism`], but with the interference scan, the costliest
+    /// objective, left to the last: a design whose other objectives' normalised violation
+    /// already exceeds `cutoff` is not scanned, and that sum is returned (`out` is then
+    /// incomplete). The sum runs in [`Evaluation::normalised_violation`]'s order without
+    /// the interference's term; every term is non-negative and rounding is monotone, so it
+    /// is never above the whole design's violation.
+    fn mechanism_unless_beaten(
+        &mut self,
+        scene: &Scene,
+        kin: Kinematics,
+        out: &mut Evaluation,
+        cutoff: f64,
+    ) -> Result<Option<f64>> {
         let resolution = &kin.resolution();
         out.centre_distance_mm = Some(kin.centre_distance());
         let coupled = scene.kind == SceneKind::Transplanter;
@@ -328,8 +360,8 @@ impl Evaluator {
                 Err(e) => out.strength_unavailable = Some(e.to_string()),
             }
         }
-        for &kind in &scene.objectives {
-            self.counts.objectives[kind as usize] += 1;
+        let objective = |this: &mut Self, kind: ObjectiveKind, out: &Evaluation| {
+            this.counts.objectives[kind as usize] += 1;
             let value = objective_value(
                 kind,
                 &kin,
@@ -343,7 +375,33 @@ impl Evaluator {
                 value.add_teeth(out.teeth.as_ref());
                 value.add_teeth(out.second_teeth.as_ref());
             }
-            out.objectives.push(value);
+            value
+        };
+        // With a finite cutoff, the interference's place in the list is kept for it.
+        let deferred = (cutoff < f64::INFINITY)
+            .then(|| {
+                scene
+                    .objectives
+                    .iter()
+                    .position(|&k| k == ObjectiveKind::Interference)
+            })
+            .flatten();
+        for (i, &kind) in scene.objectives.iter().enumerate() {
+            if Some(i) != deferred {
+                let value = objective(self, kind, out);
+                out.objectives.push(value);
+            }
+        }
+        if let Some(i) = deferred {
+            let least = (out.objectives.iter())
+                .map(|o| o.normalised_violation(&scene.bounds))
+                .sum::<f64>();
+            // A value that broke down is left for the safety net below to refuse.
+            if least > cutoff && !out.objectives.iter().any(|o| o.value.is_nan()) {
+                return Ok(Some(least));
+            }
+            let value = objective(self, ObjectiveKind::Interference, out);
+            out.objectives.insert(i, value);
         }
         if coupled {
             let window = ev
@@ -391,7 +449,7 @@ impl Evaluator {
                 .collect();
             out.constraints = values;
         }
-        Ok(())
+        Ok(None)
     }
 
     /// Evaluates `scene` at `resolution`, running only the stages its outputs need.
@@ -588,46 +646,71 @@ mod tests {
     }
 
     /// The module's violation stops a design at two stages: bounded by the sun's
-    /// curvature before the closure, and known once the gears are closed. The bound is no
-    /// more than the whole design's violation. A cutoff at or above the module's
-    /// violation, or a scene without the module, gives `evaluate_at`'s evaluation bit for
-    /// bit.
+    /// curvature before the closure, and known once the gears are closed. The objectives
+    /// but the interference stop it at a third, before the interference scan. Each bound
+    /// is no more than the whole design's violation. A cutoff at or above the whole
+    /// violation gives `evaluate_at`'s evaluation bit for bit.
     #[test]
-    fn a_design_beaten_by_its_module_is_stopped_before_the_arm() {
-        let scene = Scene::default(); // its module is 2 mm short (the doctest above)
+    fn a_design_beaten_part_way_is_stopped_at_the_first_stage_that_shows_it() {
+        let mut scene = Scene::default(); // its module is 2 mm short (the doctest above)
+                                          // And its path 10 mm lower than asked, its arms 10 mm closer than allowed.
+        let first = Evaluator::new().evaluate(&scene).unwrap();
+        let value = |kind| first.objective(kind).unwrap().value;
+        scene.bounds.trajectory_height_min_mm = value(ObjectiveKind::TrajectoryHeight) + 10.0;
+        scene.bounds.clearance_min_mm = value(ObjectiveKind::Interference) + 10.0;
         let res = scene.resolution;
         let whole = Evaluator::new().evaluate(&scene).unwrap();
         let module = whole.objective(ObjectiveKind::Module).unwrap();
         let module = module.normalised_violation(&scene.bounds);
         let total = whole.normalised_violation(&scene.bounds);
-        assert!(module > 0.1 && total >= module, "{module} {total}");
+        assert!(module > 0.1 && total > module, "{module} {total}");
 
-        // Stages run: (closures, arms, events).
-        let stopped = |cutoff: f64| {
+        // Stages run: (closures, arms, events, interference scans).
+        let stopped = |scene: &Scene, cutoff: f64| {
             let mut evaluator = Evaluator::new();
-            let least = match evaluator.evaluate_unless_beaten(&scene, &res, cutoff) {
+            let least = match evaluator.evaluate_unless_beaten(scene, &res, cutoff) {
                 Ok(Screened::Beaten { violation_at_least }) => violation_at_least,
                 other => panic!("{cutoff}: {other:?}"),
             };
             let c = evaluator.counts();
-            (least, (c.closure, c.kinematics, c.events))
+            let scans = c.objectives[ObjectiveKind::Interference as usize];
+            (least, (c.closure, c.kinematics, c.events, scans))
         };
         // A cutoff below any violation: stopped at the sun's bound, before the closure.
-        let (sun, stages) = stopped(-1.0);
-        assert_eq!(stages, (0, 0, 0));
+        let (sun, stages) = stopped(&scene, -1.0);
+        assert_eq!(stages, (0, 0, 0, 0));
         assert!(sun > 0.0 && sun < module, "{sun} {module}");
         // Between the bound and the module's violation: stopped after the closure.
-        assert_eq!(stopped(sun), (module, (1, 0, 0)));
-
+        assert_eq!(stopped(&scene, sun), (module, (1, 0, 0, 0)));
+        // The objectives but the interference, summed in the whole violation's order.
+        let others = (whole.objectives.iter())
+            .filter(|o| o.kind != ObjectiveKind::Interference)
+            .map(|o| o.normalised_violation(&scene.bounds))
+            .sum::<f64>();
+        assert!(
+            others > module && others < total,
+            "{others} {module} {total}"
+        );
+        // Between the module's violation and the others': stopped before the scan.
+        assert_eq!(stopped(&scene, module), (others, (1, 1, 1, 0)));
+        // Without the module, only the scan is left out.
         let mut without_module = scene.clone();
         without_module
             .objectives
             .retain(|&k| k != ObjectiveKind::Module);
         let plain = Evaluator::new().evaluate(&without_module).unwrap();
+        let plain_others = (plain.objectives.iter())
+            .filter(|o| o.kind != ObjectiveKind::Interference)
+            .map(|o| o.normalised_violation(&scene.bounds))
+            .sum::<f64>();
+        assert!(plain_others > 0.0);
+        assert_eq!(stopped(&without_module, 0.0), (plain_others, (1, 1, 1, 0)));
+
+        let plain_total = plain.normalised_violation(&scene.bounds);
         for (scene, whole, cutoff) in [
-            (&scene, &whole, module),
+            (&scene, &whole, total),
             (&scene, &whole, f64::INFINITY),
-            (&without_module, &plain, 0.0),
+            (&without_module, &plain, plain_total),
         ] {
             match Evaluator::new().evaluate_unless_beaten(scene, &res, cutoff) {
                 Ok(Screened::Evaluated(e)) => {
