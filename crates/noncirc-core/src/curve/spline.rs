@@ -194,24 +194,25 @@ pub(crate) fn periodic_cubic(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f
     let n = values.len();
     let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
     let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+    // Each segment's chord slope, divided once: the system's right-hand side takes it twice
+    // and the segment's linear coefficient once.
+    let slope: Vec<f64> = (0..n)
+        .map(|i| (values[next(i)] - values[i]) / h(i))
+        .collect();
     // Second derivatives M from the cyclic tridiagonal system.
     let m = solve_cyclic_tridiagonal(
         n,
         |i| h(prev(i)),
         |i| 2.0 * (h(prev(i)) + h(i)),
         &h,
-        |i| {
-            let (up, down) = (values[next(i)], values[prev(i)]);
-            6.0 * ((up - values[i]) / h(i) - (values[i] - down) / h(prev(i)))
-        },
+        |i| 6.0 * (slope[i] - slope[prev(i)]),
     );
     (0..n)
         .map(|i| {
             let (m0, m1, hi) = (m[i], m[next(i)], h(i));
-            let (y0, y1) = (values[i], values[next(i)]);
             [
-                y0,
-                (y1 - y0) / hi - hi * (2.0 * m0 + m1) / 6.0,
+                values[i],
+                slope[i] - hi * (2.0 * m0 + m1) / 6.0,
                 m0 / 2.0,
                 (m1 - m0) / (6.0 * hi),
             ]
