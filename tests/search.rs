@@ -343,8 +343,8 @@ fn de_trials_stopped_at_their_module_leave_the_search_as_whole_evaluations_do() 
         serde_json::to_string(&checked_state).unwrap(),
         serde_json::to_string(&whole_state).unwrap()
     );
-    // About half of the trials are stopped at their module, a sixth before their
-    // interference scan.
+    // About half of the trials are stopped at their module, a sixth more once their arm
+    // is placed.
     assert!(
         checked.stopped > 600,
         "{} of 2376 trials stopped",

@@ -5,7 +5,7 @@
 use crate::curve::PitchCurve;
 use crate::error::{Error, Result};
 use crate::evaluation::{Evaluation, GearSummary, PairGeometry};
-use crate::events::events;
+use crate::events::Picking;
 use crate::fit::fit_report;
 use crate::gear::{GearPair, ModuleReading};
 use crate::measure_value::Measured;
@@ -208,10 +208,11 @@ impl Evaluator {
     /// module's violation is bounded below once the sun is sampled (by its own curvature)
     /// and known once the gears are closed: a three-arm design whose module alone exceeds
     /// `cutoff` is stopped there (about half of a DE search's trials, a third before the
-    /// closure). Once the events are located, the objectives but the interference bound it
-    /// again, and a design they put above `cutoff` is not scanned for interference (a sixth
-    /// of a DE search's trials). Every other design is evaluated whole, as `evaluate_at`
-    /// does.
+    /// closure). Once picking is located, the picking angle bounds it (10 % of a DE
+    /// search's trials stop there, before the other events); once the events are, the
+    /// objectives but the interference do, and a design they put above `cutoff` is not
+    /// scanned for interference (another 7 %). Every other design is evaluated whole, as
+    /// `evaluate_at` does.
     pub fn evaluate_unless_beaten(
         &mut self,
         scene: &Scene,
@@ -315,12 +316,13 @@ impl Evaluator {
         }
     }
 
-    /// As [`Evaluator::mechanism`], but with the interference scan, the costliest
-    /// objective, left to the last: a design whose other objectives' normalised violation
-    /// already exceeds `cutoff` is not scanned, and that sum is returned (`out` is then
-    /// incomplete). The sum runs in [`Evaluation::normalised_violation`]'s order without
-    /// the interference's term; every term is non-negative and rounding is monotone, so it
-    /// is never above the whole design's violation.
+    /// As [`Evaluator::mechanism`], but stopped at the first of two bounds that exceeds
+    /// `cutoff`, which it returns (`out` is then incomplete): the picking angle's term,
+    /// once picking is located, before the other events; and the terms of every objective
+    /// but the interference, before the interference scan, the costliest objective. The
+    /// latter sum runs in [`Evaluation::normalised_violation`]'s order without the
+    /// interference's term. Every term is non-negative and rounding is monotone, so
+    /// neither bound is ever above the whole design's violation.
     fn mechanism_unless_beaten(
         &mut self,
         scene: &Scene,
@@ -338,7 +340,19 @@ impl Evaluator {
         let target_events = target.as_ref().is_some_and(|(t, _)| t.needs_events());
         let ev = if coupled || target_events || scene.objectives.iter().any(|o| o.needs_events()) {
             self.counts.events += 1;
-            Some(events(&kin, &scene.agronomy))
+            let picking = Picking::locate(&kin, &scene.agronomy);
+            // With a finite cutoff, the picking angle's term alone may already exceed it
+            // (the first of the whole violation's terms that the events give).
+            if cutoff < f64::INFINITY && scene.objectives.contains(&ObjectiveKind::PickingAngle) {
+                let angle = picking.attitude_deg();
+                let least = ObjectiveValue::new(ObjectiveKind::PickingAngle, angle, &scene.bounds)
+                    .normalised_violation(&scene.bounds);
+                // A value that broke down is left for the whole evaluation to refuse.
+                if least > cutoff && !angle.is_nan() {
+                    return Ok(Some(least));
+                }
+            }
+            Some(picking.events(&kin, &scene.agronomy))
         } else {
             None
         };
@@ -646,8 +660,9 @@ mod tests {
     }
 
     /// The module's violation stops a design at two stages: bounded by the sun's
-    /// curvature before the closure, and known once the gears are closed. The objectives
-    /// but the interference stop it at a third, before the interference scan. Each bound
+    /// curvature before the closure, and known once the gears are closed. The picking
+    /// angle stops it once picking is located, and the objectives but the interference
+    /// before the interference scan. Each bound
     /// is no more than the whole design's violation. A cutoff at or above the whole
     /// violation gives `evaluate_at`'s evaluation bit for bit.
     #[test]
@@ -693,6 +708,21 @@ mod tests {
         );
         // Between the module's violation and the others': stopped before the scan.
         assert_eq!(stopped(&scene, module), (others, (1, 1, 1, 0)));
+        // A picking angle 30° out of its bounds: stopped at picking, before the other
+        // events and the objectives.
+        let mut off = scene.clone();
+        let angle = value(ObjectiveKind::PickingAngle);
+        off.bounds.picking_angle_deg = [angle + 30.0, angle + 40.0];
+        let picking = Evaluator::new().evaluate(&off).unwrap();
+        let picking = picking.objective(ObjectiveKind::PickingAngle).unwrap();
+        let picking = picking.normalised_violation(&off.bounds);
+        assert!(picking > module, "{picking} {module}");
+        let mut evaluator = Evaluator::new();
+        assert!(matches!(
+            evaluator.evaluate_unless_beaten(&off, &res, module),
+            Ok(Screened::Beaten { violation_at_least }) if violation_at_least == picking
+        ));
+        assert_eq!(evaluator.counts().objectives, [0; 11]);
         // Without the module, only the scan is left out.
         let mut without_module = scene.clone();
         without_module

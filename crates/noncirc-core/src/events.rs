@@ -285,44 +285,82 @@ pub(crate) fn housing_radius(kin: &Kinematics, agro: &Agronomy) -> f64 {
 /// Locates picking and planting, checks the picking, and finds the window and the
 /// extremes of height.
 pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
-    let tips = kin.tips();
-    let normal = unit(agro.tray_normal_deg.to_radians());
-    let (jp, picking_runner_up) = extreme_and_runner_up(tips, normal);
-    let (picked, depth) = refine_extreme(kin, normal, jp, true);
-    let down = Vec2::new(0.0, -1.0);
-    let (jl, planting_runner_up) = extreme_and_runner_up(tips, down);
-    let (planted, neg_low) = refine_extreme(kin, down, jl, true);
-    // The highest node (no runner-up needed: no event hangs on it).
-    let jh = (0..tips.len())
-        .max_by(|&a, &b| tips[a].y.total_cmp(&tips[b].y))
-        .unwrap_or(0);
-    let (_, y_max) = refine_extreme(kin, Vec2::new(0.0, 1.0), jh, true);
-    let event = |s: &AtExtreme| Event {
-        carrier_rad: s.theta.rem_euclid(TAU),
-        tip_mm: s.tip,
-        attitude_deg: attitude_deg(s.pusher_angle),
-    };
-    let picking = event(&picked);
-    let speed = picked.tip_d1.hypot() * kin.carrier_speed() / 1000.0;
-    let surface = agro.tray_distance_mm.unwrap_or(depth - agro.tray_depth_mm);
-    let check = picking_check(kin, agro, &picked, surface, picking_runner_up);
-    // Window: the run of nodes around the picking node with the tip beyond the surface.
-    let n = kin.len();
-    let [w0, w1] = span_where(n, jp, |j| tips[j].dot(normal) - surface)
-        // A tray the tip does not reach (placed by distance): an empty window at picking.
-        .unwrap_or([picking.carrier_rad; 2]);
-    let shift = (w0 / TAU).floor() * TAU;
-    Events {
-        picking,
-        planting: event(&planted),
-        picking_window_rad: [w0 - shift, w1 - shift],
-        picking_tip_speed_m_s: speed,
-        y_min_mm: -neg_low,
-        y_max_mm: y_max,
-        check,
-        picking_branch_gap_mm: picking_runner_up.map(|r| depth - r),
-        planting_branch_gap_mm: planting_runner_up.map(|r| neg_low - r),
-        planting_tip_d1: planted.tip_d1,
+    Picking::locate(kin, agro).events(kin, agro)
+}
+
+/// Picking located, the first of the events: the tip's deepest reach into the tray
+/// (its node, the runner-up extreme's depth, the arm there and its depth along the
+/// tray's normal, mm). A search's trial whose picking angle already loses stops here.
+pub(crate) struct Picking {
+    node: usize,
+    runner_up: Option<f64>,
+    picked: AtExtreme,
+    depth: f64,
+}
+
+impl Picking {
+    pub(crate) fn locate(kin: &Kinematics, agro: &Agronomy) -> Self {
+        let normal = unit(agro.tray_normal_deg.to_radians());
+        let (node, runner_up) = extreme_and_runner_up(kin.tips(), normal);
+        let (picked, depth) = refine_extreme(kin, normal, node, true);
+        Self {
+            node,
+            runner_up,
+            picked,
+            depth,
+        }
+    }
+
+    /// The pusher's attitude at picking (deg): the picking angle.
+    pub(crate) fn attitude_deg(&self) -> f64 {
+        attitude_deg(self.picked.pusher_angle)
+    }
+
+    /// The other events, after picking ([`events`]).
+    pub(crate) fn events(self, kin: &Kinematics, agro: &Agronomy) -> Events {
+        let Self {
+            node: jp,
+            runner_up: picking_runner_up,
+            picked,
+            depth,
+        } = self;
+        let tips = kin.tips();
+        let normal = unit(agro.tray_normal_deg.to_radians());
+        let down = Vec2::new(0.0, -1.0);
+        let (jl, planting_runner_up) = extreme_and_runner_up(tips, down);
+        let (planted, neg_low) = refine_extreme(kin, down, jl, true);
+        // The highest node (no runner-up needed: no event hangs on it).
+        let jh = (0..tips.len())
+            .max_by(|&a, &b| tips[a].y.total_cmp(&tips[b].y))
+            .unwrap_or(0);
+        let (_, y_max) = refine_extreme(kin, Vec2::new(0.0, 1.0), jh, true);
+        let event = |s: &AtExtreme| Event {
+            carrier_rad: s.theta.rem_euclid(TAU),
+            tip_mm: s.tip,
+            attitude_deg: attitude_deg(s.pusher_angle),
+        };
+        let picking = event(&picked);
+        let speed = picked.tip_d1.hypot() * kin.carrier_speed() / 1000.0;
+        let surface = agro.tray_distance_mm.unwrap_or(depth - agro.tray_depth_mm);
+        let check = picking_check(kin, agro, &picked, surface, picking_runner_up);
+        // Window: the run of nodes around the picking node with the tip beyond the surface.
+        let n = kin.len();
+        let [w0, w1] = span_where(n, jp, |j| tips[j].dot(normal) - surface)
+            // A tray the tip does not reach (placed by distance): an empty window at picking.
+            .unwrap_or([picking.carrier_rad; 2]);
+        let shift = (w0 / TAU).floor() * TAU;
+        Events {
+            picking,
+            planting: event(&planted),
+            picking_window_rad: [w0 - shift, w1 - shift],
+            picking_tip_speed_m_s: speed,
+            y_min_mm: -neg_low,
+            y_max_mm: y_max,
+            check,
+            picking_branch_gap_mm: picking_runner_up.map(|r| depth - r),
+            planting_branch_gap_mm: planting_runner_up.map(|r| neg_low - r),
+            planting_tip_d1: planted.tip_d1,
+        }
     }
 }
 
