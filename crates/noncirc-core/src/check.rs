@@ -19,6 +19,19 @@ impl Scene {
             .try_for_each(|c| c.check(self))
     }
 
+    /// Whether `self` and `other` hold the same numbers in `table`, one of the tables
+    /// whose numbers the field table checks ([`crate::reference::Checker::Table`]); false
+    /// for any other.
+    fn same_numbers(&self, other: &Scene, table: &str) -> bool {
+        match table {
+            "agronomy" => self.agronomy == other.agronomy,
+            "bounds" => self.bounds == other.bounds,
+            "dynamics" => self.dynamics == other.dynamics,
+            "cad" => self.cad == other.cad,
+            _ => false,
+        }
+    }
+
     /// Whether an evaluation of this scene reads the fields of a scene table (`train`): a
     /// mechanism's train and agronomy only in a mechanism scene, the moving box only where
     /// it moves.
@@ -38,12 +51,24 @@ impl Scene {
     /// module and teeth settings, the bounds, a mechanism's train and agronomy, the moving
     /// box, and the objectives against the scene's kind.
     pub fn validate(&self) -> Result<()> {
+        self.validate_beside(None)
+    }
+
+    /// As [`Scene::validate`] for a scene written over a copy of `checked`, a scene that
+    /// passed it: a table whose numbers are still `checked`'s is not held to its intervals
+    /// again. A search's design writes its free parameters (the curve, the train) over the
+    /// base scene, and its agronomy, bounds, dynamics and CAD tables stay the base's: four
+    /// comparisons instead of about fifty interval checks. The rules that code checks run
+    /// whole.
+    pub(crate) fn validate_beside(&self, checked: Option<&Scene>) -> Result<()> {
         // The scene's own numbers (agronomy, bounds) against their intervals in the field
         // table, then what code checks: the models' numbers, rules over several fields,
         // names and lists.
-        let reads = TABLES.map(|(table, _, _)| self.reads(table));
+        let checks = TABLES.map(|(table, _, _)| {
+            self.reads(table) && !checked.is_some_and(|c| self.same_numbers(c, table))
+        });
         (interval_checks().iter())
-            .filter(|c| reads[c.table])
+            .filter(|c| checks[c.table])
             .try_for_each(|c| c.check(self))?;
         self.resolution.validate()?;
         self.gear.module.validate()?;
@@ -304,5 +329,56 @@ impl Scene {
                 )
             })
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::reference::{Checker, Number, TABLES};
+    use crate::scene::Scene;
+
+    /// A design written over a checked scene is refused for any number out of its
+    /// interval, in whichever table it is (`validate_beside` compares the tables it does
+    /// not check again): each number the field table checks, set to NaN in turn. The base
+    /// itself and a design that moves only the train pass; a bad train is refused.
+    #[test]
+    fn a_design_beside_its_checked_base_is_refused_for_any_bad_number() {
+        let base = Scene::default();
+        base.validate().unwrap();
+        base.validate_beside(Some(&base)).unwrap();
+        let mut refused = 0;
+        for (table, checker, fields) in TABLES {
+            if checker != Checker::Table || !base.reads(table) {
+                continue;
+            }
+            assert!(base.same_numbers(&base, table), "{table} is not compared");
+            for field in fields.iter().filter(|f| !f.range.admits(f64::NAN)) {
+                let mut design = base.clone();
+                let written = match field.number {
+                    Some(Number::Scalar(_, set) | Number::Optional(_, set)) => {
+                        set(&mut design, f64::NAN)
+                    }
+                    Some(Number::List(_, set)) => (set(&mut design).and_then(|v| v.first_mut()))
+                        .map(|x| *x = f64::NAN)
+                        .is_some(),
+                    None => false,
+                };
+                if written {
+                    assert!(design.validate().is_err(), "{}", field.key);
+                    assert!(
+                        design.validate_beside(Some(&base)).is_err(),
+                        "{}",
+                        field.key
+                    );
+                    refused += 1;
+                }
+            }
+        }
+        assert!(refused > 40, "{refused} numbers");
+        let mut moved = base.clone();
+        moved.train.phi0_deg += 1.0;
+        moved.validate_beside(Some(&base)).unwrap();
+        moved.train.arm_length_mm = 0.0;
+        assert!(moved.validate_beside(Some(&base)).is_err());
     }
 }

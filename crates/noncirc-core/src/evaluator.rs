@@ -219,10 +219,22 @@ impl Evaluator {
         resolution: &Resolution,
         cutoff: f64,
     ) -> Result<Screened> {
+        self.evaluate_beside_unless_beaten(scene, None, resolution, cutoff)
+    }
+
+    /// As [`Evaluator::evaluate_unless_beaten`] for a scene written over a copy of
+    /// `checked`, a scene that passed [`Scene::validate`] ([`Scene::validate_beside`]).
+    pub(crate) fn evaluate_beside_unless_beaten(
+        &mut self,
+        scene: &Scene,
+        checked: Option<&Scene>,
+        resolution: &Resolution,
+        cutoff: f64,
+    ) -> Result<Screened> {
         if !matches!(scene.kind, SceneKind::Mechanism | SceneKind::Transplanter) {
-            return self.evaluate_at(scene, resolution).map(Screened::Evaluated);
+            return (self.evaluate_beside(scene, checked, resolution)).map(Screened::Evaluated);
         }
-        scene.validate()?;
+        scene.validate_beside(checked)?;
         resolution.validate()?;
         let gears = if scene.objectives.contains(&ObjectiveKind::Module) {
             // The objective's normalised violation for a module of `mm`, before its teeth's
@@ -468,7 +480,18 @@ impl Evaluator {
 
     /// Evaluates `scene` at `resolution`, running only the stages its outputs need.
     pub fn evaluate_at(&mut self, scene: &Scene, resolution: &Resolution) -> Result<Evaluation> {
-        scene.validate()?;
+        self.evaluate_beside(scene, None, resolution)
+    }
+
+    /// As [`Evaluator::evaluate_at`] for a scene written over a copy of `checked`, a
+    /// scene that passed [`Scene::validate`] ([`Scene::validate_beside`]).
+    pub(crate) fn evaluate_beside(
+        &mut self,
+        scene: &Scene,
+        checked: Option<&Scene>,
+        resolution: &Resolution,
+    ) -> Result<Evaluation> {
+        scene.validate_beside(checked)?;
         resolution.validate()?;
         let mut out = Evaluation::empty(scene, *resolution);
         match scene.kind {

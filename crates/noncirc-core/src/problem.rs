@@ -282,7 +282,12 @@ impl SceneProblem {
             return self.fitness(u, evaluator, scratch, resolution).0;
         }
         self.apply(u, scratch);
-        match evaluator.evaluate_unless_beaten(scratch, resolution, rival.cv) {
+        match evaluator.evaluate_beside_unless_beaten(
+            scratch,
+            Some(&self.base),
+            resolution,
+            rival.cv,
+        ) {
             Ok(Screened::Beaten { violation_at_least }) => Fitness {
                 cv: violation_at_least.min(INVALID_CV),
                 f: vec![INVALID_CV; self.goals.len()],
@@ -359,7 +364,7 @@ impl SceneProblem {
         scratch: &Scene,
         resolution: &Resolution,
     ) -> (Fitness, Result<Evaluation>) {
-        let outcome = evaluator.evaluate_at(scratch, resolution);
+        let outcome = evaluator.evaluate_beside(scratch, Some(&self.base), resolution);
         self.scored(evaluator, scratch, outcome)
     }
 
