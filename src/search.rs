@@ -10,7 +10,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
 use crate::files::{create_dir, json_text, read_limited, toml_text, write_atomic, write_file};
@@ -22,13 +22,17 @@ use crate::{Error, Result};
 /// batch only until every thread has a part, one half each on 2 threads; designs differ in
 /// cost, so one thread then idles at the end (10 % of a batch was measured). Small pieces
 /// leave work to steal. Each piece clones a planned evaluator and the scene to edit, so a
-/// small batch (a search's generation: 48 designs) is cut into about 4 pieces per thread
-/// of up to 8 designs, not into single designs.
+/// small batch (48 designs) is cut into about 4 pieces per thread of up to 8 designs, not
+/// into single designs. (A search's evaluator keeps one of each per thread instead, and
+/// cuts its generations finer.)
 pub fn batch_piece(len: usize, threads: usize) -> usize {
     len.div_ceil(32 * threads)
         .max(len.div_ceil(4 * threads).min(8))
         .max(1)
 }
+
+/// A worker thread's evaluator and scene to edit.
+type Worker = (Evaluator, Scene);
 
 /// Evaluates batches in parallel on a private rayon pool; results keep the input order,
 /// so a run is bit-identical whatever the thread count.
@@ -39,6 +43,11 @@ pub struct ParallelEvaluator<'a> {
     confirm_at: Resolution,
     /// Evaluators planned for the screening and the confirming resolution, cloned by workers.
     planned: [Evaluator; 2],
+    /// Per pool thread and per resolution (as `planned`), the thread's evaluator and
+    /// scene to edit, made at its first design and kept from batch to batch: a search's
+    /// generations are small batches, and a clone of each per piece of a batch (about
+    /// 0.4 µs) kept the pieces large and one thread idle at the end of a generation.
+    kept: [Vec<Mutex<Option<Worker>>>; 2],
     /// Once set (Ctrl-C), the designs of a batch not yet started are skipped.
     stop: Arc<AtomicBool>,
     /// Whether the last batch skipped any design.
@@ -82,6 +91,7 @@ impl<'a> ParallelEvaluator<'a> {
             pool: Arc::new(pool),
             confirm_at,
             planned: [problem.screening(), confirm_at].map(|r| Evaluator::planned(&r)),
+            kept: [(); 2].map(|()| (0..threads).map(|_| Mutex::new(None)).collect()),
             stop: Arc::new(AtomicBool::new(false)),
             skipped: false,
         })
@@ -114,37 +124,59 @@ impl<'a> ParallelEvaluator<'a> {
         resolution: Resolution,
     ) -> Vec<Fitness> {
         let problem = self.problem;
-        let planned = if resolution == self.confirm_at {
-            &self.planned[1]
-        } else {
-            &self.planned[0]
-        };
+        let which = usize::from(resolution == self.confirm_at);
+        let (planned, kept) = (&self.planned[which], &self.kept[which]);
         let (stop, skipped) = (&*self.stop, AtomicBool::new(false));
         let items: Vec<(&[f64], Option<&Fitness>)> = (points.iter().enumerate())
             .map(|(i, u)| (&u[..], rivals.and_then(|r| r.get(i))))
             .collect();
-        let fitness = map_batch(
-            &self.pool,
-            planned,
-            problem.base(),
-            &items,
-            |(evaluator, scratch), &(u, rival)| {
-                if stop.load(Ordering::Relaxed) {
-                    skipped.store(true, Ordering::Relaxed);
-                    Fitness {
-                        cv: f64::INFINITY,
-                        f: vec![f64::INFINITY; problem.goals()],
-                    }
-                } else if let Some(rival) = rival {
-                    problem.fitness_against(u, rival, evaluator, scratch, &resolution)
-                } else {
-                    problem.fitness(u, evaluator, scratch, &resolution).0
+        let fresh = || {
+            let mut evaluator = planned.clone();
+            evaluator.prepare_target(problem.base());
+            (evaluator, problem.base().clone())
+        };
+        let evaluate = |(evaluator, scratch): &mut Worker,
+                        &(u, rival): &(&[f64], Option<&Fitness>)| {
+            if stop.load(Ordering::Relaxed) {
+                skipped.store(true, Ordering::Relaxed);
+                Fitness {
+                    cv: f64::INFINITY,
+                    f: vec![f64::INFINITY; problem.goals()],
                 }
-            },
-        );
+            } else if let Some(rival) = rival {
+                problem.fitness_against(u, rival, evaluator, scratch, &resolution)
+            } else {
+                problem.fitness(u, evaluator, scratch, &resolution).0
+            }
+        };
+        let fitness = if kept.len() == 1 {
+            let mut slot = lock(&kept[0]);
+            let state = slot.get_or_insert_with(fresh);
+            items.iter().map(|item| evaluate(state, item)).collect()
+        } else {
+            // About 32 pieces a thread: a piece clones nothing, so a generation goes in
+            // single designs, and the threads finish it together.
+            let piece = items.len().div_ceil(32 * kept.len());
+            self.pool.install(|| {
+                (items.par_iter().with_max_len(piece))
+                    .map(|item| {
+                        // Inside `install`, each design runs on one of the pool's threads.
+                        let thread = rayon::current_thread_index().unwrap_or(0);
+                        let mut slot = lock(kept.get(thread).unwrap_or(&kept[0]));
+                        evaluate(slot.get_or_insert_with(fresh), item)
+                    })
+                    .collect()
+            })
+        };
         self.skipped = skipped.into_inner();
         fitness
     }
+}
+
+/// A thread's kept evaluator and scene; a panic there ends the search, so a poisoned lock
+/// is not met again.
+fn lock<T>(slot: &Mutex<T>) -> MutexGuard<'_, T> {
+    slot.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// Maps `f` over `items` on `pool`, keeping their order. The batch is cut into pieces of at
