@@ -322,10 +322,9 @@ impl Evaluator {
     /// The three-arm stages after the train is solved: events, objectives, moving box,
     /// then the search constraints.
     fn mechanism(&mut self, scene: &Scene, kin: Kinematics, out: &mut Evaluation) -> Result<()> {
-        match self.mechanism_unless_beaten(scene, kin, out, f64::INFINITY)? {
-            None => Ok(()),
-            Some(_) => unreachable!("no violation exceeds an infinite cutoff"),
-        }
+        // No violation exceeds an infinite cutoff: the evaluation is always whole.
+        self.mechanism_unless_beaten(scene, kin, out, f64::INFINITY)
+            .map(drop)
     }
 
     /// As [`Evaluator::mechanism`], but stopped at the first of two bounds that exceeds
@@ -685,13 +684,14 @@ mod tests {
     /// The module's violation stops a design at two stages: bounded by the sun's
     /// curvature before the closure, and known once the gears are closed. The picking
     /// angle stops it once picking is located, and the objectives but the interference
-    /// before the interference scan. Each bound
-    /// is no more than the whole design's violation. A cutoff at or above the whole
-    /// violation gives `evaluate_at`'s evaluation bit for bit.
+    /// before the interference scan. Each bound is no more than the whole design's
+    /// violation. A cutoff at or above the whole violation gives `evaluate_at`'s
+    /// evaluation bit for bit.
     #[test]
     fn a_design_beaten_part_way_is_stopped_at_the_first_stage_that_shows_it() {
-        let mut scene = Scene::default(); // its module is 2 mm short (the doctest above)
-                                          // And its path 10 mm lower than asked, its arms 10 mm closer than allowed.
+        // The default scene's module is 2 mm short (the doctest above); its path is made
+        // 10 mm lower than asked, and its arms 10 mm closer than allowed.
+        let mut scene = Scene::default();
         let first = Evaluator::new().evaluate(&scene).unwrap();
         let value = |kind| first.objective(kind).unwrap().value;
         scene.bounds.trajectory_height_min_mm = value(ObjectiveKind::TrajectoryHeight) + 10.0;

@@ -299,6 +299,8 @@ pub(crate) struct Picking {
 }
 
 impl Picking {
+    /// The node deepest along the tray's normal and its runner-up, the extreme refined
+    /// by Newton on the arm's state.
     pub(crate) fn locate(kin: &Kinematics, agro: &Agronomy) -> Self {
         let normal = unit(agro.tray_normal_deg.to_radians());
         let (node, runner_up) = extreme_and_runner_up(kin.tips(), normal);
