@@ -289,9 +289,12 @@ pub fn events(kin: &Kinematics, agro: &Agronomy) -> Events {
 }
 
 /// Picking located, the first of the events: the tip's deepest reach into the tray
-/// (its node, the runner-up extreme's depth, the arm there and its depth along the
-/// tray's normal, mm). A search's trial whose picking angle already loses stops here.
+/// (the tray's normal, its node, the runner-up extreme's depth, the arm there and its
+/// depth along the normal, mm). A search's trial whose picking angle already loses
+/// stops here.
 pub(crate) struct Picking {
+    /// The tray's inward normal (unit).
+    normal: Vec2,
     node: usize,
     runner_up: Option<f64>,
     picked: AtExtreme,
@@ -306,6 +309,7 @@ impl Picking {
         let (node, runner_up) = extreme_and_runner_up(kin.tips(), normal);
         let (picked, depth) = refine_extreme(kin, normal, node, true);
         Self {
+            normal,
             node,
             runner_up,
             picked,
@@ -321,13 +325,13 @@ impl Picking {
     /// The other events, after picking ([`events`]).
     pub(crate) fn events(self, kin: &Kinematics, agro: &Agronomy) -> Events {
         let Self {
+            normal,
             node: jp,
             runner_up: picking_runner_up,
             picked,
             depth,
         } = self;
         let tips = kin.tips();
-        let normal = unit(agro.tray_normal_deg.to_radians());
         let down = Vec2::new(0.0, -1.0);
         let (jl, planting_runner_up) = extreme_and_runner_up(tips, down);
         let (planted, neg_low) = refine_extreme(kin, down, jl, true);
