@@ -109,29 +109,17 @@ pub(crate) fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     let dist_sq = |p: Vec2, q: Vec2| (p - q).hypot2();
     // The least clearance node; a NaN (numerical breakdown) loses to any number.
     let (mut j, mut least) = (0, clearance(0));
-    // The exact clearance at the node where the last arm on these gears came closest (a
-    // tolerance sample's, or a design's that kept its gears) bounds the least from the
-    // start. The margin in `half` puts the clearance of a part left out above `bound` by
-    // far more than rounding, so the first node at the least clearance is still scanned
-    // whole, and the result is the same bit for bit, whatever the hint
-    // (`any_hint_leaves_the_clearance_bit_for_bit`).
-    let hinted = (kin.clearance_hint())
-        .map(clearance)
-        .filter(|c| c.is_finite())
-        .unwrap_or(f64::INFINITY);
     for k in 1..n {
         let seg = arm(k);
         let m = seg.midpoint();
-        // `f64::min` drops a NaN `least`: the hint then bounds alone.
-        let bound = least.min(hinted);
-        let planet_reach = bound + rmax + w + half;
-        // A part whose bound holds is above `bound`: leaving it out cannot change
+        let planet_reach = least + rmax + w + half;
+        // A part whose bound holds is at least `least`: leaving it out cannot change
         // whether, or to what, the least clearance moves.
         let mut c = f64::INFINITY;
         for lag in arm_lags.clone() {
             let other = arm(kin.arm_node(lag, k));
-            let far = beyond(dist_sq(m, other.midpoint()), bound + 2.0 * w + 2.0 * half)
-                || beyond(other.distance_sq(m), bound + 2.0 * w + half);
+            let far = beyond(dist_sq(m, other.midpoint()), least + 2.0 * w + 2.0 * half)
+                || beyond(other.distance_sq(m), least + 2.0 * w + half);
             if !far {
                 c = c.min(arms(&seg, &other));
             }
@@ -149,7 +137,6 @@ pub(crate) fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
     if !least.is_finite() {
         return least;
     }
-    kin.keep_clearance_hint(j);
     let wrap = |j: usize| if j >= n { j - n } else { j };
     parabola_vertex(clearance(wrap(j + n - 1)), least, clearance(wrap(j + 1)))
 }
@@ -247,54 +234,5 @@ mod tests {
         }
         // Some of these designs interfere: the pruning is tested on both signs.
         assert!(checked > 0);
-    }
-
-    /// The scan bounded from the start by the clearance at a hinted node (where the last
-    /// arm on the same gears came closest) gives the unhinted scan's value bit for bit and
-    /// keeps the same least node, for every node as the hint, on designs that interfere
-    /// and designs that do not, and on reassemblies of them (tolerance samples).
-    #[test]
-    fn any_hint_leaves_the_clearance_bit_for_bit() {
-        let curve = crate::CurveSpec::paper().build().unwrap();
-        let res = crate::Resolution::DEFAULT;
-        let mut interfering = 0;
-        for arms in [2, 3, 4] {
-            for (beta0, gamma0, width) in
-                [(-29.0, -53.0, 12.0), (40.0, -20.0, 40.0), (0.0, 60.0, 2.0)]
-            {
-                let spec = crate::TrainSpec {
-                    beta0_deg: beta0,
-                    gamma0_deg: gamma0,
-                    arms,
-                    ..Default::default()
-                };
-                let agro = Agronomy {
-                    arm_half_width_mm: width,
-                    ..Agronomy::default()
-                };
-                let solved = Kinematics::solve(&curve, None, &spec, &res).unwrap();
-                let moved = crate::TrainSpec {
-                    phi0_deg: spec.phi0_deg + 0.3,
-                    beta0_deg: beta0 - 0.4,
-                    arm_length_mm: spec.arm_length_mm + 0.2,
-                    ..spec
-                };
-                for kin in [solved.clone(), solved.reassembled(&moved, 0.05).unwrap()] {
-                    kin.keep_clearance_hint(usize::MAX);
-                    let value = interference_clearance(&kin, &agro);
-                    let node = kin.clearance_hint();
-                    assert!(node.is_some() || !value.is_finite());
-                    interfering += usize::from(value < 0.0);
-                    for hint in 0..kin.len() {
-                        kin.keep_clearance_hint(hint);
-                        let hinted = interference_clearance(&kin, &agro);
-                        let at = format!("{arms} arms, β0 {beta0}, γ0 {gamma0}, hint {hint}");
-                        assert_eq!(hinted.to_bits(), value.to_bits(), "{at}");
-                        assert_eq!(kin.clearance_hint(), node, "{at}");
-                    }
-                }
-            }
-        }
-        assert!(interfering > 0);
     }
 }

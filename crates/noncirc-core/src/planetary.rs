@@ -14,7 +14,6 @@ use crate::quadrature::{DriftInverse, MonotoneDrift, SpectralIntegrator};
 use crate::resolution::Resolution;
 use crate::vec2::Vec2;
 use serde::{Deserialize, Serialize};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// Which of the two lines through the tip at distance `H1` from `O3` is the pusher axis,
@@ -348,10 +347,6 @@ struct SolvedGears {
     second: Option<SolvedPair>,
     /// The module under the last rule asked.
     module: Mutex<Option<(ModuleRule, ModuleReport)>>,
-    /// The node where the last arm assembled on these gears came closest to interfering
-    /// (`usize::MAX` before any): where a reassembly's interference scan takes its first
-    /// bound ([`Kinematics::clearance_hint`]).
-    least_clearance_node: AtomicUsize,
 }
 
 impl SolvedGears {
@@ -449,7 +444,6 @@ impl SampledTrain {
             first,
             second,
             module: Mutex::new(None),
-            least_clearance_node: AtomicUsize::new(usize::MAX),
         });
         Ok(ClosedGears {
             gears,
@@ -872,20 +866,6 @@ impl Kinematics {
     /// Arm sets on the carrier.
     pub fn arms(&self) -> usize {
         self.spec.arms
-    }
-
-    /// The node where the last arm assembled on the same gears (this one, or another
-    /// reassembly of them: a tolerance sample, a design that keeps its gears) came closest
-    /// to interfering, if any has been scanned. A hint only: the scan's result does not
-    /// depend on it.
-    pub(crate) fn clearance_hint(&self) -> Option<usize> {
-        let node = self.gears.least_clearance_node.load(Ordering::Relaxed);
-        (node < self.len()).then_some(node)
-    }
-
-    /// Keeps `node` as the gears' [`Kinematics::clearance_hint`].
-    pub(crate) fn keep_clearance_hint(&self, node: usize) {
-        (self.gears.least_clearance_node).store(node, Ordering::Relaxed);
     }
 
     /// Carrier angle by which arm `k` lags arm I (rad): `k·2π/arms`.
