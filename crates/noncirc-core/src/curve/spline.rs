@@ -2,6 +2,7 @@
 
 use crate::curve::{Polar, TAU};
 use crate::error::{finite_with, positive_with, Error, Result};
+use std::cell::RefCell;
 
 /// A C² periodic cubic spline through `(psi_i, rho_i)`, period 2π.
 #[derive(Debug, Clone, PartialEq)]
@@ -166,9 +167,9 @@ impl PeriodicSpline {
             if qa.abs() > 1e-300 {
                 let disc = qb * qb - 4.0 * qa * qc;
                 if disc >= 0.0 {
-                    let s = disc.sqrt();
-                    candidates[1] = (-qb + s) / (2.0 * qa);
-                    candidates[2] = (-qb - s) / (2.0 * qa);
+                    let (s, inv) = (disc.sqrt(), 0.5 / qa);
+                    candidates[1] = (-qb + s) * inv;
+                    candidates[2] = (-qb - s) * inv;
                 }
             } else if qb.abs() > 1e-300 {
                 candidates[1] = -qc / qb;
@@ -189,7 +190,8 @@ impl PeriodicSpline {
 
 /// The periodic C² cubic through `values` with knot spacings `h(i)` (from knot `i` to the
 /// next; the last to the first closes the period): per segment `[a, b, c, d]`, the value
-/// `a + b t + c t² + d t³` at `t` past its knot.
+/// `a + b t + c t² + d t³` at `t` past its knot. The system's factors are kept per thread
+/// for the last spacings ([`CyclicFactors`]).
 pub(crate) fn periodic_cubic(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f64; 4]> {
     let n = values.len();
     let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
@@ -199,14 +201,15 @@ pub(crate) fn periodic_cubic(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f
     let slope: Vec<f64> = (0..n)
         .map(|i| (values[next(i)] - values[i]) / h(i))
         .collect();
-    // Second derivatives M from the cyclic tridiagonal system.
-    let m = solve_cyclic_tridiagonal(
-        n,
-        |i| h(prev(i)),
-        |i| 2.0 * (h(prev(i)) + h(i)),
-        &h,
-        |i| 6.0 * (slope[i] - slope[prev(i)]),
-    );
+    // Second derivatives M from the cyclic tridiagonal system, factored once per knot
+    // spacings.
+    let m = FACTORS.with(|kept| {
+        let mut factors = kept.borrow_mut();
+        if !factors.are_for(n, &h) {
+            *factors = CyclicFactors::new((0..n).map(&h).collect());
+        }
+        factors.solve(|i| 6.0 * (slope[i] - slope[prev(i)]))
+    });
     (0..n)
         .map(|i| {
             let (m0, m1, hi) = (m[i], m[next(i)], h(i));
@@ -218,6 +221,108 @@ pub(crate) fn periodic_cubic(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f
             ]
         })
         .collect()
+}
+
+thread_local! {
+    /// Each thread's factors for the last knot spacings it solved for. The factors are a
+    /// pure function of the spacings, so a spline never depends on what was kept: a
+    /// thread that solved other spacings in between gives the same bits
+    /// (`the_kept_factors_never_change_a_spline`).
+    static FACTORS: RefCell<CyclicFactors> = RefCell::new(CyclicFactors::new(Vec::new()));
+}
+
+/// The cyclic tridiagonal system of the periodic spline's second derivatives for knot
+/// spacings `h`, factored by Sherman–Morrison on the Thomas algorithm: row `i` reads
+/// `h(i−1) M[i−1] + 2(h(i−1) + h(i)) M[i] + h(i) M[i+1] = rhs(i)`, indices mod n. A
+/// search moves the radii and keeps the angles, so the factors serve design after design:
+/// each solve is then one forward sweep of multiplications (no division: the reciprocal
+/// pivots are kept) and one back substitution. Against the Thomas algorithm solved whole
+/// each time, the second derivatives move by rounding (tested to 1e-13 of their largest).
+struct CyclicFactors {
+    spacings: Vec<f64>,
+    /// Per row: the sub-diagonal, the reciprocal pivot, the eliminated super-diagonal, and
+    /// `z` (`A' z = u`, the Sherman–Morrison correction's solve).
+    rows: Vec<[f64; 4]>,
+    /// `h(n−1)/γ`, with `γ = −2(h(n−1) + h(0))`.
+    sub0_over_gamma: f64,
+    /// `1/(1 + vᵀz)`.
+    inv_d: f64,
+}
+
+impl CyclicFactors {
+    fn new(h: Vec<f64>) -> Self {
+        let n = h.len();
+        let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+        let sub = |i: usize| h[prev(i)];
+        let diag = |i: usize| 2.0 * (h[prev(i)] + h[i]);
+        let mut rows = vec![[0.0; 4]; n];
+        if n == 0 {
+            return Self {
+                spacings: h,
+                rows,
+                sub0_over_gamma: 0.0,
+                inv_d: 0.0,
+            };
+        }
+        // The non-cyclic matrix A' = A − u vᵀ, u = (γ, 0, …, 0, h(n−1)), v = (1, 0, …, h(n−1)/γ).
+        let gamma = -diag(0);
+        let sub0_over_gamma = sub(0) / gamma;
+        let pivot_base = |i: usize| match i {
+            0 => diag(0) - gamma,
+            _ if i + 1 == n => diag(i) - h[i] * sub0_over_gamma,
+            _ => diag(i),
+        };
+        let u = |i: usize| match i {
+            0 => gamma,
+            _ if i + 1 == n => h[i],
+            _ => 0.0,
+        };
+        let (mut c_last, mut z_last) = (0.0, 0.0);
+        for (i, row) in rows.iter_mut().enumerate() {
+            let pivot = pivot_base(i) - sub(i) * c_last;
+            let c = if i + 1 < n { h[i] / pivot } else { 0.0 };
+            let z = (u(i) - sub(i) * z_last) / pivot;
+            *row = [sub(i), 1.0 / pivot, c, z];
+            (c_last, z_last) = (c, z);
+        }
+        for i in (0..n - 1).rev() {
+            rows[i][3] -= rows[i][2] * rows[i + 1][3];
+        }
+        let d = 1.0 + rows[0][3] + sub0_over_gamma * rows[n - 1][3];
+        Self {
+            spacings: h,
+            rows,
+            sub0_over_gamma,
+            inv_d: 1.0 / d,
+        }
+    }
+
+    /// Whether these are the factors of spacings `h(0..n)`.
+    fn are_for(&self, n: usize, h: impl Fn(usize) -> f64) -> bool {
+        self.spacings.len() == n && (0..n).all(|i| self.spacings[i] == h(i))
+    }
+
+    /// The second derivatives for right-hand side `rhs(0..n)`.
+    fn solve(&self, rhs: impl Fn(usize) -> f64) -> Vec<f64> {
+        let n = self.rows.len();
+        let mut x = Vec::with_capacity(n);
+        let mut last = 0.0;
+        for (i, row) in self.rows.iter().enumerate() {
+            last = (rhs(i) - row[0] * last) * row[1];
+            x.push(last);
+        }
+        for i in (0..n.saturating_sub(1)).rev() {
+            x[i] -= self.rows[i][2] * x[i + 1];
+        }
+        let factor = match n {
+            0 => 0.0,
+            _ => (x[0] + self.sub0_over_gamma * x[n - 1]) * self.inv_d,
+        };
+        for (xi, row) in x.iter_mut().zip(&self.rows) {
+            *xi -= factor * row[3];
+        }
+        x
+    }
 }
 
 /// Checks that angles are strictly increasing and span less than one turn.
@@ -242,64 +347,122 @@ pub(crate) fn check_angles(psi: &[f64]) -> Result<()> {
     Ok(())
 }
 
-/// Solves the cyclic tridiagonal system of `n` rows
-/// `sub(i) x[i-1] + diag(i) x[i] + sup(i) x[i+1] = rhs(i)`, indices mod n, by
-/// Sherman–Morrison on the Thomas algorithm. The two Thomas solves share their matrix, so
-/// they run in one sweep.
-fn solve_cyclic_tridiagonal(
-    n: usize,
-    sub: impl Fn(usize) -> f64,
-    diag: impl Fn(usize) -> f64,
-    sup: impl Fn(usize) -> f64,
-    rhs: impl Fn(usize) -> f64,
-) -> Vec<f64> {
-    // The non-cyclic matrix A' = A − u vᵀ, u = (γ, 0, …, 0, sup(n−1)), v = (1, 0, …, sub(0)/γ).
-    let gamma = -diag(0);
-    let b = |i: usize| {
-        if i == 0 {
-            diag(0) - gamma
-        } else if i + 1 == n {
-            diag(i) - sup(i) * sub(0) / gamma
-        } else {
-            diag(i)
-        }
-    };
-    let u = |i: usize| {
-        if i == 0 {
-            gamma
-        } else if i + 1 == n {
-            sup(i)
-        } else {
-            0.0
-        }
-    };
-    // Forward sweep: per row the eliminated super-diagonal and both right-hand sides.
-    let mut rows = vec![[0.0; 3]; n];
-    let mut last = [0.0; 3];
-    for (i, row) in rows.iter_mut().enumerate() {
-        let denom = b(i) - sub(i) * last[0];
-        let c = if i + 1 < n { sup(i) / denom } else { 0.0 };
-        *row = [
-            c,
-            (rhs(i) - sub(i) * last[1]) / denom,
-            (u(i) - sub(i) * last[2]) / denom,
-        ];
-        last = *row;
-    }
-    // Back substitution: rows[i][1] becomes x (A' x = rhs), rows[i][2] z (A' z = u).
-    for i in (0..n - 1).rev() {
-        let (c, next) = (rows[i][0], rows[i + 1]);
-        rows[i][1] -= c * next[1];
-        rows[i][2] -= c * next[2];
-    }
-    let (first, end) = (rows[0], rows[n - 1]);
-    let factor = (first[1] + sub(0) * end[1] / gamma) / (1.0 + first[2] + sub(0) * end[2] / gamma);
-    rows.iter().map(|r| r[1] - factor * r[2]).collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Solves the cyclic tridiagonal system of `n` rows
+    /// `sub(i) x[i-1] + diag(i) x[i] + sup(i) x[i+1] = rhs(i)`, indices mod n, by
+    /// Sherman–Morrison on the Thomas algorithm. The two Thomas solves share their matrix, so
+    /// they run in one sweep.
+    fn solve_cyclic_tridiagonal(
+        n: usize,
+        sub: impl Fn(usize) -> f64,
+        diag: impl Fn(usize) -> f64,
+        sup: impl Fn(usize) -> f64,
+        rhs: impl Fn(usize) -> f64,
+    ) -> Vec<f64> {
+        // The non-cyclic matrix A' = A − u vᵀ, u = (γ, 0, …, 0, sup(n−1)), v = (1, 0, …, sub(0)/γ).
+        let gamma = -diag(0);
+        let b = |i: usize| {
+            if i == 0 {
+                diag(0) - gamma
+            } else if i + 1 == n {
+                diag(i) - sup(i) * sub(0) / gamma
+            } else {
+                diag(i)
+            }
+        };
+        let u = |i: usize| {
+            if i == 0 {
+                gamma
+            } else if i + 1 == n {
+                sup(i)
+            } else {
+                0.0
+            }
+        };
+        // Forward sweep: per row the eliminated super-diagonal and both right-hand sides.
+        let mut rows = vec![[0.0; 3]; n];
+        let mut last = [0.0; 3];
+        for (i, row) in rows.iter_mut().enumerate() {
+            let denom = b(i) - sub(i) * last[0];
+            let c = if i + 1 < n { sup(i) / denom } else { 0.0 };
+            *row = [
+                c,
+                (rhs(i) - sub(i) * last[1]) / denom,
+                (u(i) - sub(i) * last[2]) / denom,
+            ];
+            last = *row;
+        }
+        // Back substitution: rows[i][1] becomes x (A' x = rhs), rows[i][2] z (A' z = u).
+        for i in (0..n - 1).rev() {
+            let (c, next) = (rows[i][0], rows[i + 1]);
+            rows[i][1] -= c * next[1];
+            rows[i][2] -= c * next[2];
+        }
+        let (first, end) = (rows[0], rows[n - 1]);
+        let factor =
+            (first[1] + sub(0) * end[1] / gamma) / (1.0 + first[2] + sub(0) * end[2] / gamma);
+        rows.iter().map(|r| r[1] - factor * r[2]).collect()
+    }
+
+    proptest::proptest! {
+        /// The kept factors solve the spline's system as the Thomas algorithm solved whole
+        /// does, to rounding: knot spacings from even to 30:1, any right-hand side.
+        #[test]
+        fn kept_factors_solve_as_the_thomas_algorithm_does(
+            weights in proptest::collection::vec(1.0f64..30.0, 4..24),
+            rhs in proptest::collection::vec(-50.0f64..50.0, 24),
+        ) {
+            let total: f64 = weights.iter().sum();
+            let h: Vec<f64> = weights.iter().map(|w| TAU * w / total).collect();
+            let n = h.len();
+            let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+            let whole = solve_cyclic_tridiagonal(
+                n,
+                |i| h[prev(i)],
+                |i| 2.0 * (h[prev(i)] + h[i]),
+                |i| h[i],
+                |i| rhs[i],
+            );
+            let kept = CyclicFactors::new(h.clone()).solve(|i| rhs[i]);
+            let scale = whole.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            for (a, b) in kept.iter().zip(&whole) {
+                proptest::prop_assert!((a - b).abs() <= 1e-13 * scale, "{a} against {b}");
+            }
+            // And the system holds, row by row.
+            for i in 0..n {
+                let row = h[prev(i)] * kept[prev(i)]
+                    + 2.0 * (h[prev(i)] + h[i]) * kept[i]
+                    + h[i] * kept[(i + 1) % n];
+                proptest::prop_assert!((row - rhs[i]).abs() <= 1e-12 * (1.0 + scale));
+            }
+        }
+    }
+
+    /// A thread keeps the factors of the last knot spacings it solved for; a spline built
+    /// after others with other knots, or on a fresh thread, has the same bits.
+    #[test]
+    fn the_kept_factors_never_change_a_spline() {
+        let (psi, first) = five_point_spline();
+        let other: Vec<f64> = [0.0f64, 100.0, 170.0, 230.0, 290.0, 330.0]
+            .iter()
+            .map(|d| d.to_radians())
+            .collect();
+        let between = PeriodicSpline::new("spline", other, &[30.0, 20.0, 40.0, 35.0, 25.0, 45.0]);
+        assert!(between.is_ok());
+        let again = PeriodicSpline::new("spline", psi.clone(), &RADII).unwrap();
+        let fresh = std::thread::spawn(move || PeriodicSpline::new("spline", psi, &RADII))
+            .join()
+            .unwrap()
+            .unwrap();
+        let bits = |s: &PeriodicSpline| -> Vec<u64> {
+            (s.coeffs.iter().flatten()).map(|c| c.to_bits()).collect()
+        };
+        assert_eq!(bits(&again), bits(&first));
+        assert_eq!(bits(&fresh), bits(&first));
+    }
 
     const RADII: [f64; 5] = [30.0, 45.0, 25.0, 40.0, 35.0];
 
