@@ -92,31 +92,46 @@ fn closure_batch(c: &mut Criterion) {
 }
 
 /// The pitch curve's construction as a search does it per design: 256 random valid
-/// 12-point splines of the paper's control angles built from their specification.
+/// 12-point splines of the paper's control angles built from their specification
+/// (`spline_12`); and with each spline's control angles moved too (`spline_12_moving_angles`),
+/// so that no two consecutive splines share their knots and the spline's system is factored
+/// for every one.
 fn pitch_curve_build(c: &mut Criterion) {
     let mut rng = Rng::new(5);
-    let mut specs = Vec::with_capacity(256);
-    while specs.len() < 256 {
-        let mut spec = CurveSpec::paper();
-        if let CurveSpec::Spline { radii_mm, .. } = &mut spec {
-            for r in radii_mm.iter_mut() {
-                *r = 10.0 + 60.0 * rng.uniform();
+    let mut group = c.benchmark_group("pitch_curve_build");
+    for (name, moving) in [("spline_12", false), ("spline_12_moving_angles", true)] {
+        let mut specs = Vec::with_capacity(256);
+        while specs.len() < 256 {
+            let mut spec = CurveSpec::paper();
+            if let CurveSpec::Spline {
+                radii_mm,
+                angles_deg,
+            } = &mut spec
+            {
+                for r in radii_mm.iter_mut() {
+                    *r = 10.0 + 60.0 * rng.uniform();
+                }
+                if moving {
+                    // Each angle within ±5° of the paper's (they stay 30° apart ± 10°).
+                    for a in angles_deg.iter_mut() {
+                        *a += 10.0 * (rng.uniform() - 0.5);
+                    }
+                }
+            }
+            if spec.build().is_ok() {
+                specs.push(spec);
             }
         }
-        if spec.build().is_ok() {
-            specs.push(spec);
-        }
+        group.throughput(Throughput::Elements(specs.len() as u64));
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                specs
+                    .iter()
+                    .map(|spec| black_box(spec).build().unwrap().eval(0.0).rho)
+                    .sum::<f64>()
+            })
+        });
     }
-    let mut group = c.benchmark_group("pitch_curve_build");
-    group.throughput(Throughput::Elements(specs.len() as u64));
-    group.bench_function("spline_12", |b| {
-        b.iter(|| {
-            specs
-                .iter()
-                .map(|spec| black_box(spec).build().unwrap().eval(0.0).rho)
-                .sum::<f64>()
-        })
-    });
     group.finish();
 }
 

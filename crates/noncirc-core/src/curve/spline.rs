@@ -206,7 +206,7 @@ pub(crate) fn periodic_cubic(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f
     let m = FACTORS.with(|kept| {
         let mut factors = kept.borrow_mut();
         if !factors.are_for(n, &h) {
-            *factors = CyclicFactors::new((0..n).map(&h).collect());
+            factors.factor(n, &h);
         }
         factors.solve(|i| 6.0 * (slope[i] - slope[prev(i)]))
     });
@@ -228,7 +228,7 @@ thread_local! {
     /// pure function of the spacings, so a spline never depends on what was kept: a
     /// thread that solved other spacings in between gives the same bits
     /// (`the_kept_factors_never_change_a_spline`).
-    static FACTORS: RefCell<CyclicFactors> = RefCell::new(CyclicFactors::new(Vec::new()));
+    static FACTORS: RefCell<CyclicFactors> = RefCell::new(CyclicFactors::none());
 }
 
 /// The cyclic tridiagonal system of the periodic spline's second derivatives for knot
@@ -250,51 +250,55 @@ struct CyclicFactors {
 }
 
 impl CyclicFactors {
-    fn new(h: Vec<f64>) -> Self {
-        let n = h.len();
-        let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
-        let sub = |i: usize| h[prev(i)];
-        let diag = |i: usize| 2.0 * (h[prev(i)] + h[i]);
-        let mut rows = vec![[0.0; 4]; n];
-        if n == 0 {
-            return Self {
-                spacings: h,
-                rows,
-                sub0_over_gamma: 0.0,
-                inv_d: 0.0,
-            };
+    /// No factors yet.
+    fn none() -> Self {
+        Self {
+            spacings: Vec::new(),
+            rows: Vec::new(),
+            sub0_over_gamma: 0.0,
+            inv_d: 0.0,
         }
+    }
+
+    /// Factors the system of spacings `h(0..n)` in place of the kept one (its buffers
+    /// reused).
+    fn factor(&mut self, n: usize, h: impl Fn(usize) -> f64) {
+        self.spacings.clear();
+        self.spacings.extend((0..n).map(&h));
+        self.rows.clear();
+        if n == 0 {
+            return;
+        }
+        let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+        let sub = |i: usize| h(prev(i));
+        let diag = |i: usize| 2.0 * (h(prev(i)) + h(i));
         // The non-cyclic matrix A' = A − u vᵀ, u = (γ, 0, …, 0, h(n−1)), v = (1, 0, …, h(n−1)/γ).
         let gamma = -diag(0);
         let sub0_over_gamma = sub(0) / gamma;
         let pivot_base = |i: usize| match i {
             0 => diag(0) - gamma,
-            _ if i + 1 == n => diag(i) - h[i] * sub0_over_gamma,
+            _ if i + 1 == n => diag(i) - h(i) * sub0_over_gamma,
             _ => diag(i),
         };
         let u = |i: usize| match i {
             0 => gamma,
-            _ if i + 1 == n => h[i],
+            _ if i + 1 == n => h(i),
             _ => 0.0,
         };
         let (mut c_last, mut z_last) = (0.0, 0.0);
-        for (i, row) in rows.iter_mut().enumerate() {
+        for i in 0..n {
             let pivot = pivot_base(i) - sub(i) * c_last;
-            let c = if i + 1 < n { h[i] / pivot } else { 0.0 };
+            let c = if i + 1 < n { h(i) / pivot } else { 0.0 };
             let z = (u(i) - sub(i) * z_last) / pivot;
-            *row = [sub(i), 1.0 / pivot, c, z];
+            self.rows.push([sub(i), 1.0 / pivot, c, z]);
             (c_last, z_last) = (c, z);
         }
+        let rows = &mut self.rows;
         for i in (0..n - 1).rev() {
             rows[i][3] -= rows[i][2] * rows[i + 1][3];
         }
         let d = 1.0 + rows[0][3] + sub0_over_gamma * rows[n - 1][3];
-        Self {
-            spacings: h,
-            rows,
-            sub0_over_gamma,
-            inv_d: 1.0 / d,
-        }
+        (self.sub0_over_gamma, self.inv_d) = (sub0_over_gamma, 1.0 / d);
     }
 
     /// Whether these are the factors of spacings `h(0..n)`.
@@ -305,19 +309,19 @@ impl CyclicFactors {
     /// The second derivatives for right-hand side `rhs(0..n)`.
     fn solve(&self, rhs: impl Fn(usize) -> f64) -> Vec<f64> {
         let n = self.rows.len();
-        let mut x = Vec::with_capacity(n);
-        let mut last = 0.0;
-        for (i, row) in self.rows.iter().enumerate() {
-            last = (rhs(i) - row[0] * last) * row[1];
-            x.push(last);
+        if n == 0 {
+            return Vec::new();
         }
-        for i in (0..n.saturating_sub(1)).rev() {
+        let mut x = vec![0.0; n];
+        let mut last = 0.0;
+        for (i, (xi, row)) in x.iter_mut().zip(&self.rows).enumerate() {
+            last = (rhs(i) - row[0] * last) * row[1];
+            *xi = last;
+        }
+        for i in (0..n - 1).rev() {
             x[i] -= self.rows[i][2] * x[i + 1];
         }
-        let factor = match n {
-            0 => 0.0,
-            _ => (x[0] + self.sub0_over_gamma * x[n - 1]) * self.inv_d,
-        };
+        let factor = (x[0] + self.sub0_over_gamma * x[n - 1]) * self.inv_d;
         for (xi, row) in x.iter_mut().zip(&self.rows) {
             *xi -= factor * row[3];
         }
@@ -426,7 +430,9 @@ mod tests {
                 |i| h[i],
                 |i| rhs[i],
             );
-            let kept = CyclicFactors::new(h.clone()).solve(|i| rhs[i]);
+            let mut factors = CyclicFactors::none();
+            factors.factor(n, |i| h[i]);
+            let kept = factors.solve(|i| rhs[i]);
             let scale = whole.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             for (a, b) in kept.iter().zip(&whole) {
                 proptest::prop_assert!((a - b).abs() <= 1e-13 * scale, "{a} against {b}");
