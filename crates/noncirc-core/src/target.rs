@@ -3,7 +3,7 @@
 //! key poses of the arm. Checked whole when read; prepared once (the path's curve, its
 //! arc-length samples and the tree of its segments) for the fit measures.
 
-use crate::curve::periodic_cubic;
+use crate::curve::periodic_cubic_once;
 use crate::error::{finite_with, Error, Result};
 use crate::segment_tree::SegmentTree;
 use crate::vec2::Vec2;
@@ -410,7 +410,10 @@ fn closed_spline(points: &[Vec2]) -> (Vec<Vec2>, Vec<usize>) {
     let h: Vec<f64> = (0..n).map(|i| chord(i).sqrt()).collect();
     let xs: Vec<f64> = points.iter().map(|p| p.x).collect();
     let ys: Vec<f64> = points.iter().map(|p| p.y).collect();
-    let (cx, cy) = (periodic_cubic(|i| h[i], &xs), periodic_cubic(|i| h[i], &ys));
+    let (cx, cy) = (
+        periodic_cubic_once(|i| h[i], &xs),
+        periodic_cubic_once(|i| h[i], &ys),
+    );
     let total: f64 = (0..n).map(chord).sum();
     let mut fine = Vec::new();
     let mut span = Vec::new();

@@ -4,7 +4,7 @@ mod cartesian;
 mod spline;
 
 pub use cartesian::{CartesianCurve, CartesianKind};
-pub(crate) use spline::periodic_cubic;
+pub(crate) use spline::periodic_cubic_once;
 pub use spline::PeriodicSpline;
 
 use crate::error::{finite, finite_with, positive_with, Error, Result};

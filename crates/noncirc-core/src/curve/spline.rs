@@ -191,8 +191,38 @@ impl PeriodicSpline {
 /// The periodic C² cubic through `values` with knot spacings `h(i)` (from knot `i` to the
 /// next; the last to the first closes the period): per segment `[a, b, c, d]`, the value
 /// `a + b t + c t² + d t³` at `t` past its knot. The system's factors are kept per thread
-/// for the last spacings ([`CyclicFactors`]).
+/// for the last spacings ([`CyclicFactors`]): a pitch curve's, whose angles a search keeps
+/// while it moves the radii.
 pub(crate) fn periodic_cubic(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f64; 4]> {
+    cubic_segments(&h, values, |rhs| {
+        FACTORS.with(|kept| {
+            let mut factors = kept.borrow_mut();
+            if !factors.are_for(values.len(), &h) {
+                factors.factor(values.len(), &h);
+            }
+            factors.solve(rhs)
+        })
+    })
+}
+
+/// As [`periodic_cubic`] for a curve built once, a target's path: its system solved whole
+/// in one sweep (factors then a solve take two), none kept. The inversion's shaping
+/// (docs/inverse.md §6) follows the path to its last bit, so its path keeps this solve.
+pub(crate) fn periodic_cubic_once(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f64; 4]> {
+    let n = values.len();
+    let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+    cubic_segments(&h, values, |rhs| {
+        solve_cyclic_tridiagonal(n, |i| h(prev(i)), |i| 2.0 * (h(prev(i)) + h(i)), &h, rhs)
+    })
+}
+
+/// The segments of the periodic cubic through `values` with knot spacings `h`, its second
+/// derivatives `M` from `solve` (given the system's right-hand side by row).
+fn cubic_segments(
+    h: impl Fn(usize) -> f64,
+    values: &[f64],
+    solve: impl FnOnce(&dyn Fn(usize) -> f64) -> Vec<f64>,
+) -> Vec<[f64; 4]> {
     let n = values.len();
     let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
     let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
@@ -201,15 +231,7 @@ pub(crate) fn periodic_cubic(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f
     let slope: Vec<f64> = (0..n)
         .map(|i| (values[next(i)] - values[i]) / h(i))
         .collect();
-    // Second derivatives M from the cyclic tridiagonal system, factored once per knot
-    // spacings.
-    let m = FACTORS.with(|kept| {
-        let mut factors = kept.borrow_mut();
-        if !factors.are_for(n, &h) {
-            factors.factor(n, &h);
-        }
-        factors.solve(|i| 6.0 * (slope[i] - slope[prev(i)]))
-    });
+    let m = solve(&|i| 6.0 * (slope[i] - slope[prev(i)]));
     (0..n)
         .map(|i| {
             let (m0, m1, hi) = (m[i], m[next(i)], h(i));
@@ -351,65 +373,64 @@ pub(crate) fn check_angles(psi: &[f64]) -> Result<()> {
     Ok(())
 }
 
+/// Solves the cyclic tridiagonal system of `n` rows
+/// `sub(i) x[i-1] + diag(i) x[i] + sup(i) x[i+1] = rhs(i)`, indices mod n, by
+/// Sherman–Morrison on the Thomas algorithm. The two Thomas solves share their matrix, so
+/// they run in one sweep.
+fn solve_cyclic_tridiagonal(
+    n: usize,
+    sub: impl Fn(usize) -> f64,
+    diag: impl Fn(usize) -> f64,
+    sup: impl Fn(usize) -> f64,
+    rhs: impl Fn(usize) -> f64,
+) -> Vec<f64> {
+    // The non-cyclic matrix A' = A − u vᵀ, u = (γ, 0, …, 0, sup(n−1)), v = (1, 0, …, sub(0)/γ).
+    let gamma = -diag(0);
+    let b = |i: usize| {
+        if i == 0 {
+            diag(0) - gamma
+        } else if i + 1 == n {
+            diag(i) - sup(i) * sub(0) / gamma
+        } else {
+            diag(i)
+        }
+    };
+    let u = |i: usize| {
+        if i == 0 {
+            gamma
+        } else if i + 1 == n {
+            sup(i)
+        } else {
+            0.0
+        }
+    };
+    // Forward sweep: per row the eliminated super-diagonal and both right-hand sides.
+    let mut rows = vec![[0.0; 3]; n];
+    let mut last = [0.0; 3];
+    for (i, row) in rows.iter_mut().enumerate() {
+        let denom = b(i) - sub(i) * last[0];
+        let c = if i + 1 < n { sup(i) / denom } else { 0.0 };
+        *row = [
+            c,
+            (rhs(i) - sub(i) * last[1]) / denom,
+            (u(i) - sub(i) * last[2]) / denom,
+        ];
+        last = *row;
+    }
+    // Back substitution: rows[i][1] becomes x (A' x = rhs), rows[i][2] z (A' z = u).
+    for i in (0..n - 1).rev() {
+        let (c, next) = (rows[i][0], rows[i + 1]);
+        rows[i][1] -= c * next[1];
+        rows[i][2] -= c * next[2];
+    }
+    let (first, end) = (rows[0], rows[n - 1]);
+    let factor = (first[1] + sub(0) * end[1] / gamma) / (1.0 + first[2] + sub(0) * end[2] / gamma);
+    rows.iter().map(|r| r[1] - factor * r[2]).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Solves the cyclic tridiagonal system of `n` rows
-    /// `sub(i) x[i-1] + diag(i) x[i] + sup(i) x[i+1] = rhs(i)`, indices mod n, by
-    /// Sherman–Morrison on the Thomas algorithm. The two Thomas solves share their matrix, so
-    /// they run in one sweep.
-    fn solve_cyclic_tridiagonal(
-        n: usize,
-        sub: impl Fn(usize) -> f64,
-        diag: impl Fn(usize) -> f64,
-        sup: impl Fn(usize) -> f64,
-        rhs: impl Fn(usize) -> f64,
-    ) -> Vec<f64> {
-        // The non-cyclic matrix A' = A − u vᵀ, u = (γ, 0, …, 0, sup(n−1)), v = (1, 0, …, sub(0)/γ).
-        let gamma = -diag(0);
-        let b = |i: usize| {
-            if i == 0 {
-                diag(0) - gamma
-            } else if i + 1 == n {
-                diag(i) - sup(i) * sub(0) / gamma
-            } else {
-                diag(i)
-            }
-        };
-        let u = |i: usize| {
-            if i == 0 {
-                gamma
-            } else if i + 1 == n {
-                sup(i)
-            } else {
-                0.0
-            }
-        };
-        // Forward sweep: per row the eliminated super-diagonal and both right-hand sides.
-        let mut rows = vec![[0.0; 3]; n];
-        let mut last = [0.0; 3];
-        for (i, row) in rows.iter_mut().enumerate() {
-            let denom = b(i) - sub(i) * last[0];
-            let c = if i + 1 < n { sup(i) / denom } else { 0.0 };
-            *row = [
-                c,
-                (rhs(i) - sub(i) * last[1]) / denom,
-                (u(i) - sub(i) * last[2]) / denom,
-            ];
-            last = *row;
-        }
-        // Back substitution: rows[i][1] becomes x (A' x = rhs), rows[i][2] z (A' z = u).
-        for i in (0..n - 1).rev() {
-            let (c, next) = (rows[i][0], rows[i + 1]);
-            rows[i][1] -= c * next[1];
-            rows[i][2] -= c * next[2];
-        }
-        let (first, end) = (rows[0], rows[n - 1]);
-        let factor =
-            (first[1] + sub(0) * end[1] / gamma) / (1.0 + first[2] + sub(0) * end[2] / gamma);
-        rows.iter().map(|r| r[1] - factor * r[2]).collect()
-    }
 
     proptest::proptest! {
         /// The kept factors solve the spline's system as the Thomas algorithm solved whole
