@@ -194,13 +194,13 @@ impl PeriodicSpline {
 /// for the last spacings ([`CyclicFactors`]): a pitch curve's, whose angles a search keeps
 /// while it moves the radii.
 pub(crate) fn periodic_cubic(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f64; 4]> {
-    cubic_segments(&h, values, |rhs| {
+    cubic_segments(&h, values, |slope| {
         FACTORS.with(|kept| {
             let mut factors = kept.borrow_mut();
             if !factors.are_for(values.len(), &h) {
                 factors.factor(values.len(), &h);
             }
-            factors.solve(rhs)
+            factors.solve(right_hand_side(slope))
         })
     })
 }
@@ -211,27 +211,33 @@ pub(crate) fn periodic_cubic(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f
 pub(crate) fn periodic_cubic_once(h: impl Fn(usize) -> f64, values: &[f64]) -> Vec<[f64; 4]> {
     let n = values.len();
     let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
-    cubic_segments(&h, values, |rhs| {
+    cubic_segments(&h, values, |slope| {
+        let rhs = right_hand_side(slope);
         solve_cyclic_tridiagonal(n, |i| h(prev(i)), |i| 2.0 * (h(prev(i)) + h(i)), &h, rhs)
     })
 }
 
+/// The system's right-hand side by row, `6(s_i − s_{i−1})`, from the chord slopes `s`.
+fn right_hand_side(slope: &[f64]) -> impl Fn(usize) -> f64 + '_ {
+    let n = slope.len();
+    move |i| 6.0 * (slope[i] - slope[if i == 0 { n - 1 } else { i - 1 }])
+}
+
 /// The segments of the periodic cubic through `values` with knot spacings `h`, its second
-/// derivatives `M` from `solve` (given the system's right-hand side by row).
+/// derivatives `M` from `solve` (given the chord slopes, for [`right_hand_side`]).
 fn cubic_segments(
     h: impl Fn(usize) -> f64,
     values: &[f64],
-    solve: impl FnOnce(&dyn Fn(usize) -> f64) -> Vec<f64>,
+    solve: impl FnOnce(&[f64]) -> Vec<f64>,
 ) -> Vec<[f64; 4]> {
     let n = values.len();
-    let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
     let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
     // Each segment's chord slope, divided once: the system's right-hand side takes it twice
     // and the segment's linear coefficient once.
     let slope: Vec<f64> = (0..n)
         .map(|i| (values[next(i)] - values[i]) / h(i))
         .collect();
-    let m = solve(&|i| 6.0 * (slope[i] - slope[prev(i)]));
+    let m = solve(&slope);
     (0..n)
         .map(|i| {
             let (m0, m1, hi) = (m[i], m[next(i)], h(i));
