@@ -44,7 +44,11 @@ fn robust(c: &mut Criterion) {
     group.bench_function("gear_variant", |b| {
         b.iter(|| {
             deviated
-                .variant(&mut ev, black_box(&samples.radii[1]))
+                .variant(
+                    &mut ev,
+                    black_box(&samples.radii[1]),
+                    samples.assembly[1][3],
+                )
                 .unwrap()
         })
     });

@@ -570,7 +570,7 @@ impl Kinematics {
     pub fn reassembled(&self, spec: &TrainSpec, centre_offset_mm: f64) -> Result<Self> {
         spec.validate()?;
         finite("centre distance offset (mm)", centre_offset_mm)?;
-        if spec.rotation != self.spec.rotation || spec.psi_start() != self.psi_start {
+        if !self.keeps_sun_grid(spec) {
             return Err(Error::OutOfRange {
                 name: "train.phi0_deg".into(),
                 value: spec.phi0_deg,
@@ -581,7 +581,7 @@ impl Kinematics {
                 ),
             });
         }
-        if self.gears.second.is_some() && spec.gamma0_deg != self.spec.gamma0_deg {
+        if !self.keeps_second_grid(spec) {
             return Err(Error::OutOfRange {
                 name: "train.gamma0_deg".into(),
                 value: spec.gamma0_deg,
@@ -608,6 +608,23 @@ impl Kinematics {
             centre_offset_mm,
             same_carrier.then_some(self),
         ))
+    }
+
+    /// Whether [`Kinematics::reassembled`] takes `spec`: its pairs keep their grids
+    /// (the same rotation sense and sun grid, and with two pairs the same `γ0`). A train
+    /// it refuses is solved anew.
+    pub fn reassembles_for(&self, spec: &TrainSpec) -> bool {
+        self.keeps_sun_grid(spec) && self.keeps_second_grid(spec)
+    }
+
+    /// The sun's pair keeps its grid under `spec`.
+    fn keeps_sun_grid(&self, spec: &TrainSpec) -> bool {
+        spec.rotation == self.spec.rotation && spec.psi_start() == self.psi_start
+    }
+
+    /// The second pair, if any, keeps its grid under `spec` (its start is `γ0 − π`).
+    fn keeps_second_grid(&self, spec: &TrainSpec) -> bool {
+        self.gears.second.is_none() || spec.gamma0_deg == self.spec.gamma0_deg
     }
 
     /// Places the arm for `spec` on solved gears (`spec` valid, the pairs on their grids).
