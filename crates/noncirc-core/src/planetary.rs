@@ -525,6 +525,94 @@ pub struct Kinematics {
     /// Nodes by which each arm lags the one before it (`n / arms`): arm indices by a
     /// multiplication, not an integer division per use.
     nodes_per_arm: usize,
+    /// Nodes that a scan of this train may be confined to, marked on it or on the train it
+    /// was reassembled from ([`Kinematics::mark_nodes`]).
+    marked: Option<MarkedNodes>,
+}
+
+/// Nodes of a train marked for a scan over the turn (where a least value over the nodes
+/// comes within a band of its least), and how far the arms of a reassembly of that
+/// train have moved from it. Where the scanned value moves with the arms and planet
+/// centres by at most their own displacement, a reassembly whose displacement is small
+/// against the band has its least value at one of these nodes.
+#[derive(Debug, Clone)]
+pub(crate) struct MarkedNodes {
+    /// The nodes, ascending.
+    pub(crate) nodes: Arc<[usize]>,
+    /// What they were marked for (the scan's own parameter, e.g. a half-width in mm): a
+    /// scan for another value leaves them.
+    pub(crate) key: f64,
+    /// How far above the marked train's least value the marked nodes reach (mm).
+    pub(crate) band_mm: f64,
+    /// At most how far any point of an arm, or a planet centre, of this train lies from
+    /// the marked train's at the same node (mm), once this train is turned as a whole
+    /// about the carrier axis (a turn that moves no distance between its parts).
+    pub(crate) displacement_mm: f64,
+}
+
+/// The planet orientation's constant part for `spec` (rad): the sun's turn in the ground
+/// frame for the paper's train, `Φ0` for two pairs.
+fn planet_base(two_pairs: bool, spec: &TrainSpec) -> f64 {
+    if two_pairs {
+        spec.phi0_deg.to_radians()
+    } else {
+        spec.sun_angle()
+    }
+}
+
+/// How a train on the same gears and carrier angle `γ0` as `src` lies against it: each
+/// node's planet orientation, arm direction and planet centre follow from `src`'s by one
+/// turn each ([`Kinematics::reassembled`]).
+#[derive(Debug, Clone, Copy)]
+struct Turn {
+    /// Added to each planet orientation `θ3` (rad).
+    planets: f64,
+    /// Multiplies each arm direction (a unit complex number).
+    arm: Vec2,
+    /// Multiplies each planet centre: a turn and a scale, as a complex number.
+    centre_factor: Vec2,
+    /// At most how far any point of an arm, or a planet centre, moves (mm), once the
+    /// train is turned back as a whole about the carrier axis.
+    displacement_mm: f64,
+}
+
+impl Turn {
+    /// `src` turned to the train whose planets' base angle, carrier distances, `Φ0`,
+    /// `β0` (rad) and arm length `S` (mm) are given. The planet centres, as complex numbers
+    /// `O3(θ) = e(Φ0 + σθ)·(a1 + a2·e(γ0))`, are the source's times one factor: `Φ0`
+    /// turns them, the carrier's distances scale them.
+    fn between(
+        src: &Kinematics,
+        planet_base: f64,
+        carrier_a: [f64; 2],
+        angles: [f64; 2],
+        s: f64,
+    ) -> Self {
+        let [phi0, beta0] = angles;
+        let planets = planet_base - src.planet_base;
+        let e_gamma = unit(src.gamma0);
+        let reach = Vec2::new(carrier_a[0], 0.0) + e_gamma * carrier_a[1];
+        let src_reach = Vec2::new(src.carrier_a[0], 0.0) + e_gamma * src.carrier_a[1];
+        let scale =
+            reach.rotated(Vec2::new(src_reach.x, -src_reach.y)) * (1.0 / src_reach.hypot2());
+        let arm = unit(planets + beta0 - src.beta0);
+        let centre_factor = scale.rotated(unit(phi0 - src.phi0));
+        // Turned back as a whole by the planet centres' turn f/|f| (which moves no
+        // distance between parts), a planet centre (at |O3| = |a1 + a2·e(γ0)|) moves by
+        // |O3|·||f| − 1|, a tip by that and |e·(f/|f|)*·S − S_src| more (the arm direction
+        // a unit vector), and every point of an arm by no more than the farther of its
+        // ends.
+        let size = centre_factor.hypot();
+        let back = Vec2::new(centre_factor.x, -centre_factor.y) * (1.0 / size);
+        let centre_move = src_reach.hypot() * (size - 1.0).abs();
+        let arm_move = (arm.rotated(back) * s - Vec2::new(src.spec.arm_length_mm, 0.0)).hypot();
+        Self {
+            planets,
+            arm,
+            centre_factor,
+            displacement_mm: centre_move + arm_move,
+        }
+    }
 }
 
 impl Kinematics {
@@ -617,6 +705,40 @@ impl Kinematics {
         self.keeps_sun_grid(spec) && self.keeps_second_grid(spec)
     }
 
+    /// At most how far any point of an arm, or a planet centre, of this train
+    /// [reassembled](Kinematics::reassembled) for `spec` with `centre_offset_mm` lies from
+    /// this one's at the same node, turned as a whole about the carrier axis (mm); +∞ for
+    /// a reassembly that does not keep the carrier's `γ0` and the number of arms (its arms
+    /// then lie elsewhere altogether).
+    pub(crate) fn displacement_to(&self, spec: &TrainSpec, centre_offset_mm: f64) -> f64 {
+        let same = spec.gamma0_deg == self.spec.gamma0_deg && spec.arms == self.spec.arms;
+        if !(same && self.reassembles_for(spec)) {
+            return f64::INFINITY;
+        }
+        let [a1, a2] = self.centre_distances();
+        let carrier_a = [a1 + centre_offset_mm, a2 + centre_offset_mm];
+        let angles = [spec.phi0_deg.to_radians(), spec.beta0_deg.to_radians()];
+        let base = planet_base(self.gears.second.is_some(), spec);
+        Turn::between(self, base, carrier_a, angles, spec.arm_length_mm).displacement_mm
+    }
+
+    /// Marks `nodes` (ascending) for a scan whose parameter is `key`, reaching `band_mm`
+    /// above this train's least value: every reassembly of this train keeps them
+    /// ([`MarkedNodes`]).
+    pub(crate) fn mark_nodes(&mut self, nodes: Vec<usize>, key: f64, band_mm: f64) {
+        self.marked = Some(MarkedNodes {
+            nodes: nodes.into(),
+            key,
+            band_mm,
+            displacement_mm: 0.0,
+        });
+    }
+
+    /// The nodes marked on this train or on the one it was reassembled from.
+    pub(crate) fn marked_nodes(&self) -> Option<&MarkedNodes> {
+        self.marked.as_ref()
+    }
+
     /// The sun's pair keeps its grid under `spec`.
     fn keeps_sun_grid(&self, spec: &TrainSpec) -> bool {
         spec.rotation == self.spec.rotation && spec.psi_start() == self.psi_start
@@ -649,10 +771,7 @@ impl Kinematics {
         let gamma0 = spec.gamma0_deg.to_radians();
         let beta0 = spec.beta0_deg.to_radians();
         let delay = (sigma * (gamma0 - std::f64::consts::PI)).rem_euclid(TAU);
-        let planet_base = match gears.second {
-            None => spec.sun_angle(),
-            Some(_) => spec.phi0_deg.to_radians(),
-        };
+        let planet_base = planet_base(gears.second.is_some(), spec);
         let mut kin = Self {
             gears,
             spec: *spec,
@@ -675,25 +794,31 @@ impl Kinematics {
             tip: vec![Vec2::ZERO; n],
             arm_dir: vec![Vec2::ZERO; n],
             nodes_per_arm: n / spec.arms,
+            marked: None,
         };
         // The arms' turn relative to `same_carrier`'s: θ3 moves with the planets' base
-        // angle, the arm with β0 on top. The planet centres, as complex numbers
-        // `O3(θ) = e(Φ0 + σθ)·(a1 + a2·e(γ0))`, are the source's times one factor: `Φ0`
-        // turns them, the carrier's distances scale them (each node on its own, no
-        // rotation carried from node to node).
+        // angle, the arm with β0 on top, the planet centres by one factor (each node on
+        // its own, no rotation carried from node to node).
         let turn = same_carrier.map(|src| {
-            let planets = kin.planet_base - src.planet_base;
-            let e_gamma = unit(gamma0);
-            let reach = Vec2::new(kin.carrier_a[0], 0.0) + e_gamma * kin.carrier_a[1];
-            let src_reach = Vec2::new(src.carrier_a[0], 0.0) + e_gamma * src.carrier_a[1];
-            let scale =
-                reach.rotated(Vec2::new(src_reach.x, -src_reach.y)) * (1.0 / src_reach.hypot2());
-            (
-                planets,
-                unit(planets + beta0 - src.beta0),
-                scale.rotated(unit(kin.phi0 - src.phi0)),
+            let angles = [kin.phi0, beta0];
+            Turn::between(
+                src,
+                kin.planet_base,
+                kin.carrier_a,
+                angles,
+                spec.arm_length_mm,
             )
         });
+        // A reassembly keeps its source's marked nodes (the same arms on the same nodes),
+        // adding its own displacement to theirs.
+        kin.marked = same_carrier
+            .filter(|src| src.spec.arms == spec.arms)
+            .and_then(|src| src.marked.clone())
+            .zip(turn)
+            .map(|(m, t)| MarkedNodes {
+                displacement_mm: m.displacement_mm + t.displacement_mm,
+                ..m
+            });
         kin.planet_lag = match (same_carrier, &kin.gears.second) {
             (Some(src), _) => src.planet_lag.clone(),
             (None, None) => {
@@ -723,10 +848,10 @@ impl Kinematics {
             let theta = h * j as f64;
             let lag = kin.planet_lag[j];
             let (theta3, arm_dir, o3) = match (same_carrier, turn) {
-                (Some(src), Some((planets, arm, centre_factor))) => (
-                    src.theta3[j] + planets,
-                    src.arm_dir[j].rotated(arm),
-                    src.o3[j].rotated(centre_factor),
+                (Some(src), Some(turn)) => (
+                    src.theta3[j] + turn.planets,
+                    src.arm_dir[j].rotated(turn.arm),
+                    src.o3[j].rotated(turn.centre_factor),
                 ),
                 _ => {
                     let o3 = e1 * a1 + e2 * a2;

@@ -14,8 +14,9 @@ use crate::curve::{CurveSpec, TAU};
 use crate::error::{Error, Result};
 use crate::evaluation::Evaluation;
 use crate::evaluator::Evaluator;
+use crate::interference::mark_nodes_near_least_clearance;
 use crate::objective_kind::{scale, ObjectiveKind};
-use crate::planetary::Kinematics;
+use crate::planetary::{Kinematics, TrainSpec};
 use crate::resolution::Resolution;
 use crate::scene::{Scene, SceneKind};
 use crate::tolerance::{Tolerances, ASSEMBLY};
@@ -282,13 +283,8 @@ impl Deviated {
         assembly: &[f64; 8],
         scratch: &mut Scene,
     ) -> Result<Evaluation> {
-        let [da, phi0, beta0, gamma0, s, h1, tray_d, tray_n] = *assembly;
-        let mut train = self.fixed.train;
-        train.phi0_deg += phi0;
-        train.beta0_deg += beta0;
-        train.gamma0_deg += gamma0;
-        train.arm_length_mm += s;
-        train.pusher_offset_mm += h1;
+        let [da, .., tray_d, tray_n] = *assembly;
+        let train = self.deviated_train(assembly);
         let mut agronomy = self.fixed.agronomy;
         agronomy.tray_distance_mm = agronomy.tray_distance_mm.map(|d| d + tray_d);
         agronomy.tray_normal_deg += tray_n;
@@ -305,6 +301,43 @@ impl Deviated {
                 .reassembled(&train, da)?
         };
         evaluator.evaluate_solved(scratch, kin)
+    }
+
+    /// The train with `assembly` deviations ([`ASSEMBLY`] order; the bore error is the
+    /// carrier's, not the train's).
+    fn deviated_train(&self, assembly: &[f64; 8]) -> TrainSpec {
+        let [_, phi0, beta0, gamma0, s, h1, ..] = *assembly;
+        let mut train = self.fixed.train;
+        train.phi0_deg += phi0;
+        train.beta0_deg += beta0;
+        train.gamma0_deg += gamma0;
+        train.arm_length_mm += s;
+        train.pusher_offset_mm += h1;
+        train
+    }
+
+    /// Marks on a set of machined parts' train `kin` the nodes where its arms come
+    /// closest, for its samples (`samples`' indices) to scan alone: the band is four
+    /// times the farthest any of them moves the arms, and a little more.
+    fn mark_for_samples(
+        &self,
+        kin: &mut Kinematics,
+        samples: &ToleranceSamples,
+        indices: impl Iterator<Item = usize>,
+    ) {
+        if !self.fixed.objectives.contains(&ObjectiveKind::Interference) {
+            return;
+        }
+        let farthest = indices
+            .map(|i| {
+                let assembly = &samples.assembly[i];
+                kin.displacement_to(&self.deviated_train(assembly), assembly[0])
+            })
+            .fold(0.0, f64::max);
+        if farthest.is_finite() {
+            let band = 4.04 * farthest + 1e-3;
+            mark_nodes_near_least_clearance(kin, &self.fixed.agronomy, band);
+        }
     }
 
     /// The outcome of an evaluation (or of the model's refusal) of a deviated design.
@@ -345,8 +378,13 @@ impl Deviated {
         let mut scratch = self.fixed.clone();
         for (v, radii) in samples.radii.iter().enumerate() {
             // The variant's carrier (its γ0) assembled once: its samples keep its θ_s.
+            let indices = (v..samples.len()).step_by(samples.radii.len());
             let kin = self.variant(evaluator, radii, samples.assembly[v][3]);
-            for i in (v..samples.len()).step_by(samples.radii.len()) {
+            let kin = kin.map(|mut kin| {
+                self.mark_for_samples(&mut kin, samples, indices.clone());
+                kin
+            });
+            for i in indices {
                 let eval = match &kin {
                     Ok(kin) => {
                         let assembly = &samples.assembly[i];
@@ -770,6 +808,49 @@ mod tests {
         let met = nominal.total_violation() == 0.0;
         assert_eq!(report.probability_all, if met { 1.0 } else { 0.0 });
         assert_eq!(report.picking_branch_switches, 0);
+    }
+
+    #[test]
+    fn marked_nodes_leave_every_samples_outcome_bit_for_bit() {
+        // `run` marks each set's nodes near its least clearance, and its samples scan those
+        // alone; each sample assembled on the set's unmarked train scans every node. The
+        // paper's design and one whose arms interfere, with the tolerances as given and
+        // thirty times wider (where more samples scan every node).
+        let paper = Scene::default();
+        // β0 = 40° and 60 mm wide arms: the clearance is −2.13 mm.
+        let mut interfering = Scene::default();
+        interfering.train.beta0_deg = 40.0;
+        interfering.agronomy.arm_half_width_mm = 60.0;
+        for (scene, widen) in [(&paper, 1.0), (&interfering, 1.0), (&paper, 30.0)] {
+            let mut scene = scene.clone();
+            let t = &mut scene.tolerances;
+            for s in [
+                &mut t.radius_mm,
+                &mut t.phi0_deg,
+                &mut t.beta0_deg,
+                &mut t.arm_length_mm,
+            ] {
+                *s = match *s {
+                    Spread::Band(h) => Spread::Band(h * widen),
+                    Spread::Sigma(v) => Spread::Sigma(v * widen),
+                };
+            }
+            let mut ev = Evaluator::new();
+            let placed = ev.evaluate(&scene).unwrap();
+            let d = Deviated::new(&mut ev, &scene, &placed).unwrap();
+            let radii = radius_count(&scene.gear.curve);
+            let samples = ToleranceSamples::new(&scene.tolerances, radii, 3).unwrap();
+            let outcomes = d.run(&mut ev, &samples);
+            for (i, o) in outcomes.iter().enumerate() {
+                let (r, assembly) = (&samples.radii[samples.variant(i)], &samples.assembly[i]);
+                let kin = d.variant(&mut ev, r, assembly[3]).unwrap();
+                assert!(kin.marked_nodes().is_none());
+                let whole = d.outcome(d.assembled(&mut ev, &kin, r, assembly));
+                let bits =
+                    |o: &SampleOutcome| o.margins.iter().map(|m| m.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(o), bits(&whole), "sample {i}, tolerances ×{widen}");
+            }
+        }
     }
 
     #[test]
