@@ -110,6 +110,8 @@ pub(crate) fn mark_nodes_near_least_clearance(kin: &mut Kinematics, agro: &Agron
 /// A train's clearance at its nodes.
 struct Scan<'a> {
     kin: &'a Kinematics,
+    /// The number of arms.
+    arms: usize,
     tips: &'a [Vec2],
     centres: &'a [Vec2],
     /// The sun's largest radius, the arm's half-width and its length (mm).
@@ -127,6 +129,7 @@ impl<'a> Scan<'a> {
         let s = kin.spec().arm_length_mm;
         Self {
             kin,
+            arms: kin.arms(),
             tips: kin.tips(),
             centres: kin.planet_centres(),
             rmax: kin.radius_range().1,
@@ -171,16 +174,16 @@ impl<'a> Scan<'a> {
     /// |m − m₂| − S, then dist(m, arm II) − S/2, from another arm. Where such a bound
     /// cannot come below `bound`, the exact distance is skipped: squared distances only,
     /// no root.
-    #[inline]
+    #[inline(always)]
     fn below(&self, k: usize, bound: f64) -> f64 {
-        let (kin, w, half) = (self.kin, self.w, self.half);
+        let (kin, arms, w, half) = (self.kin, self.arms, self.w, self.half);
         let beyond = |d2: f64, reach: f64| reach > 0.0 && d2 >= reach * reach;
         let dist_sq = |p: Vec2, q: Vec2| (p - q).hypot2();
         let seg = self.arm(k);
         let m = seg.midpoint();
         let planet_reach = bound + self.rmax + w + half;
         let mut c = f64::INFINITY;
-        for lag in 1..=kin.arms() / 2 {
+        for lag in 1..=arms / 2 {
             let other = self.arm(kin.arm_node(lag, k));
             let far = beyond(dist_sq(m, other.midpoint()), bound + 2.0 * w + 2.0 * half)
                 || beyond(other.distance_sq(m), bound + 2.0 * w + half);
@@ -188,7 +191,7 @@ impl<'a> Scan<'a> {
                 c = c.min(self.arms(&seg, &other));
             }
         }
-        for lag in 1..kin.arms() {
+        for lag in 1..arms {
             let centre = self.centres[kin.arm_node(lag, k)];
             if !beyond(dist_sq(m, centre), planet_reach) {
                 c = c.min(self.planet(&seg, centre));
@@ -202,7 +205,7 @@ impl<'a> Scan<'a> {
     /// out cannot change whether, or to what, the least clearance moves. A NaN
     /// (numerical breakdown) loses to any number.
     fn least(&self) -> Option<(usize, f64)> {
-        if self.kin.arms() < 2 {
+        if self.arms < 2 {
             return None;
         }
         let (mut j, mut least) = (0, self.clearance(0));
@@ -246,7 +249,7 @@ impl<'a> Scan<'a> {
         let delta = marked.displacement_mm * (1.0 + 1e-9) + 1e-9 * scale;
         // A NaN displacement fails the comparison too.
         let narrow = (4.0 * delta).partial_cmp(&marked.band_mm) != Some(Ordering::Less);
-        if narrow || self.kin.arms() < 2 {
+        if narrow || self.arms < 2 {
             return None;
         }
         // As the whole scan, over the marked nodes.
