@@ -571,23 +571,14 @@ struct Turn {
     arm: Vec2,
     /// Multiplies each planet centre: a turn and a scale, as a complex number.
     centre_factor: Vec2,
-    /// At most how far any point of an arm, or a planet centre, moves (mm), once the
-    /// train is turned back as a whole about the carrier axis.
-    displacement_mm: f64,
 }
 
 impl Turn {
-    /// `src` turned to the train whose planets' base angle, carrier distances, `Φ0`,
-    /// `β0` (rad) and arm length `S` (mm) are given. The planet centres, as complex numbers
+    /// `src` turned to the train whose planets' base angle, carrier distances (mm), `Φ0`
+    /// and `β0` (rad) are given. The planet centres, as complex numbers
     /// `O3(θ) = e(Φ0 + σθ)·(a1 + a2·e(γ0))`, are the source's times one factor: `Φ0`
     /// turns them, the carrier's distances scale them.
-    fn between(
-        src: &Kinematics,
-        planet_base: f64,
-        carrier_a: [f64; 2],
-        angles: [f64; 2],
-        s: f64,
-    ) -> Self {
+    fn between(src: &Kinematics, planet_base: f64, carrier_a: [f64; 2], angles: [f64; 2]) -> Self {
         let [phi0, beta0] = angles;
         let planets = planet_base - src.planet_base;
         let e_gamma = unit(src.gamma0);
@@ -595,23 +586,28 @@ impl Turn {
         let src_reach = Vec2::new(src.carrier_a[0], 0.0) + e_gamma * src.carrier_a[1];
         let scale =
             reach.rotated(Vec2::new(src_reach.x, -src_reach.y)) * (1.0 / src_reach.hypot2());
-        let arm = unit(planets + beta0 - src.beta0);
-        let centre_factor = scale.rotated(unit(phi0 - src.phi0));
-        // Turned back as a whole by the planet centres' turn f/|f| (which moves no
-        // distance between parts), a planet centre (at |O3| = |a1 + a2·e(γ0)|) moves by
-        // |O3|·||f| − 1|, a tip by that and |e·(f/|f|)*·S − S_src| more (the arm direction
-        // a unit vector), and every point of an arm by no more than the farther of its
-        // ends.
-        let size = centre_factor.hypot();
-        let back = Vec2::new(centre_factor.x, -centre_factor.y) * (1.0 / size);
-        let centre_move = src_reach.hypot() * (size - 1.0).abs();
-        let arm_move = (arm.rotated(back) * s - Vec2::new(src.spec.arm_length_mm, 0.0)).hypot();
         Self {
             planets,
-            arm,
-            centre_factor,
-            displacement_mm: centre_move + arm_move,
+            arm: unit(planets + beta0 - src.beta0),
+            centre_factor: scale.rotated(unit(phi0 - src.phi0)),
         }
+    }
+
+    /// At most how far this turn moves any point of `src`'s arms, now `s` long (mm), or a
+    /// planet centre, once the train is turned back as a whole about the carrier axis.
+    /// Turned back by the planet centres' turn f/|f| (which moves no distance between
+    /// parts), a planet centre (at |O3| = |a1 + a2·e(γ0)|) moves by |O3|·||f| − 1|, a tip
+    /// by that and |e·(f/|f|)*·S − S_src| more (the arm direction a unit vector), and
+    /// every point of an arm by no more than the farther of its ends. A bound: the roots
+    /// are taken plainly, their rounding far inside the margin its users keep.
+    fn displacement_mm(&self, src: &Kinematics, s: f64) -> f64 {
+        let src_reach = Vec2::new(src.carrier_a[0], 0.0) + unit(src.gamma0) * src.carrier_a[1];
+        let f = self.centre_factor;
+        let size = f.hypot2().sqrt();
+        let back = Vec2::new(f.x, -f.y) * (1.0 / size);
+        let centre_move = src_reach.hypot2().sqrt() * (size - 1.0).abs();
+        let tip = self.arm.rotated(back) * s - Vec2::new(src.spec.arm_length_mm, 0.0);
+        centre_move + tip.hypot2().sqrt()
     }
 }
 
@@ -719,7 +715,7 @@ impl Kinematics {
         let carrier_a = [a1 + centre_offset_mm, a2 + centre_offset_mm];
         let angles = [spec.phi0_deg.to_radians(), spec.beta0_deg.to_radians()];
         let base = planet_base(self.gears.second.is_some(), spec);
-        Turn::between(self, base, carrier_a, angles, spec.arm_length_mm).displacement_mm
+        Turn::between(self, base, carrier_a, angles).displacement_mm(self, spec.arm_length_mm)
     }
 
     /// Marks `nodes` (ascending) for a scan whose parameter is `key`, reaching `band_mm`
@@ -799,24 +795,15 @@ impl Kinematics {
         // The arms' turn relative to `same_carrier`'s: θ3 moves with the planets' base
         // angle, the arm with β0 on top, the planet centres by one factor (each node on
         // its own, no rotation carried from node to node).
-        let turn = same_carrier.map(|src| {
-            let angles = [kin.phi0, beta0];
-            Turn::between(
-                src,
-                kin.planet_base,
-                kin.carrier_a,
-                angles,
-                spec.arm_length_mm,
-            )
-        });
+        let turn = same_carrier
+            .map(|src| Turn::between(src, kin.planet_base, kin.carrier_a, [kin.phi0, beta0]));
         // A reassembly keeps its source's marked nodes (the same arms on the same nodes),
         // adding its own displacement to theirs.
         kin.marked = same_carrier
             .filter(|src| src.spec.arms == spec.arms)
-            .and_then(|src| src.marked.clone())
-            .zip(turn)
-            .map(|(m, t)| MarkedNodes {
-                displacement_mm: m.displacement_mm + t.displacement_mm,
+            .and_then(|src| Some((src, src.marked.clone()?, turn?)))
+            .map(|(src, m, t)| MarkedNodes {
+                displacement_mm: m.displacement_mm + t.displacement_mm(src, spec.arm_length_mm),
                 ..m
             });
         kin.planet_lag = match (same_carrier, &kin.gears.second) {
