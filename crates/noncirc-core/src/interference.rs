@@ -97,12 +97,23 @@ pub(crate) fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
 /// marked where the least clearance is not a number.
 pub(crate) fn mark_nodes_near_least_clearance(kin: &mut Kinematics, agro: &Agronomy, band_mm: f64) {
     let scan = Scan::new(kin, agro);
-    let Some((_, least)) = scan.least().filter(|(_, c)| c.is_finite()) else {
+    let mut least = scan.clearance(0);
+    if kin.arms() < 2 || !least.is_finite() {
         return;
-    };
-    let bound = least + band_mm;
-    let nodes = (0..kin.len())
-        .filter(|&k| scan.below(k, bound) <= bound)
+    }
+    // One pass: the nodes within the band of the least so far (their clearances exact),
+    // then those within the band of the least.
+    let mut near = vec![(0, least)];
+    for k in 1..kin.len() {
+        let c = scan.below(k, least + band_mm);
+        if c <= least + band_mm {
+            near.push((k, c));
+            least = least.min(c);
+        }
+    }
+    let nodes = (near.into_iter())
+        .filter(|&(_, c)| c <= least + band_mm)
+        .map(|(k, _)| k)
         .collect();
     kin.mark_nodes(nodes, agro.arm_half_width_mm, band_mm);
 }
