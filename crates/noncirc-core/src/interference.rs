@@ -283,6 +283,21 @@ impl<'a> Scan<'a> {
 mod tests {
     use super::*;
 
+    /// The paper's train with `arms` arms, β0 and γ0 (°), and arms `width` mm half-wide.
+    fn train(arms: usize, beta0: f64, gamma0: f64, width: f64) -> (crate::TrainSpec, Agronomy) {
+        let spec = crate::TrainSpec {
+            beta0_deg: beta0,
+            gamma0_deg: gamma0,
+            arms,
+            ..Default::default()
+        };
+        let agro = Agronomy {
+            arm_half_width_mm: width,
+            ..Agronomy::default()
+        };
+        (spec, agro)
+    }
+
     #[test]
     fn segment_distances() {
         let between = |p0: [f64; 2], p1: [f64; 2], q0: [f64; 2], q1: [f64; 2]| {
@@ -340,22 +355,12 @@ mod tests {
             (every_pair, values[j], refined)
         };
         let curve = crate::CurveSpec::paper().build().unwrap();
-        let agro = Agronomy::default();
         let mut checked = 0;
         for arms in [2, 3, 4] {
             for beta0 in [-60.0, -29.0, 0.0, 40.0, 120.0] {
                 for gamma0 in [-80.0, -53.0, -20.0, 60.0] {
                     for width in [2.0, 12.0, 40.0] {
-                        let spec = crate::TrainSpec {
-                            beta0_deg: beta0,
-                            gamma0_deg: gamma0,
-                            arms,
-                            ..Default::default()
-                        };
-                        let agro = Agronomy {
-                            arm_half_width_mm: width,
-                            ..agro
-                        };
+                        let (spec, agro) = train(arms, beta0, gamma0, width);
                         let kin =
                             Kinematics::solve(&curve, None, &spec, &crate::Resolution::DEFAULT)
                                 .unwrap();
@@ -411,16 +416,7 @@ mod tests {
                 |(arms, design, (dphi, dbeta, ds, dh, da), band_factor, size)| {
                     let (beta0, gamma0, width) =
                         [(-29.0, -53.0, 12.0), (40.0, -20.0, 40.0), (0.0, 60.0, 2.0)][design];
-                    let spec = crate::TrainSpec {
-                        beta0_deg: beta0,
-                        gamma0_deg: gamma0,
-                        arms,
-                        ..Default::default()
-                    };
-                    let agro = Agronomy {
-                        arm_half_width_mm: width,
-                        ..Agronomy::default()
-                    };
+                    let (spec, agro) = train(arms, beta0, gamma0, width);
                     let mut source = Kinematics::solve(&curve, None, &spec, &res).unwrap();
                     let moved = crate::TrainSpec {
                         phi0_deg: spec.phi0_deg + 0.2 * size * dphi,

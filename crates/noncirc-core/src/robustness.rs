@@ -810,6 +810,20 @@ mod tests {
         assert_eq!(report.picking_branch_switches, 0);
     }
 
+    /// `scene`'s design deviated, its samples for `seed`, and their outcomes (`run`).
+    fn run_samples(
+        scene: &Scene,
+        seed: u64,
+    ) -> (Evaluator, Deviated, ToleranceSamples, Vec<SampleOutcome>) {
+        let mut ev = Evaluator::new();
+        let placed = ev.evaluate(scene).unwrap();
+        let deviated = Deviated::new(&mut ev, scene, &placed).unwrap();
+        let radii = radius_count(&scene.gear.curve);
+        let samples = ToleranceSamples::new(&scene.tolerances, radii, seed).unwrap();
+        let outcomes = deviated.run(&mut ev, &samples);
+        (ev, deviated, samples, outcomes)
+    }
+
     #[test]
     fn marked_nodes_leave_every_samples_outcome_bit_for_bit() {
         // `run` marks each set's nodes near its least clearance, and its samples scan those
@@ -835,12 +849,7 @@ mod tests {
                     Spread::Sigma(v) => Spread::Sigma(v * widen),
                 };
             }
-            let mut ev = Evaluator::new();
-            let placed = ev.evaluate(&scene).unwrap();
-            let d = Deviated::new(&mut ev, &scene, &placed).unwrap();
-            let radii = radius_count(&scene.gear.curve);
-            let samples = ToleranceSamples::new(&scene.tolerances, radii, 3).unwrap();
-            let outcomes = d.run(&mut ev, &samples);
+            let (mut ev, d, samples, outcomes) = run_samples(&scene, 3);
             for (i, o) in outcomes.iter().enumerate() {
                 let (r, assembly) = (&samples.radii[samples.variant(i)], &samples.assembly[i]);
                 let kin = d.variant(&mut ev, r, assembly[3]).unwrap();
@@ -863,12 +872,7 @@ mod tests {
         let t = &mut scene.tolerances;
         t.centre_distance_mm = Spread::Band(0.0);
         t.samples = 8;
-        let mut ev = Evaluator::new();
-        let placed = ev.evaluate(&scene).unwrap();
-        let deviated = Deviated::new(&mut ev, &scene, &placed).unwrap();
-        let radii = radius_count(&scene.gear.curve);
-        let samples = ToleranceSamples::new(&scene.tolerances, radii, 1).unwrap();
-        let outcomes = deviated.run(&mut ev, &samples);
+        let (mut ev, deviated, samples, outcomes) = run_samples(&scene, 1);
         for (i, o) in outcomes.iter().enumerate() {
             assert!(!o.refused, "sample {i} refused");
             let [_, phi0, beta0, gamma0, s, h1, tray_d, tray_n] = samples.assembly[i];
