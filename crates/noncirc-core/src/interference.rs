@@ -94,11 +94,11 @@ pub(crate) fn interference_clearance(kin: &Kinematics, agro: &Agronomy) -> f64 {
 /// Marks the nodes where `kin`'s clearance (for `agro`'s arm width) comes within
 /// `band_mm` of its least: a reassembly of `kin` whose arms and planet centres move by
 /// less than a quarter of the band has its least clearance at one of them. Nothing is
-/// marked where the least clearance is not a number.
+/// marked for a train without pairs, or whose first node's clearance is not finite.
 pub(crate) fn mark_nodes_near_least_clearance(kin: &mut Kinematics, agro: &Agronomy, band_mm: f64) {
     let scan = Scan::new(kin, agro);
     let mut least = scan.clearance(0);
-    if kin.arms() < 2 || !least.is_finite() {
+    if scan.arms < 2 || !least.is_finite() {
         return;
     }
     // One pass: the nodes within the band of the least so far (their clearances exact),
@@ -172,10 +172,10 @@ impl<'a> Scan<'a> {
     /// The clearance at node `j`: the least part; NaN only when every part is NaN
     /// (`f64::min` drops a NaN).
     fn clearance(&self, j: usize) -> f64 {
-        let kin = self.kin;
+        let (kin, arms) = (self.kin, self.arms);
         let seg = self.arm(j);
-        let others = (1..=kin.arms() / 2).map(|m| self.arms(&seg, &self.arm(kin.arm_node(m, j))));
-        let planets = (1..kin.arms()).map(|m| self.planet(&seg, self.centres[kin.arm_node(m, j)]));
+        let others = (1..=arms / 2).map(|m| self.arms(&seg, &self.arm(kin.arm_node(m, j))));
+        let planets = (1..arms).map(|m| self.planet(&seg, self.centres[kin.arm_node(m, j)]));
         others.chain(planets).fold(f64::NAN, f64::min)
     }
 
