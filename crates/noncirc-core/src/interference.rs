@@ -219,8 +219,15 @@ impl<'a> Scan<'a> {
         if self.arms < 2 {
             return None;
         }
-        let (mut j, mut least) = (0, self.clearance(0));
-        for k in 1..self.kin.len() {
+        self.least_over(0..self.kin.len())
+    }
+
+    /// As [`Scan::least`], over `nodes` (ascending) alone; `None` for no nodes.
+    #[inline(always)]
+    fn least_over(&self, mut nodes: impl Iterator<Item = usize>) -> Option<(usize, f64)> {
+        let first = nodes.next()?;
+        let (mut j, mut least) = (first, self.clearance(first));
+        for k in nodes {
             let c = self.below(k, least);
             if c < least || (least.is_nan() && c.is_finite()) {
                 (j, least) = (k, c);
@@ -250,13 +257,14 @@ impl<'a> Scan<'a> {
     /// about the carrier axis, and are 1-Lipschitz in the displacement δ of the arms and
     /// planet centres beyond that turn, so each node's is within 2δ of the marked
     /// train's: an unmarked node is then at or above least_s + band − 2δ, and the least is
-    /// at most least_s + 2δ, below it. `None` where that does not hold, or where a marked
-    /// node's clearance is not finite (the whole scan then decides).
+    /// at most least_s + 2δ, below it. A clearance that is not a number loses to any
+    /// number, as in the whole scan. `None` where the band is too narrow, or where no
+    /// marked node's clearance is finite (the whole scan then decides).
     fn confined(&self) -> Option<f64> {
         let marked = (self.kin.marked_nodes()).filter(|m| m.key == self.w)?;
         // Margins for the rounding of the displacement bound, the positions and the
         // distances.
-        let scale = 1.0 + self.s + self.rmax + self.centres.first()?.hypot();
+        let scale = 1.0 + self.s + self.rmax + self.centres.first()?.hypot2().sqrt();
         let delta = marked.displacement_mm * (1.0 + 1e-9) + 1e-9 * scale;
         // A NaN displacement fails the comparison too.
         let narrow = (4.0 * delta).partial_cmp(&marked.band_mm) != Some(Ordering::Less);
@@ -264,18 +272,8 @@ impl<'a> Scan<'a> {
             return None;
         }
         // As the whole scan, over the marked nodes.
-        let (&first, rest) = marked.nodes.split_first()?;
-        let (mut j, mut least) = (first, self.clearance(first));
-        if !least.is_finite() {
-            return None;
-        }
-        for &k in rest {
-            let c = self.below(k, least);
-            if c < least {
-                (j, least) = (k, c);
-            }
-        }
-        Some(self.refined(j, least))
+        let (j, least) = self.least_over(marked.nodes.iter().copied())?;
+        least.is_finite().then(|| self.refined(j, least))
     }
 }
 

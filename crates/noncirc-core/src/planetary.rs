@@ -571,6 +571,8 @@ struct Turn {
     arm: Vec2,
     /// Multiplies each planet centre: a turn and a scale, as a complex number.
     centre_factor: Vec2,
+    /// The source's planet centre at θ = 0 against its sun, `a1 + a2·e(γ0)` (mm).
+    src_reach: Vec2,
 }
 
 impl Turn {
@@ -590,6 +592,7 @@ impl Turn {
             planets,
             arm: unit(planets + beta0 - src.beta0),
             centre_factor: scale.rotated(unit(phi0 - src.phi0)),
+            src_reach,
         }
     }
 
@@ -601,11 +604,10 @@ impl Turn {
     /// every point of an arm by no more than the farther of its ends. A bound: the roots
     /// are taken plainly, their rounding far inside the margin its users keep.
     fn displacement_mm(&self, src: &Kinematics, s: f64) -> f64 {
-        let src_reach = Vec2::new(src.carrier_a[0], 0.0) + unit(src.gamma0) * src.carrier_a[1];
         let f = self.centre_factor;
         let size = f.hypot2().sqrt();
         let back = Vec2::new(f.x, -f.y) * (1.0 / size);
-        let centre_move = src_reach.hypot2().sqrt() * (size - 1.0).abs();
+        let centre_move = self.src_reach.hypot2().sqrt() * (size - 1.0).abs();
         let tip = self.arm.rotated(back) * s - Vec2::new(src.spec.arm_length_mm, 0.0);
         centre_move + tip.hypot2().sqrt()
     }
