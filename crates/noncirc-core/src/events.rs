@@ -14,7 +14,7 @@
 use crate::agronomy::Agronomy;
 use crate::angle::unit;
 use crate::curve::{parabola_vertex, TAU};
-use crate::planetary::{ArmState, Kinematics};
+use crate::planetary::{ArmState, Kinematics, MarkedWalks};
 use crate::vec2::Vec2;
 use serde::Serialize;
 
@@ -225,30 +225,88 @@ fn refine_extreme(kin: &Kinematics, dir: Vec2, j: usize, max: bool) -> (AtExtrem
 }
 
 /// The node of the largest `D·dir`, and the sub-sample value of the largest other local
-/// maximum (another branch), if the trajectory has one.
+/// maximum (another branch), if the trajectory has one: over every node, or over `marked`
+/// nodes alone (ascending) where every node that is a local maximum (or holds the largest
+/// value) is among them ([`walk_nodes`]), with the same result.
 ///
 /// One pass: one value per node, rolled through (previous, this, next), with neighbours by
 /// comparison, not `%` (an integer division per node cost more than the rest of the walk;
 /// this runs twice per evaluation). The local maxima are strict on the left, so no two are
 /// neighbours: at most two lie within one node of the best node (those that are its own
 /// peak), and the three highest local maxima hold the runner-up.
-fn extreme_and_runner_up(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
+fn extreme_and_runner_up(
+    tips: &[Vec2],
+    dir: Vec2,
+    marked: Option<&[usize]>,
+) -> (usize, Option<f64>) {
     let n = tips.len();
     if n == 0 {
         return (0, None);
     }
     let v = |j: usize| tips[j].dot(dir);
-    let (mut best, mut best_value) = (0, v(0));
-    // The three highest local maxima so far, highest first: (node, sub-sample value).
-    let mut peaks = [(usize::MAX, f64::NEG_INFINITY); 3];
-    let (mut m, mut c) = (v(n - 1), best_value);
-    for j in 0..n {
-        let p = v(if j + 1 == n { 0 } else { j + 1 });
-        if c > best_value {
-            (best, best_value) = (j, c);
+    let mut walk = Walk::starting_at(v(0));
+    match marked {
+        None => {
+            let (mut m, mut c) = (v(n - 1), v(0));
+            for j in 0..n {
+                let p = v(if j + 1 == n { 0 } else { j + 1 });
+                walk.node(j, m, c, p);
+                (m, c) = (c, p);
+            }
+        }
+        Some(nodes) => {
+            for &j in nodes {
+                let (prev, next) = (
+                    if j == 0 { n } else { j } - 1,
+                    if j + 1 == n { 0 } else { j + 1 },
+                );
+                walk.node(j, v(prev), v(j), v(next));
+            }
+        }
+    }
+    walk.best_and_runner_up(n)
+}
+
+/// The node of the highest tip, the last of equals: over every node, or over `marked`
+/// nodes alone (ascending) where every node that holds the largest height is among them
+/// ([`walk_nodes`]), with the same result.
+fn highest_node(tips: &[Vec2], marked: Option<&[usize]>) -> usize {
+    let higher = |&a: &usize, &b: &usize| tips[a].y.total_cmp(&tips[b].y);
+    match marked {
+        Some(nodes) => nodes.iter().copied().max_by(higher),
+        None => (0..tips.len()).max_by(higher),
+    }
+    .unwrap_or(0)
+}
+
+/// A walk for the largest value over the nodes, in node order: the best node so far
+/// (the first of equals) and the three highest local maxima, highest first, as
+/// `(node, sub-sample value)`.
+struct Walk {
+    best: usize,
+    best_value: f64,
+    peaks: [(usize, f64); 3],
+}
+
+impl Walk {
+    /// A walk that has seen node 0's value.
+    fn starting_at(first: f64) -> Self {
+        Self {
+            best: 0,
+            best_value: first,
+            peaks: [(usize::MAX, f64::NEG_INFINITY); 3],
+        }
+    }
+
+    /// Node `j`, its value `c` and its neighbours' `m` (before) and `p` (after).
+    #[inline(always)]
+    fn node(&mut self, j: usize, m: f64, c: f64, p: f64) {
+        if c > self.best_value {
+            (self.best, self.best_value) = (j, c);
         }
         if c > m && c >= p {
             let peak = (j, -parabola_vertex(-m, -c, -p));
+            let peaks = &mut self.peaks;
             if peak.1 > peaks[2].1 {
                 peaks[2] = peak;
                 if peaks[2].1 > peaks[1].1 {
@@ -259,18 +317,105 @@ fn extreme_and_runner_up(tips: &[Vec2], dir: Vec2) -> (usize, Option<f64>) {
                 }
             }
         }
-        (m, c) = (c, p);
     }
-    // The highest local maximum that is not the best node's own peak (within one node of
-    // it, around the turn).
-    let runner_up = (peaks.iter())
-        .filter(|(j, _)| *j != usize::MAX)
-        .find(|(j, _)| {
-            let d = j.abs_diff(best);
-            !(d <= 1 || d + 1 >= n)
-        })
-        .map(|&(_, value)| value);
-    (best, runner_up)
+
+    /// The best node, and the highest local maximum that is not the best node's own peak
+    /// (within one node of it, around the turn of `n` nodes).
+    fn best_and_runner_up(self, n: usize) -> (usize, Option<f64>) {
+        let best = self.best;
+        let runner_up = (self.peaks.iter())
+            .filter(|(j, _)| *j != usize::MAX)
+            .find(|(j, _)| {
+                let d = j.abs_diff(best);
+                !(d <= 1 || d + 1 >= n)
+            })
+            .map(|&(_, value)| value);
+        (best, runner_up)
+    }
+}
+
+/// The events' walks, by the direction they walk along.
+#[derive(Debug, Clone, Copy)]
+enum Along {
+    /// The tray's inward normal (picking).
+    Normal = 0,
+    /// Down (planting).
+    Down = 1,
+    /// Up (the highest point).
+    Up = 2,
+}
+
+/// Straight down and up.
+pub(crate) const DOWN: Vec2 = Vec2::new(0.0, -1.0);
+const UP: Vec2 = Vec2::new(0.0, 1.0);
+
+/// The nodes a walk of `kin`'s tips along `dir` may visit alone: those marked on the train
+/// it was reassembled from ([`mark_walk_nodes`]), where its displacement and the tilt of
+/// its direction (turned back by its turn) fit the marks. `None`: walk every node.
+///
+/// Why a walk over them finds what a walk over every node finds: the tips are the marked
+/// train's, turned by `turn`, within δ (the displacement). Along `dir`, a difference of
+/// two neighbours' values is then the marked train's along `dir'` (`dir` turned back)
+/// within 2δ, and that is the marked train's along its own direction within
+/// `|ΔD|·|dir' − dir₀|` (`ΔD` the step between the two tips). A node that is a local
+/// maximum here (or holds the largest value, or one equal to it) is at or above both its
+/// neighbours, so on the marked train it lies at most `2δ + |ΔD|·tilt` below either: the
+/// marks keep every such node, with `band ≥ 2δ` and `tilt ≥ |dir' − dir₀|`.
+fn walk_nodes(kin: &Kinematics, dir: Vec2, along: Along) -> Option<&[usize]> {
+    let marks = kin.marks()?;
+    let walks = marks.walks.as_deref()?;
+    let marked_dir = [walks.normal, DOWN, UP][along as usize];
+    let back = Vec2::new(marks.turn.x, -marks.turn.y);
+    let tilt = (dir.rotated(back) - marked_dir).hypot2().sqrt();
+    // A NaN displacement or tilt fails the comparisons too.
+    let fits = 2.0 * marks.displacement_mm * (1.0 + 1e-9) <= walks.band_mm && tilt <= walks.tilt;
+    walks.nodes[along as usize].as_deref().filter(|_| fits)
+}
+
+/// Marks on `kin` the nodes its reassemblies' walks along the tray's inward `normal`,
+/// down and up may visit alone ([`walk_nodes`]): those reassemblies that move their arms
+/// by at most half of `band_mm` beyond a turn of the whole train, and whose walk
+/// directions, turned back by that turn, lie within `tilt` of these. A node is marked
+/// where its value along the direction lies at most `band_mm + |ΔD|·tilt` (and a margin
+/// for rounding) below each neighbour's, `|ΔD|` taken as `|Δx| + |Δy|` (no root), at or
+/// above the step's length. Nothing is marked where a tip is not finite, nor for a walk
+/// that would visit more than a third of the nodes.
+pub(crate) fn mark_walk_nodes(kin: &mut Kinematics, normal: Vec2, band_mm: f64, tilt: f64) {
+    let tips = kin.tips();
+    let n = tips.len();
+    if n < 3 || !tips.iter().all(|t| t.is_finite()) {
+        return;
+    }
+    let size = tips.iter().map(|t| t.hypot2()).fold(0.0, f64::max).sqrt();
+    let band = band_mm + 1e-9 * (1.0 + size);
+    // The step from each node to the next, its rise along each direction, and how far it
+    // may fall (or rise) within the slack.
+    let step = |j: usize| {
+        let d = tips[if j + 1 == n { 0 } else { j + 1 }] - tips[j];
+        let slack = band + (d.x.abs() + d.y.abs()) * tilt;
+        ([d.dot(normal), -d.y, d.y], slack)
+    };
+    let mut nodes: [Vec<usize>; 3] = Default::default();
+    // Whether the step into node j (from j − 1) falls by at most the slack, per direction.
+    let (rise, slack) = step(n - 1);
+    let mut from_below = rise.map(|r| r >= -slack);
+    for j in 0..n {
+        let (rise, slack) = step(j);
+        for (k, marked) in nodes.iter_mut().enumerate() {
+            // Node j is at most the slack below the node before and the node after.
+            if from_below[k] && rise[k] <= slack {
+                marked.push(j);
+            }
+            from_below[k] = rise[k] >= -slack;
+        }
+    }
+    // A marked node costs three values, where the whole walk takes one a node.
+    kin.mark_walks(MarkedWalks {
+        normal,
+        nodes: nodes.map(|nodes| (nodes.len() <= n / 3).then_some(nodes)),
+        band_mm,
+        tilt,
+    });
 }
 
 /// The housing's radius about the carrier axis (mm): the disc the gearbox sweeps (the
@@ -306,7 +451,8 @@ impl Picking {
     /// by Newton on the arm's state.
     pub(crate) fn locate(kin: &Kinematics, agro: &Agronomy) -> Self {
         let normal = unit(agro.tray_normal_deg.to_radians());
-        let (node, runner_up) = extreme_and_runner_up(kin.tips(), normal);
+        let marked = walk_nodes(kin, normal, Along::Normal);
+        let (node, runner_up) = extreme_and_runner_up(kin.tips(), normal, marked);
         let (picked, depth) = refine_extreme(kin, normal, node, true);
         Self {
             normal,
@@ -332,14 +478,12 @@ impl Picking {
             depth,
         } = self;
         let tips = kin.tips();
-        let down = Vec2::new(0.0, -1.0);
-        let (jl, planting_runner_up) = extreme_and_runner_up(tips, down);
-        let (planted, neg_low) = refine_extreme(kin, down, jl, true);
+        let marked = walk_nodes(kin, DOWN, Along::Down);
+        let (jl, planting_runner_up) = extreme_and_runner_up(tips, DOWN, marked);
+        let (planted, neg_low) = refine_extreme(kin, DOWN, jl, true);
         // The highest node (no runner-up needed: no event hangs on it).
-        let jh = (0..tips.len())
-            .max_by(|&a, &b| tips[a].y.total_cmp(&tips[b].y))
-            .unwrap_or(0);
-        let (_, y_max) = refine_extreme(kin, Vec2::new(0.0, 1.0), jh, true);
+        let jh = highest_node(tips, walk_nodes(kin, UP, Along::Up));
+        let (_, y_max) = refine_extreme(kin, UP, jh, true);
         let event = |s: &AtExtreme| Event {
             carrier_rad: s.theta.rem_euclid(TAU),
             tip_mm: s.tip,
@@ -482,7 +626,7 @@ mod tests {
                 .collect();
             let dir = unit(angle);
             proptest::prop_assert_eq!(
-                extreme_and_runner_up(&tips, dir),
+                extreme_and_runner_up(&tips, dir, None),
                 runner_up_by_definition(&tips, dir)
             );
         }
@@ -493,7 +637,7 @@ mod tests {
         // Two bumps along x: the larger at node 2, the smaller (a branch) at node 7.
         let xs = [0.0, 2.0, 5.0, 2.0, 0.0, 0.0, 1.0, 3.0, 2.0, 0.0];
         let tips: Vec<Vec2> = xs.iter().map(|&x| Vec2::new(x, 0.0)).collect();
-        let (best, runner) = extreme_and_runner_up(&tips, Vec2::new(1.0, 0.0));
+        let (best, runner) = extreme_and_runner_up(&tips, Vec2::new(1.0, 0.0), None);
         assert_eq!(best, 2);
         assert_eq!(runner, Some(-parabola_vertex(-1.0, -3.0, -2.0)));
         assert!(runner.unwrap() > 3.0);
@@ -502,6 +646,134 @@ mod tests {
             .iter()
             .map(|&x| Vec2::new(x, 0.0))
             .collect();
-        assert_eq!(extreme_and_runner_up(&tips, Vec2::new(1.0, 0.0)), (2, None));
+        assert_eq!(
+            extreme_and_runner_up(&tips, Vec2::new(1.0, 0.0), None),
+            (2, None)
+        );
+    }
+    /// A train reassembled from one whose walks are marked walks the marked nodes alone
+    /// and finds what the walk over every node finds, bit for bit (the best node, the
+    /// runner-up, the highest node, and so every event): on three designs, for random
+    /// reassemblies (Φ0 and β0 moved by up to 0.2° or 12°, S and H1 by up to 0.4 mm, the
+    /// bore by 0.04 mm) with the tray's normal turned by up to 0.5° or 30°, and for a
+    /// reassembly of a reassembly (the displacements add, the turns compose). A band or
+    /// tilt too small for the move is refused, so every node is walked. (Accepting every
+    /// band and tilt, with some below the move, fails this test.)
+    #[test]
+    fn marked_walks_find_what_the_whole_walks_find_bit_for_bit() {
+        use proptest::prelude::*;
+        use proptest::test_runner::{Config, TestRunner};
+        use std::cell::Cell;
+        let curve = crate::CurveSpec::paper().build().unwrap();
+        let res = crate::Resolution::DEFAULT;
+        let (confined, refused) = (Cell::new(0), Cell::new(0));
+        let mut runner = TestRunner::new(Config::with_cases(160));
+        let deviation = (
+            -1.0..1.0f64,
+            -1.0..1.0f64,
+            -1.0..1.0f64,
+            -1.0..1.0f64,
+            -1.0..1.0f64,
+        );
+        let cases = (
+            0..3usize,
+            deviation,
+            -1.0..1.0f64,
+            // Bands and tilts that fit the move, and (one case in four each) far too small.
+            prop_oneof![
+                2 => (1.0..6.0f64, 1.0..3.0f64),
+                1 => (0.0..0.2f64, 0.0..3.0f64),
+                1 => (1.0..6.0f64, 0.0..0.2f64),
+            ],
+            prop_oneof![Just(1.0), Just(60.0)],
+        );
+        runner
+            .run(
+                &cases,
+                |(design, (dphi, dbeta, ds, dh, da), dtray, (band_factor, tilt_factor), size)| {
+                    let (beta0, gamma0) = [(-29.0, -53.0), (40.0, -20.0), (0.0, 60.0)][design];
+                    let spec = crate::TrainSpec {
+                        beta0_deg: beta0,
+                        gamma0_deg: gamma0,
+                        ..Default::default()
+                    };
+                    let agro = Agronomy::default();
+                    let mut source = Kinematics::solve(&curve, None, &spec, &res).unwrap();
+                    let moved = crate::TrainSpec {
+                        phi0_deg: spec.phi0_deg + 0.2 * size * dphi,
+                        beta0_deg: beta0 + 0.2 * size * dbeta,
+                        arm_length_mm: spec.arm_length_mm + 0.4 * ds,
+                        pusher_offset_mm: spec.pusher_offset_mm + 0.4 * dh,
+                        ..spec
+                    };
+                    let (offset, again) = (
+                        0.04 * da,
+                        crate::TrainSpec {
+                            phi0_deg: moved.phi0_deg + 0.1,
+                            beta0_deg: moved.beta0_deg - 0.1,
+                            ..moved
+                        },
+                    );
+                    // The sample's tray normal, turned against the marked one.
+                    let tray = Agronomy {
+                        tray_normal_deg: agro.tray_normal_deg + 0.5 * size * dtray,
+                        ..agro
+                    };
+                    let normal = unit(agro.tray_normal_deg.to_radians());
+                    let own_normal = unit(tray.tray_normal_deg.to_radians());
+                    // The whole walks, on the same positions unmarked.
+                    let unmarked = source.clone();
+                    let first_whole = unmarked.reassembled(&moved, offset).unwrap();
+                    let second_whole = first_whole.reassembled(&again, 0.0).unwrap();
+                    // Marked for the first reassembly's move and tilt, times the factors.
+                    let delta = source.displacement_to(&moved, offset);
+                    let turn = source.whole_turn_to(&moved, offset);
+                    let back = |d: Vec2| d.rotated(Vec2::new(turn.x, -turn.y));
+                    let tilt = (back(own_normal) - normal)
+                        .hypot2()
+                        .sqrt()
+                        .max((back(DOWN) - DOWN).hypot2().sqrt());
+                    mark_walk_nodes(
+                        &mut source,
+                        normal,
+                        band_factor * 2.0 * delta,
+                        tilt_factor * tilt,
+                    );
+                    let first = source.reassembled(&moved, offset).unwrap();
+                    let second = first.reassembled(&again, 0.0).unwrap();
+                    for (kin, whole) in [(&first, &first_whole), (&second, &second_whole)] {
+                        prop_assert!(whole.marks().is_none());
+                        let tips = kin.tips();
+                        prop_assert_eq!(tips, whole.tips());
+                        for (dir, along) in [(own_normal, Along::Normal), (DOWN, Along::Down)] {
+                            let marked = walk_nodes(kin, dir, along);
+                            let (best, runner_up) = extreme_and_runner_up(tips, dir, marked);
+                            let (all_best, all_runner_up) = extreme_and_runner_up(tips, dir, None);
+                            prop_assert_eq!(best, all_best);
+                            prop_assert_eq!(
+                                runner_up.map(f64::to_bits),
+                                all_runner_up.map(f64::to_bits)
+                            );
+                            match marked {
+                                Some(nodes) => {
+                                    prop_assert!(nodes.len() <= kin.len() / 3);
+                                    confined.set(confined.get() + 1);
+                                }
+                                None => refused.set(refused.get() + 1),
+                            }
+                        }
+                        let up = walk_nodes(kin, UP, Along::Up);
+                        prop_assert_eq!(highest_node(tips, up), highest_node(tips, None));
+                        prop_assert_eq!(
+                            format!("{:?}", events(kin, &tray)),
+                            format!("{:?}", events(whole, &tray))
+                        );
+                    }
+                    Ok(())
+                },
+            )
+            .unwrap();
+        let counts = (confined.get(), refused.get());
+        assert!(counts.0 > 50 && counts.1 > 100, "{counts:?}");
     }
 }

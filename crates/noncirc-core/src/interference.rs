@@ -261,11 +261,12 @@ impl<'a> Scan<'a> {
     /// number, as in the whole scan. `None` where the band is too narrow, or where no
     /// marked node's clearance is finite (the whole scan then decides).
     fn confined(&self) -> Option<f64> {
-        let marked = (self.kin.marked_nodes()).filter(|m| m.key == self.w)?;
+        let marks = self.kin.marks()?;
+        let marked = (marks.clearance.as_ref()).filter(|m| m.key == self.w)?;
         // Margins for the rounding of the displacement bound, the positions and the
         // distances.
         let scale = 1.0 + self.s + self.rmax + self.centres.first()?.hypot2().sqrt();
-        let delta = marked.displacement_mm * (1.0 + 1e-9) + 1e-9 * scale;
+        let delta = marks.displacement_mm * (1.0 + 1e-9) + 1e-9 * scale;
         // A NaN displacement fails the comparison too.
         let narrow = (4.0 * delta).partial_cmp(&marked.band_mm) != Some(Ordering::Less);
         if narrow || self.arms < 2 {
@@ -447,7 +448,7 @@ mod tests {
                     let first = source.reassembled(&moved, offset).unwrap();
                     let second = first.reassembled(&again, 0.0).unwrap();
                     for (kin, value) in [(&first, once), (&second, twice)] {
-                        let m = kin.marked_nodes().unwrap();
+                        let (m, marks) = (kin.marked_nodes().unwrap(), kin.marks().unwrap());
                         let scan = Scan::new(kin, &agro);
                         match scan.confined() {
                             Some(v) => {
@@ -456,7 +457,7 @@ mod tests {
                                 interfering.set(interfering.get() + usize::from(v < 0.0));
                             }
                             None => {
-                                prop_assert!(4.0 * m.displacement_mm >= 0.999_999 * m.band_mm);
+                                prop_assert!(4.0 * marks.displacement_mm >= 0.999_999 * m.band_mm);
                                 refused.set(refused.get() + 1);
                             }
                         }

@@ -525,16 +525,46 @@ pub struct Kinematics {
     /// Nodes by which each arm lags the one before it (`n / arms`): arm indices by a
     /// multiplication, not an integer division per use.
     nodes_per_arm: usize,
-    /// Nodes that a scan of this train may be confined to, marked on it or on the train it
-    /// was reassembled from ([`Kinematics::mark_nodes`]).
-    marked: Option<MarkedNodes>,
+    /// Nodes that scans of this train may be confined to, marked on it or on the train it
+    /// was reassembled from ([`Kinematics::mark_nodes`], [`Kinematics::mark_walks`]).
+    marks: Option<Marks>,
+}
+
+/// What scans of a train may be confined to: nodes marked on it or on the train it was
+/// reassembled from, and how this train lies against that one. The marked train's arms,
+/// turned by `turn` about the carrier axis, lie within `displacement_mm` of this train's
+/// at every node.
+#[derive(Debug, Clone)]
+pub(crate) struct Marks {
+    /// Nodes near the least clearance, for the interference scan.
+    pub(crate) clearance: Option<MarkedNodes>,
+    /// Nodes where the events' walks may find their extremes.
+    pub(crate) walks: Option<Arc<MarkedWalks>>,
+    /// At most how far any point of an arm, or a planet centre, of this train lies from
+    /// the marked train's at the same node turned by `turn` (mm).
+    pub(crate) displacement_mm: f64,
+    /// The turn about the carrier axis (a unit complex number) from the marked train's
+    /// planet centres to this train's: a turn of the whole train, which moves no distance
+    /// between its parts.
+    pub(crate) turn: Vec2,
+}
+
+impl Marks {
+    /// No marks yet, on the marked train itself.
+    fn on_itself() -> Self {
+        Self {
+            clearance: None,
+            walks: None,
+            displacement_mm: 0.0,
+            turn: Vec2::new(1.0, 0.0),
+        }
+    }
 }
 
 /// Nodes of a train marked for a scan over the turn (where a least value over the nodes
-/// comes within a band of its least), and how far the arms of a reassembly of that
-/// train have moved from it. Where the scanned value moves with the arms and planet
-/// centres by at most their own displacement, a reassembly whose displacement is small
-/// against the band has its least value at one of these nodes.
+/// comes within a band of its least). Where the scanned value moves with the arms and
+/// planet centres by at most their own displacement, a reassembly whose displacement is
+/// small against the band has its least value at one of these nodes.
 #[derive(Debug, Clone)]
 pub(crate) struct MarkedNodes {
     /// The nodes, ascending.
@@ -544,10 +574,24 @@ pub(crate) struct MarkedNodes {
     pub(crate) key: f64,
     /// How far above the marked train's least value the marked nodes reach (mm).
     pub(crate) band_mm: f64,
-    /// At most how far any point of an arm, or a planet centre, of this train lies from
-    /// the marked train's at the same node (mm), once this train is turned as a whole
-    /// about the carrier axis (a turn that moves no distance between its parts).
-    pub(crate) displacement_mm: f64,
+}
+
+/// Nodes of a train marked for the events' walks along three directions: the nodes where
+/// a reassembly's tip path may have a local maximum along the direction (or its largest
+/// value), so that its walk may visit them alone.
+#[derive(Debug)]
+pub(crate) struct MarkedWalks {
+    /// The tray's inward normal the first walk was marked for (unit).
+    pub(crate) normal: Vec2,
+    /// Per walk (along the normal, down, up), the nodes, ascending; none where so many
+    /// are marked that a walk over every node costs less.
+    pub(crate) nodes: [Option<Vec<usize>>; 3],
+    /// How far below each neighbour's value a node's may lie and still be marked, beyond
+    /// the tilt's share (mm): twice the displacement a reassembly may have.
+    pub(crate) band_mm: f64,
+    /// How far a reassembly's walk direction, turned back by its turn, may lie from the
+    /// marked one (the length of their difference, both unit vectors).
+    pub(crate) tilt: f64,
 }
 
 /// The planet orientation's constant part for `spec` (rad): the sun's turn in the ground
@@ -603,6 +647,12 @@ impl Turn {
     /// by that and |e·(f/|f|)*·S − S_src| more (the arm direction a unit vector), and
     /// every point of an arm by no more than the farther of its ends. A bound: the roots
     /// are taken plainly, their rounding far inside the margin its users keep.
+    /// The whole train's turn about the carrier axis: the planet centres' (a unit
+    /// complex number).
+    fn unit(&self) -> Vec2 {
+        self.centre_factor * (1.0 / self.centre_factor.hypot2().sqrt())
+    }
+
     fn displacement_mm(&self, src: &Kinematics, s: f64) -> f64 {
         let f = self.centre_factor;
         let size = f.hypot2().sqrt();
@@ -709,32 +759,72 @@ impl Kinematics {
     /// a reassembly that does not keep the carrier's `γ0` and the number of arms (its arms
     /// then lie elsewhere altogether).
     pub(crate) fn displacement_to(&self, spec: &TrainSpec, centre_offset_mm: f64) -> f64 {
+        self.turn_to(spec, centre_offset_mm)
+            .map_or(f64::INFINITY, |t| {
+                t.displacement_mm(self, spec.arm_length_mm)
+            })
+    }
+
+    /// The turn of the whole train about the carrier axis (a unit complex number) from
+    /// this train to its [reassembly](Kinematics::reassembled) for `spec` with
+    /// `centre_offset_mm`, beyond which it moves by [`Kinematics::displacement_to`]; the
+    /// identity where that is +∞.
+    pub(crate) fn whole_turn_to(&self, spec: &TrainSpec, centre_offset_mm: f64) -> Vec2 {
+        self.turn_to(spec, centre_offset_mm)
+            .map_or(Vec2::new(1.0, 0.0), |t| t.unit())
+    }
+
+    /// The turn to the reassembly for `spec`, where it keeps the carrier's `γ0` and the
+    /// number of arms.
+    fn turn_to(&self, spec: &TrainSpec, centre_offset_mm: f64) -> Option<Turn> {
         let same = spec.gamma0_deg == self.spec.gamma0_deg && spec.arms == self.spec.arms;
         if !(same && self.reassembles_for(spec)) {
-            return f64::INFINITY;
+            return None;
         }
         let [a1, a2] = self.centre_distances();
         let carrier_a = [a1 + centre_offset_mm, a2 + centre_offset_mm];
         let angles = [spec.phi0_deg.to_radians(), spec.beta0_deg.to_radians()];
         let base = planet_base(self.gears.second.is_some(), spec);
-        Turn::between(self, base, carrier_a, angles).displacement_mm(self, spec.arm_length_mm)
+        Some(Turn::between(self, base, carrier_a, angles))
     }
 
     /// Marks `nodes` (ascending) for a scan whose parameter is `key`, reaching `band_mm`
     /// above this train's least value: every reassembly of this train keeps them
     /// ([`MarkedNodes`]).
     pub(crate) fn mark_nodes(&mut self, nodes: Vec<usize>, key: f64, band_mm: f64) {
-        self.marked = Some(MarkedNodes {
+        self.marks_on_itself().clearance = Some(MarkedNodes {
             nodes: nodes.into(),
             key,
             band_mm,
-            displacement_mm: 0.0,
         });
     }
 
-    /// The nodes marked on this train or on the one it was reassembled from.
+    /// Marks `walks` for the events' walks: every reassembly of this train keeps them.
+    pub(crate) fn mark_walks(&mut self, walks: MarkedWalks) {
+        self.marks_on_itself().walks = Some(Arc::new(walks));
+    }
+
+    /// This train's marks, made on itself: those carried from a train it was reassembled
+    /// from are dropped first.
+    fn marks_on_itself(&mut self) -> &mut Marks {
+        let own = (self.marks.as_ref())
+            .is_some_and(|m| m.displacement_mm == 0.0 && m.turn == Vec2::new(1.0, 0.0));
+        if !own {
+            self.marks = None;
+        }
+        self.marks.get_or_insert_with(Marks::on_itself)
+    }
+
+    /// The marks made on this train or on the one it was reassembled from.
+    pub(crate) fn marks(&self) -> Option<&Marks> {
+        self.marks.as_ref()
+    }
+
+    /// The nodes marked for the interference on this train or on the one it was
+    /// reassembled from.
+    #[cfg(test)]
     pub(crate) fn marked_nodes(&self) -> Option<&MarkedNodes> {
-        self.marked.as_ref()
+        self.marks.as_ref()?.clearance.as_ref()
     }
 
     /// The sun's pair keeps its grid under `spec`.
@@ -792,20 +882,21 @@ impl Kinematics {
             tip: vec![Vec2::ZERO; n],
             arm_dir: vec![Vec2::ZERO; n],
             nodes_per_arm: n / spec.arms,
-            marked: None,
+            marks: None,
         };
         // The arms' turn relative to `same_carrier`'s: θ3 moves with the planets' base
         // angle, the arm with β0 on top, the planet centres by one factor (each node on
         // its own, no rotation carried from node to node).
         let turn = same_carrier
             .map(|src| Turn::between(src, kin.planet_base, kin.carrier_a, [kin.phi0, beta0]));
-        // A reassembly keeps its source's marked nodes (the same arms on the same nodes),
-        // adding its own displacement to theirs.
-        kin.marked = same_carrier
+        // A reassembly keeps its source's marks (the same arms on the same nodes), adding
+        // its own displacement and turn to theirs.
+        kin.marks = same_carrier
             .filter(|src| src.spec.arms == spec.arms)
-            .and_then(|src| Some((src, src.marked.clone()?, turn?)))
-            .map(|(src, m, t)| MarkedNodes {
+            .and_then(|src| Some((src, src.marks.clone()?, turn?)))
+            .map(|(src, m, t)| Marks {
                 displacement_mm: m.displacement_mm + t.displacement_mm(src, spec.arm_length_mm),
+                turn: t.unit().rotated(m.turn),
                 ..m
             });
         kin.planet_lag = match (same_carrier, &kin.gears.second) {

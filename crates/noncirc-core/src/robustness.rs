@@ -9,17 +9,20 @@
 //! surface, as a machine's tray is bolted where the drawing says, with pots twice the
 //! tray depth deep (the tip may then reach one tray depth less or more than drawn).
 
+use crate::angle::unit;
 use crate::constraint::requirements;
 use crate::curve::{CurveSpec, TAU};
 use crate::error::{Error, Result};
 use crate::evaluation::Evaluation;
 use crate::evaluator::Evaluator;
+use crate::events::{mark_walk_nodes, DOWN};
 use crate::interference::mark_nodes_near_least_clearance;
 use crate::objective_kind::{scale, ObjectiveKind};
 use crate::planetary::{Kinematics, TrainSpec};
 use crate::resolution::Resolution;
 use crate::scene::{Scene, SceneKind};
 use crate::tolerance::{Tolerances, ASSEMBLY};
+use crate::vec2::Vec2;
 use serde::Serialize;
 
 /// A picking or planting instant that moves further than this (rad, 10°) under the
@@ -316,28 +319,39 @@ impl Deviated {
         train
     }
 
-    /// Marks on a set of machined parts' train `kin` the nodes where its arms come
-    /// closest, for its samples (`samples`' indices) to scan alone: the band is four
-    /// times the farthest any of them moves the arms, and a little more.
+    /// Marks on a set of machined parts' train `kin`, for its samples (`samples`'
+    /// indices) to scan alone, the nodes where its arms come closest (the band four times
+    /// the farthest any of them moves the arms, and a little more), and the nodes where
+    /// their walks may find the events' extremes (the band twice that, the tilt the
+    /// largest of their turns and tray normals against the set's, each a little more).
     fn mark_for_samples(
         &self,
         kin: &mut Kinematics,
         samples: &ToleranceSamples,
         indices: impl Iterator<Item = usize>,
     ) {
-        if !self.fixed.objectives.contains(&ObjectiveKind::Interference) {
+        let normal_deg = self.fixed.agronomy.tray_normal_deg;
+        let normal = unit(normal_deg.to_radians());
+        let (mut farthest, mut tilt) = (0.0f64, 0.0f64);
+        for i in indices {
+            let assembly = &samples.assembly[i];
+            let [da, .., tray_n] = *assembly;
+            let train = self.deviated_train(assembly);
+            farthest = farthest.max(kin.displacement_to(&train, da));
+            let turn = kin.whole_turn_to(&train, da);
+            let back = |d: Vec2| d.rotated(Vec2::new(turn.x, -turn.y));
+            let own_normal = unit((normal_deg + tray_n).to_radians());
+            let tilts =
+                [(own_normal, normal), (DOWN, DOWN)].map(|(d, d0)| (back(d) - d0).hypot2().sqrt());
+            tilt = tilt.max(tilts[0]).max(tilts[1]);
+        }
+        if !farthest.is_finite() {
             return;
         }
-        let farthest = indices
-            .map(|i| {
-                let assembly = &samples.assembly[i];
-                kin.displacement_to(&self.deviated_train(assembly), assembly[0])
-            })
-            .fold(0.0, f64::max);
-        if farthest.is_finite() {
-            let band = 4.04 * farthest + 1e-3;
-            mark_nodes_near_least_clearance(kin, &self.fixed.agronomy, band);
+        if self.fixed.objectives.contains(&ObjectiveKind::Interference) {
+            mark_nodes_near_least_clearance(kin, &self.fixed.agronomy, 4.04 * farthest + 1e-3);
         }
+        mark_walk_nodes(kin, normal, 2.02 * farthest + 1e-3, 1.01 * tilt + 1e-9);
     }
 
     /// The outcome of an evaluation (or of the model's refusal) of a deviated design.
@@ -826,10 +840,11 @@ mod tests {
 
     #[test]
     fn marked_nodes_leave_every_samples_outcome_bit_for_bit() {
-        // `run` marks each set's nodes near its least clearance, and its samples scan those
-        // alone; each sample assembled on the set's unmarked train scans every node. The
-        // paper's design and one whose arms interfere, with the tolerances as given and
-        // thirty times wider (the band then holds 78–93 of the 120 nodes, not 17–19).
+        // `run` marks each set's nodes near its least clearance and where its walks may find
+        // the events' extremes, and its samples scan and walk those alone; each sample
+        // assembled on the set's unmarked train scans and walks every node. The paper's
+        // design and one whose arms interfere, with the tolerances as given and thirty
+        // times wider (the clearance's band then holds 78–93 of the 120 nodes, not 17–19).
         let paper = Scene::default();
         // β0 = 40° and 60 mm wide arms: the clearance is −2.13 mm.
         let mut interfering = Scene::default();
@@ -843,6 +858,7 @@ mod tests {
                 &mut t.phi0_deg,
                 &mut t.beta0_deg,
                 &mut t.arm_length_mm,
+                &mut t.tray_normal_deg,
             ] {
                 *s = match *s {
                     Spread::Band(h) => Spread::Band(h * widen),
@@ -850,13 +866,29 @@ mod tests {
                 };
             }
             let (mut ev, d, samples, outcomes) = run_samples(&scene, 3);
+            // What `run` marks on the first set: few of the nodes for each walk.
+            let mut marked = d
+                .variant(&mut ev, &samples.radii[0], samples.assembly[0][3])
+                .unwrap();
+            let indices = (0..samples.len()).step_by(samples.radii.len());
+            d.mark_for_samples(&mut marked, &samples, indices);
+            let walks = marked.marks().unwrap().walks.as_ref().unwrap();
+            let few = |w: &Option<Vec<usize>>| w.as_ref().is_some_and(|w| w.len() < 30);
+            assert!(
+                widen > 1.0 || walks.nodes.iter().all(few),
+                "{:?}",
+                walks.nodes
+            );
             for (i, o) in outcomes.iter().enumerate() {
                 let (r, assembly) = (&samples.radii[samples.variant(i)], &samples.assembly[i]);
                 let kin = d.variant(&mut ev, r, assembly[3]).unwrap();
                 assert!(kin.marked_nodes().is_none());
                 let whole = d.outcome(d.assembled(&mut ev, &kin, r, assembly));
-                let bits =
-                    |o: &SampleOutcome| o.margins.iter().map(|m| m.to_bits()).collect::<Vec<_>>();
+                let bits = |o: &SampleOutcome| {
+                    let margins: Vec<u64> = o.margins.iter().map(|m| m.to_bits()).collect();
+                    let least = o.least_normalised_margin.to_bits();
+                    (margins, least, o.met, o.picking_switch, o.planting_switch)
+                };
                 assert_eq!(bits(o), bits(&whole), "sample {i}, tolerances ×{widen}");
             }
         }
