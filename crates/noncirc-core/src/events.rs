@@ -699,21 +699,9 @@ mod tests {
                     };
                     let agro = Agronomy::default();
                     let mut source = Kinematics::solve(&curve, None, &spec, &res).unwrap();
-                    let moved = crate::TrainSpec {
-                        phi0_deg: spec.phi0_deg + 0.2 * size * dphi,
-                        beta0_deg: beta0 + 0.2 * size * dbeta,
-                        arm_length_mm: spec.arm_length_mm + 0.4 * ds,
-                        pusher_offset_mm: spec.pusher_offset_mm + 0.4 * dh,
-                        ..spec
-                    };
-                    let (offset, again) = (
-                        0.04 * da,
-                        crate::TrainSpec {
-                            phi0_deg: moved.phi0_deg + 0.1,
-                            beta0_deg: moved.beta0_deg - 0.1,
-                            ..moved
-                        },
-                    );
+                    let [moved, again] =
+                        crate::planetary::moved_for_tests(&spec, [dphi, dbeta, ds, dh], size);
+                    let offset = 0.04 * da;
                     // The sample's tray normal, turned against the marked one.
                     let tray = Agronomy {
                         tray_normal_deg: agro.tray_normal_deg + 0.5 * size * dtray,

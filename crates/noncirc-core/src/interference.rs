@@ -417,20 +417,9 @@ mod tests {
                         [(-29.0, -53.0, 12.0), (40.0, -20.0, 40.0), (0.0, 60.0, 2.0)][design];
                     let (spec, agro) = train(arms, beta0, gamma0, width);
                     let mut source = Kinematics::solve(&curve, None, &spec, &res).unwrap();
-                    let moved = crate::TrainSpec {
-                        phi0_deg: spec.phi0_deg + 0.2 * size * dphi,
-                        beta0_deg: beta0 + 0.2 * size * dbeta,
-                        arm_length_mm: spec.arm_length_mm + 0.4 * ds,
-                        pusher_offset_mm: spec.pusher_offset_mm + 0.4 * dh,
-                        ..spec
-                    };
-                    let (offset, again) = (
-                        0.04 * da,
-                        crate::TrainSpec {
-                            beta0_deg: moved.beta0_deg - 0.1,
-                            ..moved
-                        },
-                    );
+                    let [moved, again] =
+                        crate::planetary::moved_for_tests(&spec, [dphi, dbeta, ds, dh], size);
+                    let offset = 0.04 * da;
                     // The whole scan, on the same positions unmarked.
                     let whole = |spec: &crate::TrainSpec, offset: f64, from: &Kinematics| {
                         let kin = from.reassembled(spec, offset).unwrap();

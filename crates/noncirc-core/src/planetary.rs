@@ -95,6 +95,27 @@ impl Default for TrainSpec {
 /// The arms' names, in order: arm k lags arm I by k·360°/arms.
 pub const ARM_NAMES: [&str; TrainSpec::MAX_ARMS] = ["I", "II", "III", "IV"];
 
+/// Moves for the tests of reassembled trains: the train moved by `d` (each in [-1, 1]):
+/// Φ0 and β0 by up to 0.2°·`size`, S and H1 by up to 0.4 mm; and that train moved again
+/// (Φ0 by +0.1°, β0 by −0.1°), a reassembly of a reassembly.
+#[cfg(test)]
+pub(crate) fn moved_for_tests(spec: &TrainSpec, d: [f64; 4], size: f64) -> [TrainSpec; 2] {
+    let [dphi, dbeta, ds, dh] = d;
+    let moved = TrainSpec {
+        phi0_deg: spec.phi0_deg + 0.2 * size * dphi,
+        beta0_deg: spec.beta0_deg + 0.2 * size * dbeta,
+        arm_length_mm: spec.arm_length_mm + 0.4 * ds,
+        pusher_offset_mm: spec.pusher_offset_mm + 0.4 * dh,
+        ..*spec
+    };
+    let again = TrainSpec {
+        phi0_deg: moved.phi0_deg + 0.1,
+        beta0_deg: moved.beta0_deg - 0.1,
+        ..moved
+    };
+    [moved, again]
+}
+
 impl TrainSpec {
     /// Most arm sets on a carrier.
     pub const MAX_ARMS: usize = 4;
