@@ -668,13 +668,7 @@ mod tests {
         let res = crate::Resolution::DEFAULT;
         let (confined, refused) = (Cell::new(0), Cell::new(0));
         let mut runner = TestRunner::new(Config::with_cases(160));
-        let deviation = (
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-        );
+        let deviation = proptest::array::uniform5(-1.0..1.0f64);
         let cases = (
             0..3usize,
             deviation,
@@ -690,7 +684,7 @@ mod tests {
         runner
             .run(
                 &cases,
-                |(design, (dphi, dbeta, ds, dh, da), dtray, (band_factor, tilt_factor), size)| {
+                |(design, [dphi, dbeta, ds, dh, da], dtray, (band_factor, tilt_factor), size)| {
                     let (beta0, gamma0) = [(-29.0, -53.0), (40.0, -20.0), (0.0, 60.0)][design];
                     let spec = crate::TrainSpec {
                         beta0_deg: beta0,

@@ -394,13 +394,7 @@ mod tests {
         let (confined, interfering, refused) = (Cell::new(0), Cell::new(0), Cell::new(0));
         use std::cell::Cell;
         let mut runner = TestRunner::new(Config::with_cases(64));
-        let deviation = (
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-        );
+        let deviation = proptest::array::uniform5(-1.0..1.0f64);
         // Tolerance-sized moves, and moves of tens of degrees (the least node moves far).
         let cases = (
             2..=4usize,
@@ -412,7 +406,7 @@ mod tests {
         runner
             .run(
                 &cases,
-                |(arms, design, (dphi, dbeta, ds, dh, da), band_factor, size)| {
+                |(arms, design, [dphi, dbeta, ds, dh, da], band_factor, size)| {
                     let (beta0, gamma0, width) =
                         [(-29.0, -53.0, 12.0), (40.0, -20.0, 40.0), (0.0, 60.0, 2.0)][design];
                     let (spec, agro) = train(arms, beta0, gamma0, width);
