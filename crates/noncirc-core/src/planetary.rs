@@ -661,6 +661,12 @@ impl Turn {
         }
     }
 
+    /// The whole train's turn about the carrier axis: the planet centres' (a unit
+    /// complex number).
+    fn unit(&self) -> Vec2 {
+        self.centre_factor * (1.0 / self.centre_factor.hypot2().sqrt())
+    }
+
     /// At most how far this turn moves any point of `src`'s arms, now `s` long (mm), or a
     /// planet centre, once the train is turned back as a whole about the carrier axis.
     /// Turned back by the planet centres' turn f/|f| (which moves no distance between
@@ -668,12 +674,6 @@ impl Turn {
     /// by that and |e·(f/|f|)*·S − S_src| more (the arm direction a unit vector), and
     /// every point of an arm by no more than the farther of its ends. A bound: the roots
     /// are taken plainly, their rounding far inside the margin its users keep.
-    /// The whole train's turn about the carrier axis: the planet centres' (a unit
-    /// complex number).
-    fn unit(&self) -> Vec2 {
-        self.centre_factor * (1.0 / self.centre_factor.hypot2().sqrt())
-    }
-
     fn displacement_mm(&self, src: &Kinematics, s: f64) -> f64 {
         let f = self.centre_factor;
         let size = f.hypot2().sqrt();
