@@ -345,8 +345,9 @@ enum Along {
     Up = 2,
 }
 
-/// Straight down and up.
+/// Straight down.
 pub(crate) const DOWN: Vec2 = Vec2::new(0.0, -1.0);
+/// Straight up.
 const UP: Vec2 = Vec2::new(0.0, 1.0);
 
 /// The nodes a walk of `kin`'s tips along `dir` may visit alone: those marked on the train
