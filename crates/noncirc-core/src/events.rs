@@ -709,8 +709,7 @@ mod tests {
                     let first_whole = unmarked.reassembled(&moved, offset).unwrap();
                     let second_whole = first_whole.reassembled(&again, 0.0).unwrap();
                     // Marked for the first reassembly's move and tilt, times the factors.
-                    let delta = source.displacement_to(&moved, offset);
-                    let turn = source.whole_turn_to(&moved, offset);
+                    let (delta, turn) = source.displacement_and_turn_to(&moved, offset);
                     let back = |d: Vec2| d.rotated(Vec2::new(turn.x, -turn.y));
                     let tilt = (back(own_normal) - normal)
                         .hypot2()

@@ -423,7 +423,7 @@ mod tests {
                     let unmarked = source.clone();
                     let once = whole(&moved, offset, &unmarked)?;
                     let twice = whole(&again, 0.0, &unmarked.reassembled(&moved, offset).unwrap())?;
-                    let delta = source.displacement_to(&moved, offset);
+                    let (delta, _) = source.displacement_and_turn_to(&moved, offset);
                     let band = band_factor * delta;
                     mark_nodes_near_least_clearance(&mut source, &agro, band);
                     let marked = source.marked_nodes().unwrap();

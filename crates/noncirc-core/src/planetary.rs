@@ -776,23 +776,19 @@ impl Kinematics {
 
     /// At most how far any point of an arm, or a planet centre, of this train
     /// [reassembled](Kinematics::reassembled) for `spec` with `centre_offset_mm` lies from
-    /// this one's at the same node, turned as a whole about the carrier axis (mm); +∞ for
-    /// a reassembly that does not keep the carrier's `γ0` and the number of arms (its arms
-    /// then lie elsewhere altogether).
-    pub(crate) fn displacement_to(&self, spec: &TrainSpec, centre_offset_mm: f64) -> f64 {
+    /// this one's at the same node, once turned as a whole about the carrier axis (mm),
+    /// and that turn (a unit complex number). +∞ and the identity for a reassembly that
+    /// does not keep the carrier's `γ0` and the number of arms (its arms then lie
+    /// elsewhere altogether).
+    pub(crate) fn displacement_and_turn_to(
+        &self,
+        spec: &TrainSpec,
+        centre_offset_mm: f64,
+    ) -> (f64, Vec2) {
         self.turn_to(spec, centre_offset_mm)
-            .map_or(f64::INFINITY, |t| {
-                t.displacement_mm(self, spec.arm_length_mm)
+            .map_or((f64::INFINITY, Vec2::new(1.0, 0.0)), |t| {
+                (t.displacement_mm(self, spec.arm_length_mm), t.unit())
             })
-    }
-
-    /// The turn of the whole train about the carrier axis (a unit complex number) from
-    /// this train to its [reassembly](Kinematics::reassembled) for `spec` with
-    /// `centre_offset_mm`, beyond which it moves by [`Kinematics::displacement_to`]; the
-    /// identity where that is +∞.
-    pub(crate) fn whole_turn_to(&self, spec: &TrainSpec, centre_offset_mm: f64) -> Vec2 {
-        self.turn_to(spec, centre_offset_mm)
-            .map_or(Vec2::new(1.0, 0.0), |t| t.unit())
     }
 
     /// The turn to the reassembly for `spec`, where it keeps the carrier's `γ0` and the

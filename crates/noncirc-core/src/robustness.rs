@@ -337,8 +337,8 @@ impl Deviated {
             let assembly = &samples.assembly[i];
             let [da, .., tray_n] = *assembly;
             let train = self.deviated_train(assembly);
-            farthest = farthest.max(kin.displacement_to(&train, da));
-            let turn = kin.whole_turn_to(&train, da);
+            let (displacement, turn) = kin.displacement_and_turn_to(&train, da);
+            farthest = farthest.max(displacement);
             let back = |d: Vec2| d.rotated(Vec2::new(turn.x, -turn.y));
             let own_normal = unit((normal_deg + tray_n).to_radians());
             let tilts =
