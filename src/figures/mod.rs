@@ -2,8 +2,8 @@
 //! in the binary, so rendering needs no system font or package.
 
 use noncirc_core::{
-    advance_per_rad, anatomy, box_curves, travel_sign, unit, BoxReport, BoxSpec, Evaluation,
-    Events, Kinematics, ObjectiveValue, Scene, Section, Vec2, ARM_NAMES,
+    advance_per_rad, anatomy, box_curves, travel_sign, BoxReport, BoxSpec, Evaluation, Events,
+    Kinematics, ObjectiveValue, Scene, Section, Vec2, ARM_NAMES,
 };
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;

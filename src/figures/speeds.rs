@@ -117,7 +117,7 @@ impl Figure for SpeedComparisonFigure<'_> {
                 (chart.x_range(), chart.y_range());
             for (i, kin, ev, agro, _) in &drawn {
                 let colour = ARM_COLOURS[*i % ARM_COLOURS.len()];
-                let n = unit(agro.tray_normal_deg.to_radians());
+                let n = agro.tray_normal();
                 let s = ev.tray_surface_point(n);
                 let t = n.turn_90();
                 let surface = [(s - t * surface_half).into(), (s + t * surface_half).into()];

@@ -105,7 +105,7 @@ impl Figure for TrajectoryFigure<'_> {
             ))
             .map_err(err)?;
         entries.push((ground_label, Swatch::Line(brown.into(), 2)));
-        let n = unit(agro.tray_normal_deg.to_radians());
+        let n = agro.tray_normal();
         let s = ev.tray_surface_point(n);
         let t = n.turn_90();
         let grey = RGBColor(90, 90, 90);

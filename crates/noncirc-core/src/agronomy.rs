@@ -1,6 +1,8 @@
 //! Agronomic inputs of the objectives: the tray, the plant spacing and seedling, the
 //! planting depth, the arms' and housing's widths, and the machine's travel direction.
 
+use crate::angle::unit;
+use crate::vec2::Vec2;
 use serde::{Deserialize, Serialize};
 
 /// Which way the machine travels over the field.
@@ -43,6 +45,13 @@ pub struct Agronomy {
     pub housing_margin_mm: f64,
     /// Travel direction of the machine.
     pub travel: Travel,
+}
+
+impl Agronomy {
+    /// The tray's inward normal, a unit vector (`tray_normal_deg`).
+    pub fn tray_normal(&self) -> Vec2 {
+        unit(self.tray_normal_deg.to_radians())
+    }
 }
 
 impl Default for Agronomy {

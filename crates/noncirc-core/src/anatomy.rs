@@ -14,7 +14,6 @@
 //! the later section is then cut where the earlier one ends.
 
 use crate::agronomy::Agronomy;
-use crate::angle::unit;
 use crate::curve::{parabola_vertex, TAU};
 use crate::events::{span_where, Events};
 use crate::measure::Section;
@@ -89,7 +88,7 @@ pub fn anatomy(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> Anatomy {
     let h = TAU / n as f64;
     let tips = kin.tips();
     let node = |t: f64| ((t / h).round() as usize) % n;
-    let normal = unit(agro.tray_normal_deg.to_radians());
+    let normal = agro.tray_normal();
     let zone = ev.check.tray_surface_mm - agro.tray_depth_mm;
     let ground = ev.y_min_mm + agro.planting_depth_mm;
     let tp = ev.picking.carrier_rad;

@@ -346,7 +346,7 @@ enum Along {
 }
 
 /// Straight down.
-pub(crate) const DOWN: Vec2 = Vec2::new(0.0, -1.0);
+const DOWN: Vec2 = Vec2::new(0.0, -1.0);
 /// Straight up.
 const UP: Vec2 = Vec2::new(0.0, 1.0);
 
@@ -366,11 +366,26 @@ fn walk_nodes(kin: &Kinematics, dir: Vec2, along: Along) -> Option<&[usize]> {
     let marks = kin.marks()?;
     let walks = marks.walks.as_deref()?;
     let marked_dir = [walks.normal, DOWN, UP][along as usize];
-    let back = Vec2::new(marks.turn.x, -marks.turn.y);
-    let tilt = (dir.rotated(back) - marked_dir).hypot2().sqrt();
+    let tilt = tilt(marks.turn, dir, marked_dir);
     // A NaN displacement or tilt fails the comparisons too.
     let fits = 2.0 * marks.displacement_mm * (1.0 + 1e-9) <= walks.band_mm && tilt <= walks.tilt;
     walks.nodes[along as usize].as_deref().filter(|_| fits)
+}
+
+/// How far a walk direction `dir`, turned back by the whole train's `turn` (a unit
+/// complex number), lies from the marked direction `marked`: the length of their
+/// difference.
+fn tilt(turn: Vec2, dir: Vec2, marked: Vec2) -> f64 {
+    (dir.rotated(Vec2::new(turn.x, -turn.y)) - marked)
+        .hypot2()
+        .sqrt()
+}
+
+/// The largest tilt ([`walk_nodes`]) of the walks of a reassembly turned by `turn` whose
+/// tray has the inward `normal`, against a train marked for `marked_normal`: the normal's,
+/// and the one down and up share.
+pub(crate) fn walks_tilt(turn: Vec2, normal: Vec2, marked_normal: Vec2) -> f64 {
+    tilt(turn, normal, marked_normal).max(tilt(turn, DOWN, DOWN))
 }
 
 /// Marks on `kin` the nodes its reassemblies' walks along the tray's inward `normal`,
@@ -451,7 +466,7 @@ impl Picking {
     /// The node deepest along the tray's normal and its runner-up, the extreme refined
     /// by Newton on the arm's state.
     pub(crate) fn locate(kin: &Kinematics, agro: &Agronomy) -> Self {
-        let normal = unit(agro.tray_normal_deg.to_radians());
+        let normal = agro.tray_normal();
         let marked = walk_nodes(kin, normal, Along::Normal);
         let (node, runner_up) = extreme_and_runner_up(kin.tips(), normal, marked);
         let (picked, depth) = refine_extreme(kin, normal, node, true);
@@ -552,7 +567,7 @@ fn picking_check(
     surface: f64,
     runner_up: Option<f64>,
 ) -> PickingCheck {
-    let normal = unit(agro.tray_normal_deg.to_radians());
+    let normal = agro.tray_normal();
     let dot = |p: Vec2| p.dot(normal);
     let s = kin.spec().arm_length_mm;
     let tip_depth = dot(picked.tip) - surface;
@@ -702,19 +717,15 @@ mod tests {
                         tray_normal_deg: agro.tray_normal_deg + 0.5 * size * dtray,
                         ..agro
                     };
-                    let normal = unit(agro.tray_normal_deg.to_radians());
-                    let own_normal = unit(tray.tray_normal_deg.to_radians());
+                    let normal = agro.tray_normal();
+                    let own_normal = tray.tray_normal();
                     // The whole walks, on the same positions unmarked.
                     let unmarked = source.clone();
                     let first_whole = unmarked.reassembled(&moved, offset).unwrap();
                     let second_whole = first_whole.reassembled(&again, 0.0).unwrap();
                     // Marked for the first reassembly's move and tilt, times the factors.
                     let (delta, turn) = source.displacement_and_turn_to(&moved, offset);
-                    let back = |d: Vec2| d.rotated(Vec2::new(turn.x, -turn.y));
-                    let tilt = (back(own_normal) - normal)
-                        .hypot2()
-                        .sqrt()
-                        .max((back(DOWN) - DOWN).hypot2().sqrt());
+                    let tilt = walks_tilt(turn, own_normal, normal);
                     mark_walk_nodes(
                         &mut source,
                         normal,

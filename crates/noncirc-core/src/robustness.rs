@@ -9,20 +9,19 @@
 //! surface, as a machine's tray is bolted where the drawing says, with pots twice the
 //! tray depth deep (the tip may then reach one tray depth less or more than drawn).
 
-use crate::angle::unit;
+use crate::agronomy::Agronomy;
 use crate::constraint::requirements;
 use crate::curve::{CurveSpec, TAU};
 use crate::error::{Error, Result};
 use crate::evaluation::Evaluation;
 use crate::evaluator::Evaluator;
-use crate::events::{mark_walk_nodes, DOWN};
+use crate::events::{mark_walk_nodes, walks_tilt};
 use crate::interference::mark_nodes_near_least_clearance;
 use crate::objective_kind::{scale, ObjectiveKind};
 use crate::planetary::{Kinematics, TrainSpec};
 use crate::resolution::Resolution;
 use crate::scene::{Scene, SceneKind};
 use crate::tolerance::{Tolerances, ASSEMBLY};
-use crate::vec2::Vec2;
 use serde::Serialize;
 
 /// A picking or planting instant that moves further than this (rad, 10°) under the
@@ -286,12 +285,9 @@ impl Deviated {
         assembly: &[f64; 8],
         scratch: &mut Scene,
     ) -> Result<Evaluation> {
-        let [da, .., tray_d, tray_n] = *assembly;
+        let [da, ..] = *assembly;
         let train = self.deviated_train(assembly);
-        let mut agronomy = self.fixed.agronomy;
-        agronomy.tray_distance_mm = agronomy.tray_distance_mm.map(|d| d + tray_d);
-        agronomy.tray_normal_deg += tray_n;
-        (scratch.train, scratch.agronomy) = (train, agronomy);
+        (scratch.train, scratch.agronomy) = (train, self.deviated_agronomy(assembly));
         // Φ0 under a ground-frame sun, or γ0 with two pairs, moves a pair's grid: solve
         // those anew.
         let kin = if kin.reassembles_for(&train) {
@@ -319,6 +315,16 @@ impl Deviated {
         train
     }
 
+    /// The tray with `assembly` deviations ([`ASSEMBLY`] order): its distance and its
+    /// normal.
+    fn deviated_agronomy(&self, assembly: &[f64; 8]) -> Agronomy {
+        let [.., tray_d, tray_n] = *assembly;
+        let mut agronomy = self.fixed.agronomy;
+        agronomy.tray_distance_mm = agronomy.tray_distance_mm.map(|d| d + tray_d);
+        agronomy.tray_normal_deg += tray_n;
+        agronomy
+    }
+
     /// Marks on a set of machined parts' train `kin`, for its samples (`samples`'
     /// indices) to scan alone, the nodes where its arms come closest (the band four times
     /// the farthest any of them moves the arms, and a little more), and the nodes where
@@ -330,20 +336,15 @@ impl Deviated {
         samples: &ToleranceSamples,
         indices: impl Iterator<Item = usize>,
     ) {
-        let normal_deg = self.fixed.agronomy.tray_normal_deg;
-        let normal = unit(normal_deg.to_radians());
+        let normal = self.fixed.agronomy.tray_normal();
         let (mut farthest, mut tilt) = (0.0f64, 0.0f64);
         for i in indices {
             let assembly = &samples.assembly[i];
-            let [da, .., tray_n] = *assembly;
             let train = self.deviated_train(assembly);
-            let (displacement, turn) = kin.displacement_and_turn_to(&train, da);
+            let (displacement, turn) = kin.displacement_and_turn_to(&train, assembly[0]);
             farthest = farthest.max(displacement);
-            let back = |d: Vec2| d.rotated(Vec2::new(turn.x, -turn.y));
-            let own_normal = unit((normal_deg + tray_n).to_radians());
-            let tilts =
-                [(own_normal, normal), (DOWN, DOWN)].map(|(d, d0)| (back(d) - d0).hypot2().sqrt());
-            tilt = tilt.max(tilts[0]).max(tilts[1]);
+            let own_normal = self.deviated_agronomy(assembly).tray_normal();
+            tilt = tilt.max(walks_tilt(turn, own_normal, normal));
         }
         if !farthest.is_finite() {
             return;

@@ -99,7 +99,7 @@ impl View {
         }
         view.picking_mm = Some(events.picking.tip_mm.into());
         view.planting_mm = Some(events.planting.tip_mm.into());
-        let n = unit(agro.tray_normal_deg.to_radians());
+        let n = agro.tray_normal();
         let surface = events.tray_surface_point(n);
         let along = n.turn_90() * 120.0;
         view.tray = Some(vec![(surface - along).into(), (surface + along).into()]);
