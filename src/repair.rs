@@ -475,7 +475,7 @@ impl RepairOutcome {
         let mut changes: Vec<Change> = match r {
             Some(r) => (problem.names().into_iter().enumerate())
                 .filter_map(|(i, name)| {
-                    let p = Param::parse(name, &self.original).ok()?;
+                    let p = Param::find(name, &self.original)?;
                     let (before, after) = (p.get(&self.original)?, p.get(&r.scene)?);
                     Some(Change {
                         name: name.to_string(),

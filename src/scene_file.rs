@@ -436,7 +436,7 @@ fn scene_tree(scene: &Scene) -> serde_json::Value {
         if !field.is_number() {
             continue;
         }
-        let Ok(param) = noncirc_core::Param::parse(field.key, scene) else {
+        let Some(param) = noncirc_core::Param::find(field.key, scene) else {
             continue; // not in this scene (another curve kind)
         };
         let node = table

@@ -33,42 +33,37 @@ impl Param {
     /// Parses `path` and checks that `scene` has it (the curve kind has the field, the list
     /// is long enough). An unknown path is [`Error::UnknownName`] with the nearest paths.
     pub fn parse(path: &str, scene: &Scene) -> Result<Self> {
-        let unknown = || Error::UnknownName {
+        Self::find(path, scene).ok_or_else(|| Error::UnknownName {
             what: "parameter",
             name: path.to_string(),
             nearest: nearest(path, &Self::paths(scene)),
-        };
+        })
+    }
+
+    /// As [`Param::parse`], `None` for a path `scene` does not have: for a caller that
+    /// probes paths, without the nearest names an error would list (an edit distance to
+    /// every path, about a millisecond for the field table's list fields at each start).
+    pub fn find(path: &str, scene: &Scene) -> Option<Self> {
         let (key, index) = match path.split_once('[') {
-            Some((key, rest)) => {
-                let index = rest.strip_suffix(']').and_then(|i| i.parse().ok());
-                (key, Some(index.ok_or_else(unknown)?))
-            }
+            Some((key, rest)) => (key, Some(rest.strip_suffix(']')?.parse().ok()?)),
             None => (path, None),
         };
-        let number = fields()
-            .find(|f| f.key == key)
-            .and_then(|f| f.number)
-            .ok_or_else(unknown)?;
+        let number = fields().find(|f| f.key == key)?.number?;
         // A list needs an element, a scalar none.
         let index = match (number, index) {
             (Number::List(..), Some(i)) => i,
             (Number::Scalar(..) | Number::Optional(..), None) => 0,
-            _ => return Err(unknown()),
-        };
-        let access = Access { number, index };
-        let param = Self {
-            name: path.to_string(),
-            access,
+            _ => return None,
         };
         // Present in this scene (an optional field left unset still counts: it can be set).
         let present = match number {
             Number::Scalar(_, set) | Number::Optional(_, set) => set(&mut scene.clone(), 0.0),
             Number::List(get, _) => get(scene).is_some_and(|v| index < v.len()),
         };
-        if !present {
-            return Err(unknown());
-        }
-        Ok(param)
+        present.then(|| Self {
+            name: path.to_string(),
+            access: Access { number, index },
+        })
     }
 
     /// Every parameter path `scene` has, lists expanded (`gear.curve.radii_mm[0]`, …).
@@ -172,5 +167,45 @@ mod tests {
         assert_eq!(t.get(&scene), None);
         t.set(&mut scene, 400.0);
         assert_eq!(scene.agronomy.tray_distance_mm, Some(400.0));
+    }
+
+    /// `find` has what `parse` parses and nothing else: every path of a scene of each
+    /// curve kind, each field's bare key (lists refuse it), elements past a list's end,
+    /// malformed indices and unknown names.
+    #[test]
+    fn find_has_exactly_what_parse_parses() {
+        let ellipse = Scene {
+            gear: crate::GearSpec {
+                curve: crate::CurveSpec::Ellipse {
+                    semi_major_mm: 40.0,
+                    eccentricity: 0.2,
+                },
+                ..Scene::default().gear
+            },
+            ..Scene::default()
+        };
+        for scene in [Scene::default(), ellipse] {
+            let mut probes = Param::paths(&scene);
+            probes.extend(fields().map(|f| f.key.to_string()));
+            probes.extend(fields().map(|f| format!("{}[12]", f.key)));
+            let odd = [
+                "gear.curve.radii_mm[x]",
+                "gear.curve.radii_mm[3",
+                "",
+                "train.nope",
+            ];
+            probes.extend(odd.map(String::from));
+            let mut found = 0;
+            for path in &probes {
+                let (found_it, parsed) = (Param::find(path, &scene), Param::parse(path, &scene));
+                assert_eq!(found_it.is_some(), parsed.is_ok(), "{path}");
+                if let (Some(f), Ok(p)) = (found_it, parsed) {
+                    assert_eq!(f.name(), p.name());
+                    assert_eq!(f.get(&scene), p.get(&scene), "{path}");
+                    found += 1;
+                }
+            }
+            assert!(found >= Param::paths(&scene).len(), "{found}");
+        }
     }
 }
