@@ -160,28 +160,31 @@ impl PeriodicSpline {
             };
             let [a, b, c, d] = self.coeffs[i];
             let value = |t: f64| a + t * (b + t * (c + t * d));
-            // Candidates: segment start and the roots of b + 2c t + 3d t² in (0, h); NaN
-            // marks an absent root and fails the range test below.
-            let mut candidates = [0.0, f64::NAN, f64::NAN];
+            // Candidates in order: the segment's start and the roots of b + 2c t + 3d t²
+            // in (0, h). A plain closure per candidate: an iterator filtered over the three
+            // was a sixth of the spline's construction.
+            let mut consider = |t: f64| {
+                if (0.0..h).contains(&t) {
+                    let v = value(t);
+                    if v < least.1 {
+                        least = (self.knots[i] + t, v);
+                    }
+                    if v > most.1 {
+                        most = (self.knots[i] + t, v);
+                    }
+                }
+            };
+            consider(0.0);
             let (qa, qb, qc) = (3.0 * d, 2.0 * c, b);
             if qa.abs() > 1e-300 {
                 let disc = qb * qb - 4.0 * qa * qc;
                 if disc >= 0.0 {
                     let (s, inv) = (disc.sqrt(), 0.5 / qa);
-                    candidates[1] = (-qb + s) * inv;
-                    candidates[2] = (-qb - s) * inv;
+                    consider((-qb + s) * inv);
+                    consider((-qb - s) * inv);
                 }
             } else if qb.abs() > 1e-300 {
-                candidates[1] = -qc / qb;
-            }
-            for t in candidates.into_iter().filter(|t| (0.0..h).contains(t)) {
-                let v = value(t);
-                if v < least.1 {
-                    least = (self.knots[i] + t, v);
-                }
-                if v > most.1 {
-                    most = (self.knots[i] + t, v);
-                }
+                consider(-qc / qb);
             }
         }
         [least, most]
