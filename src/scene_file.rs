@@ -429,16 +429,14 @@ pub fn value_at(scene: &Scene, key: &str) -> Result<serde_json::Value, SceneErro
 /// defaults.
 fn scene_tree(scene: &Scene) -> serde_json::Value {
     let mut tree = serde_json::to_value(scene).expect("a scene always serialises");
-    for field in noncirc_core::fields() {
-        let Some((table, key)) = field.key.rsplit_once('.') else {
+    // The scene's own numbers (not another curve kind's), lists aside: they are written.
+    for param in noncirc_core::Param::every(scene) {
+        let Some((table, key)) = param.name().rsplit_once('.') else {
             continue;
         };
-        if !field.is_number() {
+        if key.contains('[') {
             continue;
         }
-        let Some(param) = noncirc_core::Param::find(field.key, scene) else {
-            continue; // not in this scene (another curve kind)
-        };
         let node = table
             .split('.')
             .try_fold(&mut tree, |node, part| node.get_mut(part));

@@ -68,16 +68,29 @@ impl Param {
 
     /// Every parameter path `scene` has, lists expanded (`gear.curve.radii_mm[0]`, …).
     pub fn paths(scene: &Scene) -> Vec<String> {
+        Self::every(scene).into_iter().map(|p| p.name).collect()
+    }
+
+    /// Every parameter `scene` has, in the field table's order, lists expanded: what
+    /// [`Param::find`] finds of each path, with one copy of the scene to probe the fields
+    /// on, not one per field.
+    pub fn every(scene: &Scene) -> Vec<Param> {
         let mut probe = scene.clone();
         let mut out = Vec::new();
         for field in fields() {
+            let param = |name: String, number, index| Param {
+                name,
+                access: Access { number, index },
+            };
             match field.number {
-                Some(Number::Scalar(_, set) | Number::Optional(_, set)) if set(&mut probe, 0.0) => {
-                    out.push(field.key.to_string());
+                Some(number @ (Number::Scalar(_, set) | Number::Optional(_, set)))
+                    if set(&mut probe, 0.0) =>
+                {
+                    out.push(param(field.key.to_string(), number, 0));
                 }
-                Some(Number::List(get, _)) => {
+                Some(number @ Number::List(get, _)) => {
                     let len = get(scene).map_or(0, <[f64]>::len);
-                    out.extend((0..len).map(|i| format!("{}[{i}]", field.key)));
+                    out.extend((0..len).map(|i| param(format!("{}[{i}]", field.key), number, i)));
                 }
                 _ => {}
             }
@@ -206,6 +219,13 @@ mod tests {
                 }
             }
             assert!(found >= Param::paths(&scene).len(), "{found}");
+            for p in Param::every(&scene) {
+                let f = Param::find(p.name(), &scene).expect("every path is found");
+                assert_eq!(
+                    (f.access.index, f.get(&scene)),
+                    (p.access.index, p.get(&scene))
+                );
+            }
         }
     }
 }
