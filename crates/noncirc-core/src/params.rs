@@ -41,8 +41,8 @@ impl Param {
     }
 
     /// As [`Param::parse`], `None` for a path `scene` does not have: for a caller that
-    /// probes paths, without the nearest names an error would list (an edit distance to
-    /// every path, about a millisecond for the field table's list fields at each start).
+    /// probes paths, which `parse` would answer with the nearest names (an edit distance
+    /// to every path).
     pub fn find(path: &str, scene: &Scene) -> Option<Self> {
         let (key, index) = match path.split_once('[') {
             Some((key, rest)) => (key, Some(rest.strip_suffix(']')?.parse().ok()?)),
@@ -75,13 +75,13 @@ impl Param {
     /// [`Param::find`] finds of each path, with one copy of the scene to probe the fields
     /// on, not one per field.
     pub fn every(scene: &Scene) -> Vec<Param> {
+        let param = |name: String, number, index| Param {
+            name,
+            access: Access { number, index },
+        };
         let mut probe = scene.clone();
         let mut out = Vec::new();
         for field in fields() {
-            let param = |name: String, number, index| Param {
-                name,
-                access: Access { number, index },
-            };
             match field.number {
                 Some(number @ (Number::Scalar(_, set) | Number::Optional(_, set)))
                     if set(&mut probe, 0.0) =>

@@ -150,11 +150,6 @@ impl Field {
         matches!(self.number, Some(Number::List(..)))
     }
 
-    /// Whether the field is one number (possibly left unset), a parameter by its key.
-    pub fn is_number(&self) -> bool {
-        matches!(self.number, Some(Number::Scalar(..) | Number::Optional(..)))
-    }
-
     /// The field's admissible values as the reference prints them: an optional number
     /// may also be left unset.
     pub fn admissible(&self) -> String {
