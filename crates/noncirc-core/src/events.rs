@@ -667,6 +667,7 @@ mod tests {
             (2, None)
         );
     }
+
     /// A train reassembled from one whose walks are marked walks the marked nodes alone
     /// and finds what the walk over every node finds, bit for bit (the best node, the
     /// runner-up, the highest node, and so every event): on three designs, for random

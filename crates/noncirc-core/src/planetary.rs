@@ -570,6 +570,9 @@ pub(crate) struct Marks {
     pub(crate) turn: Vec2,
 }
 
+/// No turn about the carrier axis, as a unit complex number.
+const NO_TURN: Vec2 = Vec2::new(1.0, 0.0);
+
 impl Marks {
     /// No marks yet, on the marked train itself.
     fn on_itself() -> Self {
@@ -577,7 +580,7 @@ impl Marks {
             clearance: None,
             walks: None,
             displacement_mm: 0.0,
-            turn: Vec2::new(1.0, 0.0),
+            turn: NO_TURN,
         }
     }
 }
@@ -786,7 +789,7 @@ impl Kinematics {
         centre_offset_mm: f64,
     ) -> (f64, Vec2) {
         self.turn_to(spec, centre_offset_mm)
-            .map_or((f64::INFINITY, Vec2::new(1.0, 0.0)), |t| {
+            .map_or((f64::INFINITY, NO_TURN), |t| {
                 (t.displacement_mm(self, spec.arm_length_mm), t.unit())
             })
     }
@@ -824,8 +827,8 @@ impl Kinematics {
     /// This train's marks, made on itself: those carried from a train it was reassembled
     /// from are dropped first.
     fn marks_on_itself(&mut self) -> &mut Marks {
-        let own = (self.marks.as_ref())
-            .is_some_and(|m| m.displacement_mm == 0.0 && m.turn == Vec2::new(1.0, 0.0));
+        let own =
+            (self.marks.as_ref()).is_some_and(|m| m.displacement_mm == 0.0 && m.turn == NO_TURN);
         if !own {
             self.marks = None;
         }
