@@ -537,7 +537,7 @@ pub struct Kinematics {
     /// Per node: the planet's lag `lag(θ_j)` (the paper's train: `θ_s`, the carrier angle
     /// at which the intermediate's point now at the planet met the sun; two pairs:
     /// `Φ_B(Φ_A(θ_j))`), planet orientation, planet centre, tip.
-    planet_lag: Vec<f64>,
+    planet_lag: Arc<[f64]>,
     theta3: Vec<f64>,
     o3: Vec<Vec2>,
     tip: Vec<Vec2>,
@@ -896,11 +896,11 @@ impl Kinematics {
                 } * (spec.pusher_offset_mm / spec.arm_length_mm).asin(),
             delay,
             carrier_a: [a[0] + centre_offset_mm, a[1] + centre_offset_mm],
-            planet_lag: Vec::new(),
-            theta3: vec![0.0; n],
-            o3: vec![Vec2::ZERO; n],
-            tip: vec![Vec2::ZERO; n],
-            arm_dir: vec![Vec2::ZERO; n],
+            planet_lag: Arc::from([]),
+            theta3: Vec::new(),
+            o3: Vec::new(),
+            tip: Vec::new(),
+            arm_dir: Vec::new(),
             nodes_per_arm: n / spec.arms,
             marks: None,
         };
@@ -919,54 +919,70 @@ impl Kinematics {
                 turn: t.unit().rotated(m.turn),
                 ..m
             });
-        kin.planet_lag = match (same_carrier, &kin.gears.second) {
-            (Some(src), _) => src.planet_lag.clone(),
-            (None, None) => {
+        match same_carrier.zip(turn) {
+            Some((src, turn)) => {
+                // The source's arrays turned, each in a loop of its own; the lags shared.
+                kin.planet_lag = src.planet_lag.clone();
+                kin.theta3 = src.theta3.iter().map(|&t| t + turn.planets).collect();
+                kin.arm_dir = src.arm_dir.iter().map(|d| d.rotated(turn.arm)).collect();
+                kin.o3 = (src.o3.iter())
+                    .map(|o| o.rotated(turn.centre_factor))
+                    .collect();
+            }
+            None => kin.place_arms(h),
+        }
+        let length = spec.arm_length_mm;
+        kin.tip = (kin.o3.iter().zip(&kin.arm_dir))
+            .map(|(&o3, &dir)| o3 + dir * length)
+            .collect();
+        kin
+    }
+
+    /// Places the arms of a train solved anew, node by node (`h` the node spacing, rad):
+    /// the planet's lag (through `Φ⁻¹`, or the second pair's drift), then its
+    /// orientation, its centre and the arm's direction.
+    fn place_arms(&mut self, h: f64) {
+        self.planet_lag = match &self.gears.second {
+            None => {
                 // θ_s at every node: sorted targets, so each cell search starts at the last.
-                let inverse = kin.gears.first.phi_inverse();
+                let inverse = self.gears.first.phi_inverse();
                 let mut hint = 0;
-                (kin.gears.first.pair.phi2_nodes().iter())
+                (self.gears.first.pair.phi2_nodes().iter())
                     .map(|&phi| {
-                        let (ts, cell) = inverse.eval(phi - delay, hint);
+                        let (ts, cell) = inverse.eval(phi - self.delay, hint);
                         hint = cell;
                         ts
                     })
                     .collect()
             }
-            (None, Some(second)) => {
+            Some(second) => {
                 let phi_b = second.phi();
-                (kin.gears.first.pair.phi2_nodes().iter())
+                (self.gears.first.pair.phi2_nodes().iter())
                     .map(|&phi_a| phi_b.eval(phi_a).0)
                     .collect()
             }
         };
         // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
+        let sigma = self.sigma;
         let step = unit(sigma * h);
-        let (mut e1, mut e2) = (unit(kin.phi0), unit(kin.phi0 + gamma0));
-        let [a1, a2] = kin.carrier_a;
-        for j in 0..n {
+        let (mut e1, mut e2) = (unit(self.phi0), unit(self.phi0 + self.gamma0));
+        let [a1, a2] = self.carrier_a;
+        let n = self.planet_lag.len();
+        let (mut theta3s, mut arm_dirs, mut o3s) = (
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+        );
+        for (j, &lag) in self.planet_lag.iter().enumerate() {
             let theta = h * j as f64;
-            let lag = kin.planet_lag[j];
-            let (theta3, arm_dir, o3) = match (same_carrier, turn) {
-                (Some(src), Some(turn)) => (
-                    src.theta3[j] + turn.planets,
-                    src.arm_dir[j].rotated(turn.arm),
-                    src.o3[j].rotated(turn.centre_factor),
-                ),
-                _ => {
-                    let o3 = e1 * a1 + e2 * a2;
-                    (e1, e2) = (e1.rotated(step), e2.rotated(step));
-                    let theta3 =
-                        kin.planet_base + sigma * (theta - lag) + gamma0 + std::f64::consts::PI;
-                    (theta3, unit(theta3 + beta0), o3)
-                }
-            };
-            kin.theta3[j] = theta3;
-            kin.o3[j] = o3;
-            kin.arm_dir[j] = arm_dir;
-            kin.tip[j] = o3 + arm_dir * spec.arm_length_mm;
+            o3s.push(e1 * a1 + e2 * a2);
+            (e1, e2) = (e1.rotated(step), e2.rotated(step));
+            let theta3 =
+                self.planet_base + sigma * (theta - lag) + self.gamma0 + std::f64::consts::PI;
+            theta3s.push(theta3);
+            arm_dirs.push(unit(theta3 + self.beta0));
         }
-        kin
+        (self.theta3, self.arm_dir, self.o3) = (theta3s, arm_dirs, o3s);
     }
 
     /// The sun–intermediate gear pair on the carrier grid. In the paper's train the
