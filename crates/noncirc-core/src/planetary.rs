@@ -536,7 +536,7 @@ pub struct Kinematics {
     carrier_a: [f64; 2],
     /// Per node: the planet's lag `lag(θ_j)` (the paper's train: `θ_s`, the carrier angle
     /// at which the intermediate's point now at the planet met the sun; two pairs:
-    /// `Φ_B(Φ_A(θ_j))`), planet orientation, planet centre, tip.
+    /// `Φ_B(Φ_A(θ_j))`; shared by its reassemblies), planet orientation, planet centre, tip.
     planet_lag: Arc<[f64]>,
     theta3: Vec<f64>,
     o3: Vec<Vec2>,
@@ -869,7 +869,6 @@ impl Kinematics {
     ) -> Self {
         let sigma = spec.rotation.sign();
         let n = gears.first.pair.samples().len();
-        let h = TAU / n as f64;
         let a = [
             gears.first.pair.centre_distance(),
             (gears.second.as_ref()).map_or(gears.first.pair.centre_distance(), |p| {
@@ -929,7 +928,7 @@ impl Kinematics {
                     .map(|o| o.rotated(turn.centre_factor))
                     .collect();
             }
-            None => kin.place_arms(h),
+            None => kin.place_arms(),
         }
         let length = spec.arm_length_mm;
         kin.tip = (kin.o3.iter().zip(&kin.arm_dir))
@@ -938,10 +937,10 @@ impl Kinematics {
         kin
     }
 
-    /// Places the arms of a train solved anew, node by node (`h` the node spacing, rad):
-    /// the planet's lag (through `Φ⁻¹`, or the second pair's drift), then its
-    /// orientation, its centre and the arm's direction.
-    fn place_arms(&mut self, h: f64) {
+    /// Places the arms of a train solved anew, node by node: the planet's lag (through
+    /// `Φ⁻¹`, or the second pair's drift), then its orientation, its centre and the arm's
+    /// direction.
+    fn place_arms(&mut self) {
         self.planet_lag = match &self.gears.second {
             None => {
                 // θ_s at every node: sorted targets, so each cell search starts at the last.
@@ -963,11 +962,12 @@ impl Kinematics {
             }
         };
         // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
+        let n = self.planet_lag.len();
+        let h = TAU / n as f64;
         let sigma = self.sigma;
         let step = unit(sigma * h);
         let (mut e1, mut e2) = (unit(self.phi0), unit(self.phi0 + self.gamma0));
         let [a1, a2] = self.carrier_a;
-        let n = self.planet_lag.len();
         let (mut theta3s, mut arm_dirs, mut o3s) = (
             Vec::with_capacity(n),
             Vec::with_capacity(n),
