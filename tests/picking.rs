@@ -5,6 +5,7 @@
 use noncirc::core::Evaluation;
 use noncirc::core::ModuleReading;
 use noncirc::core::Section;
+use noncirc::core::Vec2;
 use noncirc::core::{Evaluator, ObjectiveKind, Scene};
 use noncirc::core::{Measure, MeasureCost, Measured};
 use noncirc::scene_file::{apply_overrides, load_scene};
@@ -326,4 +327,106 @@ fn the_transplanter_box_window_is_the_picking_window() {
     assert!((report.elliptic_delta_h_mm - 4.540).abs() < 0.001);
     assert!((report.elliptic_delta_h_mm - report.elliptic_delta_h_numeric_mm).abs() < 1e-6);
     assert!(!report.within_limit);
+}
+
+/// `paper-search` with the design `radii` (mm) and `train` (Φ0, β0, S, H1, γ0), evaluated.
+fn search_design(radii: [f64; 12], train: [f64; 5]) -> (Scene, Evaluation) {
+    let names = [
+        "phi0_deg",
+        "beta0_deg",
+        "arm_length_mm",
+        "pusher_offset_mm",
+        "gamma0_deg",
+    ];
+    let mut sets = vec![format!("gear.curve.radii_mm={radii:?}")];
+    sets.extend((names.iter().zip(train)).map(|(name, v)| format!("train.{name}={v}")));
+    let s = apply_overrides(load_scene(Some("paper-search")).unwrap(), &sets).unwrap();
+    let eval = evaluate(&s);
+    (s, eval)
+}
+
+/// Checks that `event` lies between the nodes, at the farthest point along `dir` of a scan
+/// of 60 001 arm states over the 1.5 nodes either side of it.
+fn assert_at_the_scans_extreme(eval: &Evaluation, event: noncirc::core::Event, dir: Vec2) {
+    let kin = eval.kinematics.as_ref().unwrap();
+    let h = std::f64::consts::TAU / kin.len() as f64;
+    let node = (event.carrier_rad / h).round();
+    assert!((event.carrier_rad / h - node).abs() > 0.1, "{event:?}");
+    let (mut farthest, mut at) = (f64::NEG_INFINITY, 0.0);
+    for k in -30_000..=30_000 {
+        let theta = (node + 1.5 * k as f64 / 30_000.0) * h;
+        let reach = kin.state_at(theta).tip.dot(dir);
+        if reach > farthest {
+            (farthest, at) = (reach, theta);
+        }
+    }
+    // The scan's step is 2.6e-6 rad: its farthest point lies within it of the extreme.
+    assert!(
+        (event.carrier_rad - at).abs() < 3e-6,
+        "{} vs {at}",
+        event.carrier_rad
+    );
+    // The event's point follows the last arm state's Taylor series, within about 1e-8 mm
+    // of `state_at` (docs/accuracy.md).
+    let reach = event.tip_mm.dot(dir);
+    assert!((reach - farthest).abs() < 1e-6, "{reach} vs {farthest}");
+}
+
+/// Sharp extremes of two random `paper-search` designs, located between the nodes. The
+/// first design's picking: Newton from the node's own step ended 0.024 rad away and the
+/// node was reported; started at the extreme of the sextic through the nearest nodes, it
+/// finds the extreme. The second's planting: Newton from the sextic's start fails there,
+/// and from the node's own step it finds the extreme (0.04 rad and 5 mm below the node).
+#[test]
+fn sharp_extremes_are_found_between_the_nodes() {
+    let (s, eval) = search_design(
+        [
+            45.89145878113847,
+            62.924661191067614,
+            47.63626181170076,
+            22.09613999827784,
+            10.316257573286984,
+            34.16789634488927,
+            46.95517788799005,
+            12.417765297108012,
+            24.863904058096445,
+            37.55718454917792,
+            20.38052524536564,
+            52.17541199966397,
+        ],
+        [
+            20.21647900647245,
+            -49.5783199176318,
+            189.66545400915825,
+            61.309818586818594,
+            -26.78225733379341,
+        ],
+    );
+    let picking = eval.events.unwrap().picking;
+    assert_at_the_scans_extreme(&eval, picking, s.agronomy.tray_normal());
+    let (_, eval) = search_design(
+        [
+            46.92186982193807,
+            27.19278348521864,
+            61.427501105845266,
+            17.081273170575454,
+            14.465795970516833,
+            10.21338378373546,
+            68.90349787746362,
+            68.5158476851484,
+            53.10939374936656,
+            24.786531588436834,
+            69.83539989875827,
+            66.7740443518909,
+        ],
+        [
+            127.85069468933114,
+            -20.546084490658785,
+            192.54714362061702,
+            64.53984488734005,
+            -75.78655883814604,
+        ],
+    );
+    let planting = eval.events.unwrap().planting;
+    assert_at_the_scans_extreme(&eval, planting, Vec2::new(0.0, -1.0));
 }
