@@ -373,9 +373,9 @@ fn assert_at_the_scans_extreme(eval: &Evaluation, event: noncirc::core::Event, d
 }
 
 /// Sharp extremes of two random `paper-search` designs, located between the nodes. The
-/// first design's picking: Newton from the node's own step ended 0.024 rad away and the
-/// node was reported; started at the extreme of the sextic through the nearest nodes, it
-/// finds the extreme. The second's planting: Newton from the sextic's start fails there,
+/// first design's picking: Newton started at the node failed, and the node was reported,
+/// 0.024 rad from the extreme; started at the extreme of the sextic through the nearest
+/// nodes, it finds the extreme. The second's planting: Newton from the sextic's start fails there,
 /// and from the node's own step it finds the extreme (0.04 rad and 5 mm below the node).
 #[test]
 fn sharp_extremes_are_found_between_the_nodes() {

@@ -192,10 +192,11 @@ impl AtExtreme {
 /// using the exact tip derivatives; `max` chooses maximum or minimum. Returns the arm
 /// there and the extreme value, or the node's where Newton finds no point beyond it
 /// within 1.5 nodes. Newton starts where the sextic through the node's value and
-/// derivatives and its four nearest nodes' values has its extreme ([`sextic_extreme`]),
-/// one arm state instead of two from the node, and from the node itself where that start
-/// fails. It converges quadratically: once a step falls below 1e-7 rad, the next is below
-/// 1e-13 rad, so that last step is taken along the Taylor series of the state in hand
+/// derivatives and its four nearest nodes' values has its extreme ([`sextic_extreme`]):
+/// 1.4 arm states an extreme in a robust evaluation of the paper's design, against 2.0
+/// from the node. Where that start fails, it starts from the node. It converges
+/// quadratically: once a step falls below 1e-7 rad, the next is below 1e-13 rad, so that
+/// last step is taken along the Taylor series of the state in hand
 /// ([`AtExtreme::advanced`]) instead of with a new arm state.
 fn refine_extreme(kin: &Kinematics, dir: Vec2, j: usize, max: bool) -> (AtExtreme, f64) {
     let tips = kin.tips();
