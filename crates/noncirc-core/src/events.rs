@@ -99,7 +99,8 @@ impl PickingCheck {
 
     /// The conditions that fail, each with how far (mm), or `None` when all hold.
     pub fn failures(&self) -> Option<String> {
-        let failed: Vec<String> = (self.conditions().iter())
+        let failed: Vec<String> = self
+            .each()
             .filter(|c| c.1 < 0.0)
             .map(|(name, v)| format!("{name} fails by {:.2} mm", -v))
             .collect();
