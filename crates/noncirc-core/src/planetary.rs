@@ -943,13 +943,15 @@ impl Kinematics {
     fn place_arms(&mut self) {
         self.planet_lag = match &self.gears.second {
             None => {
-                // θ_s at every node: sorted targets, so each cell search starts at the last.
+                // θ_s at every node: sorted targets, so each cell is found forward from
+                // the last.
                 let inverse = self.gears.first.phi_inverse();
-                let mut hint = 0;
+                let rises = inverse.rises_strictly();
+                let mut previous = 0;
                 (self.gears.first.pair.phi2_nodes().iter())
                     .map(|&phi| {
-                        let (ts, cell) = inverse.eval(phi - self.delay, hint);
-                        hint = cell;
+                        let (ts, cell) = inverse.eval_after(phi - self.delay, previous, rises);
+                        previous = cell;
                         ts
                     })
                     .collect()
@@ -961,28 +963,31 @@ impl Kinematics {
                     .collect()
             }
         };
-        // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
+        // Each array in a loop of its own over its known length: no capacity check per
+        // node, as a push has.
         let n = self.planet_lag.len();
         let h = TAU / n as f64;
         let sigma = self.sigma;
+        self.theta3 = (self.planet_lag.iter().enumerate())
+            .map(|(j, &lag)| {
+                let theta = h * j as f64;
+                self.planet_base + sigma * (theta - lag) + self.gamma0 + std::f64::consts::PI
+            })
+            .collect();
+        self.arm_dir = (self.theta3.iter())
+            .map(|&theta3| unit(theta3 + self.beta0))
+            .collect();
+        // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
         let step = unit(sigma * h);
         let (mut e1, mut e2) = (unit(self.phi0), unit(self.phi0 + self.gamma0));
         let [a1, a2] = self.carrier_a;
-        let (mut theta3s, mut arm_dirs, mut o3s) = (
-            Vec::with_capacity(n),
-            Vec::with_capacity(n),
-            Vec::with_capacity(n),
-        );
-        for (j, &lag) in self.planet_lag.iter().enumerate() {
-            let theta = h * j as f64;
-            o3s.push(e1 * a1 + e2 * a2);
-            (e1, e2) = (e1.rotated(step), e2.rotated(step));
-            let theta3 =
-                self.planet_base + sigma * (theta - lag) + self.gamma0 + std::f64::consts::PI;
-            theta3s.push(theta3);
-            arm_dirs.push(unit(theta3 + self.beta0));
-        }
-        (self.theta3, self.arm_dir, self.o3) = (theta3s, arm_dirs, o3s);
+        self.o3 = (0..n)
+            .map(|_| {
+                let o3 = e1 * a1 + e2 * a2;
+                (e1, e2) = (e1.rotated(step), e2.rotated(step));
+                o3
+            })
+            .collect();
     }
 
     /// The sun–intermediate gear pair on the carrier grid. In the paper's train the

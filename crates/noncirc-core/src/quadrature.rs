@@ -240,13 +240,48 @@ impl DriftInverse<'_> {
     /// returns `(u, cell)` so that sorted targets cost O(1) each.
     #[inline(always)]
     pub(crate) fn eval(&self, target: f64, hint: usize) -> (f64, usize) {
+        let (turns, rest) = self.turns_and_rest(target);
+        let j = self.cell_from(rest, hint).unwrap_or_else(|j| j);
+        (self.at(turns, rest, j), j)
+    }
+
+    /// Whether `F`'s node values rise strictly over the period (then each value of one
+    /// period lies in exactly one cell, which a cell search finds from any start).
+    pub(crate) fn rises_strictly(&self) -> bool {
+        let (value, period) = (self.forward.value, self.forward.period_increment);
+        value.windows(2).all(|w| w[0] < w[1])
+            && value.last().is_some_and(|&last| last < value[0] + period)
+    }
+
+    /// As [`DriftInverse::eval`] with the hint `previous`, for ascending targets with
+    /// `previous` the cell of the one before. Where `rises` ([`DriftInverse::rises_strictly`]:
+    /// one cell holds each value) the cell is found by a merge, forward from `previous`
+    /// (from the first cell once the targets pass into the next period), and is the cell
+    /// the walk finds; where the merge finds none, or without `rises`, the walk runs.
+    #[inline(always)]
+    pub(crate) fn eval_after(&self, target: f64, previous: usize, rises: bool) -> (f64, usize) {
+        let value = self.forward.value;
+        if rises && previous < value.len() {
+            let (turns, rest) = self.turns_and_rest(target);
+            let mut j = if rest < value[previous] { 0 } else { previous };
+            while j + 1 < value.len() && value[j + 1] <= rest {
+                j += 1;
+            }
+            if value[j] <= rest && rest < self.upper(j) {
+                return (self.at(turns, rest, j), j);
+            }
+        }
+        self.eval(target, previous)
+    }
+
+    /// Whole periods of `target` from the first node's value, and what is left within one.
+    #[inline(always)]
+    fn turns_and_rest(&self, target: f64) -> (f64, f64) {
         let f = &self.forward;
-        let n = f.value.len();
-        let h = f.h();
         let (first, period) = (f.value[0], f.period_increment);
         // Whole periods below or above the first: one either way is the usual case (and
         // `floor` is a library call on baseline x86-64).
-        let (turns, rest) = if target < first {
+        if target < first {
             if target >= first - period {
                 (-1.0, target + period)
             } else {
@@ -260,19 +295,33 @@ impl DriftInverse<'_> {
         } else {
             let turns = ((target - first) / period).floor();
             (turns, target - turns * period)
-        };
-        // Walk from the hint to the cell [F_j, F_{j+1}) that holds `rest`.
+        }
+    }
+
+    /// The cell's upper node value (the next period's first past the last node).
+    #[inline(always)]
+    fn upper(&self, j: usize) -> f64 {
+        let f = &self.forward;
+        if j + 1 == f.value.len() {
+            f.value[0] + f.period_increment
+        } else {
+            f.value[j + 1]
+        }
+    }
+
+    /// Walks from `hint` to the cell `[F_j, F_{j+1})` that holds `rest`: `Ok(j)`, or
+    /// `Err(j)` where the walk gave up (`rest` in no cell).
+    #[inline(always)]
+    fn cell_from(&self, rest: f64, hint: usize) -> Result<usize, usize> {
+        let value = self.forward.value;
+        let n = value.len();
         let mut j = hint.min(n - 1);
-        let upper = |j: usize| {
-            if j + 1 == n {
-                first + period
-            } else {
-                f.value[j + 1]
-            }
-        };
         let mut steps = 0;
-        while steps < 2 * n && !(f.value[j] <= rest && rest < upper(j)) {
-            j = if rest < f.value[j] {
+        while !(value[j] <= rest && rest < self.upper(j)) {
+            if steps == 2 * n {
+                return Err(j);
+            }
+            j = if rest < value[j] {
                 if j == 0 {
                     n - 1
                 } else {
@@ -285,8 +334,16 @@ impl DriftInverse<'_> {
             };
             steps += 1;
         }
+        Ok(j)
+    }
+
+    /// `F⁻¹` at `rest` in cell `j`, `turns` periods on.
+    #[inline(always)]
+    fn at(&self, turns: f64, rest: f64, j: usize) -> f64 {
+        let n = self.forward.value.len();
+        let h = self.forward.h();
         let j1 = if j + 1 == n { 0 } else { j + 1 };
-        let (y0, y1) = (f.value[j], upper(j));
+        let (y0, y1) = (self.forward.value[j], self.upper(j));
         let width = y1 - y0;
         let s = ((rest - y0) / width).clamp(0.0, 1.0);
         let cell = QuinticCell::new(
@@ -295,7 +352,7 @@ impl DriftInverse<'_> {
             [self.d2[j], self.d2[j1]],
             width,
         );
-        (turns * std::f64::consts::TAU + cell.eval_in_cell(s).0, j)
+        turns * std::f64::consts::TAU + cell.eval_in_cell(s).0
     }
 }
 
@@ -417,5 +474,45 @@ mod tests {
             order > 5.5 && fine < 1e-8,
             "order {order} ({coarse:e} -> {fine:e})"
         );
+    }
+
+    proptest::proptest! {
+        /// The merge over ascending targets (`eval_after`) finds the walk's cell and value bit
+        /// for bit: targets `F(u_j) − delay` over two periods and a half, as the planet's lag
+        /// takes them, and on drifts whose nodes do not rise it leaves them to the walk.
+        #[test]
+        fn merge_over_ascending_targets_is_the_walk(
+            n in 12usize..200,
+            c in -0.95f64..0.95,
+            delay in 0.0f64..TAU,
+            offset in 0usize..200,
+        ) {
+            let [v, d1, d2, i1, i2] = sine_drift(n, c);
+            let inverse = |value| DriftInverse {
+                forward: MonotoneDrift { value, d1: &d1, d2: &d2, period_increment: TAU },
+                d1: &i1,
+                d2: &i2,
+            };
+            let smooth = inverse(&v);
+            proptest::prop_assert!(smooth.rises_strictly());
+            // A node pushed below the one before it: no longer rising.
+            let mut dented = v.clone();
+            dented[offset % n] = dented[(offset + n - 1) % n] - 1e-3;
+            let dented_inverse = inverse(&dented);
+            proptest::prop_assert!(!dented_inverse.rises_strictly() || offset % n == 0);
+            for inv in [smooth, dented_inverse] {
+                let rises = inv.rises_strictly();
+                let (mut merged, mut walked) = (0, 0);
+                for k in 0..5 * n / 2 {
+                    let j = (k + offset) % n;
+                    let target = v[j] - delay + TAU * ((k + offset) / n) as f64;
+                    let (a, cell_a) = inv.eval_after(target, merged, rises);
+                    let (b, cell_b) = inv.eval(target, walked);
+                    proptest::prop_assert_eq!(cell_a, cell_b, "target {}", target);
+                    proptest::prop_assert_eq!(a.to_bits(), b.to_bits(), "target {}", target);
+                    (merged, walked) = (cell_a, cell_b);
+                }
+            }
+        }
     }
 }
