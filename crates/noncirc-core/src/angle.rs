@@ -58,6 +58,14 @@ pub(crate) fn wrap_turn(x: f64) -> f64 {
     }
 }
 
+/// A node's index `j` as a float, exactly (indices lie far below 2⁵³): through `i64`,
+/// whose conversion is one instruction on x86-64 where `usize`'s takes six. Node angles
+/// `j·h` are computed at every node of every evaluation.
+#[inline(always)]
+pub(crate) fn node_index(j: usize) -> f64 {
+    j as i64 as f64
+}
+
 /// Beyond this |x| (rad) the table's reduction would lose digits: libm takes over.
 const REDUCTION_LIMIT: f64 = 1e9;
 

@@ -2,6 +2,7 @@
 //! machine can pick at the picking point, with value, bounds, unit and violation.
 
 use crate::agronomy::{Agronomy, Travel};
+use crate::angle::node_index;
 use crate::curve::{parabola_vertex, TAU};
 use crate::events::{events, housing_radius, Events};
 use crate::gear::{ModuleReport, ModuleRule};
@@ -109,7 +110,7 @@ pub(crate) fn seedling_push(kin: &Kinematics, agro: &Agronomy, ev: &Events) -> f
         if p.y > top {
             break;
         }
-        let v = ahead(p.x, k as f64 * h);
+        let v = ahead(p.x, node_index(k) * h);
         if before.is_some() && after.is_none() {
             after = Some(v);
         }

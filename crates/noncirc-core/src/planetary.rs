@@ -5,7 +5,7 @@
 //! intermediate carries a second pitch curve of its own (its layer B, on the same shaft),
 //! which drives a planet that is that curve's conjugate.
 
-use crate::angle::unit;
+use crate::angle::{node_index, unit};
 use crate::blank::Blank;
 use crate::curve::{PitchCurve, Polar, TAU};
 use crate::error::{finite, length, positive, Error, Result};
@@ -970,7 +970,7 @@ impl Kinematics {
         let sigma = self.sigma;
         self.theta3 = (self.planet_lag.iter().enumerate())
             .map(|(j, &lag)| {
-                let theta = h * j as f64;
+                let theta = h * node_index(j);
                 self.planet_base + sigma * (theta - lag) + self.gamma0 + std::f64::consts::PI
             })
             .collect();
@@ -1108,7 +1108,7 @@ impl Kinematics {
 
     /// Carrier angle of node `j` (rad).
     pub fn theta(&self, j: usize) -> f64 {
-        TAU * j as f64 / self.len() as f64
+        TAU * node_index(j) / self.len() as f64
     }
 
     /// Tip of arm I at the nodes (mm).

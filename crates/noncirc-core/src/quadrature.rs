@@ -1,5 +1,6 @@
 //! Periodic quadrature on uniform grids: spectral cumulative integrals and Hermite interpolation.
 
+use crate::angle::node_index;
 use realfft::num_complex::Complex64;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use std::sync::Arc;
@@ -104,7 +105,7 @@ impl SpectralIntegrator {
         let p0 = self.real[0];
         let h = std::f64::consts::TAU / n as f64;
         for (j, (o, b)) in out.iter_mut().zip(&self.real).enumerate() {
-            *o = mean * h * j as f64 + b - p0;
+            *o = mean * h * node_index(j) + b - p0;
         }
         mean
     }
@@ -209,7 +210,7 @@ impl MonotoneDrift<'_> {
         let rest = u - turns * std::f64::consts::TAU;
         let j = ((rest / h) as usize).min(n - 1);
         let (y, d1, d2) = self.cell(j);
-        let (v, s) = QuinticCell::new(y, d1, d2, h).eval((rest - j as f64 * h) / h);
+        let (v, s) = QuinticCell::new(y, d1, d2, h).eval((rest - node_index(j) * h) / h);
         (v + turns * self.period_increment, s)
     }
 }
@@ -347,7 +348,7 @@ impl DriftInverse<'_> {
         let width = y1 - y0;
         let s = ((rest - y0) / width).clamp(0.0, 1.0);
         let cell = QuinticCell::new(
-            [j as f64 * h, (j + 1) as f64 * h],
+            [node_index(j) * h, node_index(j + 1) * h],
             [self.d1[j], self.d1[j1]],
             [self.d2[j], self.d2[j1]],
             width,

@@ -1,5 +1,6 @@
 //! Periodic cubic interpolating spline of `rho` in `psi` (period 2π).
 
+use crate::angle::node_index;
 use crate::curve::{Polar, TAU};
 use crate::error::{finite_with, positive_with, Error, Result};
 use std::cell::RefCell;
@@ -114,7 +115,7 @@ impl PeriodicSpline {
         let mut turns = 0.0;
         (0..n)
             .map(|j| {
-                let mut x = base + step * j as f64 + turns;
+                let mut x = base + step * node_index(j) + turns;
                 while x >= first + TAU {
                     x -= TAU;
                     turns -= TAU;
