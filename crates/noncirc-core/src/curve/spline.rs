@@ -110,29 +110,43 @@ impl PeriodicSpline {
     /// found by walking the segments along the grid instead of searching for each point.
     pub fn sample_uniform(&self, start: f64, step: f64, n: usize) -> Vec<Polar> {
         let (first, last) = (self.knots[0], self.knots.len() - 1);
+        // Segment `i`'s span within the turn from `first`: a sample inside it needs none
+        // of the walks below (ten samples a segment at the default resolution).
+        let span = |i: usize| {
+            let upper = if i < last {
+                self.knots[i + 1]
+            } else {
+                first + TAU
+            };
+            (self.knots[i], upper)
+        };
         let (mut i, t0) = self.locate(start);
         let base = self.knots[i] + t0;
+        let (mut lower, mut upper) = span(i);
         let mut turns = 0.0;
         (0..n)
             .map(|j| {
                 let mut x = base + step * node_index(j) + turns;
-                while x >= first + TAU {
-                    x -= TAU;
-                    turns -= TAU;
-                    i = 0;
+                if !(lower <= x && x < upper) {
+                    while x >= first + TAU {
+                        x -= TAU;
+                        turns -= TAU;
+                        i = 0;
+                    }
+                    while x < first {
+                        x += TAU;
+                        turns += TAU;
+                        i = last;
+                    }
+                    while x < self.knots[i] {
+                        i -= 1;
+                    }
+                    while i < last && x >= self.knots[i + 1] {
+                        i += 1;
+                    }
+                    (lower, upper) = span(i);
                 }
-                while x < first {
-                    x += TAU;
-                    turns += TAU;
-                    i = last;
-                }
-                while x < self.knots[i] {
-                    i -= 1;
-                }
-                while i < last && x >= self.knots[i + 1] {
-                    i += 1;
-                }
-                self.eval_in(i, x - self.knots[i])
+                self.eval_in(i, x - lower)
             })
             .collect()
     }
