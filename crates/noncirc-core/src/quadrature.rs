@@ -242,7 +242,7 @@ impl DriftInverse<'_> {
     #[inline(always)]
     pub(crate) fn eval(&self, target: f64, hint: usize) -> (f64, usize) {
         let (turns, rest) = self.turns_and_rest(target);
-        let j = self.cell_from(rest, hint).unwrap_or_else(|j| j);
+        let j = self.cell_from(rest, hint);
         (self.at(turns, rest, j), j)
     }
 
@@ -310,18 +310,15 @@ impl DriftInverse<'_> {
         }
     }
 
-    /// Walks from `hint` to the cell `[F_j, F_{j+1})` that holds `rest`: `Ok(j)`, or
-    /// `Err(j)` where the walk gave up (`rest` in no cell).
+    /// Walks from `hint` to the cell `[F_j, F_{j+1})` that holds `rest` (where it gives up,
+    /// after two periods of cells, when no cell holds it).
     #[inline(always)]
-    fn cell_from(&self, rest: f64, hint: usize) -> Result<usize, usize> {
+    fn cell_from(&self, rest: f64, hint: usize) -> usize {
         let value = self.forward.value;
         let n = value.len();
         let mut j = hint.min(n - 1);
         let mut steps = 0;
-        while !(value[j] <= rest && rest < self.upper(j)) {
-            if steps == 2 * n {
-                return Err(j);
-            }
+        while steps < 2 * n && !(value[j] <= rest && rest < self.upper(j)) {
             j = if rest < value[j] {
                 if j == 0 {
                     n - 1
@@ -335,7 +332,7 @@ impl DriftInverse<'_> {
             };
             steps += 1;
         }
-        Ok(j)
+        j
     }
 
     /// `F⁻¹` at `rest` in cell `j`, `turns` periods on.
