@@ -268,7 +268,7 @@ impl DriftInverse<'_> {
             while j + 1 < value.len() && value[j + 1] <= rest {
                 j += 1;
             }
-            if value[j] <= rest && rest < self.upper(j) {
+            if self.holds(j, rest) {
                 return (self.at(turns, rest, j), j);
             }
         }
@@ -310,6 +310,12 @@ impl DriftInverse<'_> {
         }
     }
 
+    /// Whether cell `j`, `[F_j, F_{j+1})`, holds `rest` (false for a NaN).
+    #[inline(always)]
+    fn holds(&self, j: usize, rest: f64) -> bool {
+        self.forward.value[j] <= rest && rest < self.upper(j)
+    }
+
     /// Walks from `hint` to the cell `[F_j, F_{j+1})` that holds `rest` (where it gives up,
     /// after two periods of cells, when no cell holds it).
     #[inline(always)]
@@ -318,7 +324,7 @@ impl DriftInverse<'_> {
         let n = value.len();
         let mut j = hint.min(n - 1);
         let mut steps = 0;
-        while steps < 2 * n && !(value[j] <= rest && rest < self.upper(j)) {
+        while steps < 2 * n && !self.holds(j, rest) {
             j = if rest < value[j] {
                 if j == 0 {
                     n - 1
