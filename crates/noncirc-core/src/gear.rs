@@ -8,6 +8,7 @@ use crate::vec2::Vec2;
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 use std::sync::OnceLock;
+use wide::{f64x2, CmpLt};
 
 /// The solved closure condition.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -116,21 +117,32 @@ pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
 
 /// Sums of `rho/(a - rho)` over the even and over the odd samples, and the sum of its
 /// derivative in `a` over all; `None` if `a ≤ max rho`. One division per sample, in four
-/// independent lanes so that the loop vectorises.
+/// lanes (a sample's lane is its index mod 4), each summed in sample order: two pairs of
+/// vector lanes (`wide::f64x2`), whose arithmetic is each lane's own IEEE operation. The
+/// compiler left to itself vectorised half of the lanes and kept `f64::min`'s NaN rule
+/// (four instructions a lane); the least gap is kept by a comparison instead: a NaN gap
+/// (a NaN radius) fails `<` and leaves it, as `min` would, and only `least > 0` is read.
 #[inline]
 fn ratio_sums(rho: &[f64], a: f64) -> Option<([f64; 2], f64)> {
-    let (mut q, mut dq, mut least_gap) = ([0.0; 4], [0.0; 4], [f64::INFINITY; 4]);
-    let chunks = rho.chunks_exact(4);
-    let tail = chunks.remainder();
+    let (zero, a2) = (f64x2::ZERO, f64x2::splat(a));
+    let (mut q, mut dq, mut least_gap) = ([zero; 2], [zero; 2], [f64x2::splat(f64::INFINITY); 2]);
+    let (chunks, tail) = rho.as_chunks::<4>();
     for c in chunks {
-        for l in 0..4 {
-            let gap = a - c[l];
-            let inv = 1.0 / gap;
-            q[l] += c[l] * inv;
-            dq[l] -= c[l] * inv * inv;
-            least_gap[l] = least_gap[l].min(gap);
+        let pairs = [f64x2::new([c[0], c[1]]), f64x2::new([c[2], c[3]])];
+        for (p, r) in pairs.into_iter().enumerate() {
+            let gap = a2 - r;
+            let inv = f64x2::ONE / gap;
+            let term = r * inv;
+            q[p] += term;
+            dq[p] -= term * inv;
+            least_gap[p] = gap.cmp_lt(least_gap[p]).blend(gap, least_gap[p]);
         }
     }
+    let [q, dq, least_gap] = [q, dq, least_gap].map(|[lo, hi]| {
+        let (lo, hi) = (lo.to_array(), hi.to_array());
+        [lo[0], lo[1], hi[0], hi[1]]
+    });
+    let (mut q, mut dq, mut least_gap) = (q, dq, least_gap);
     // The tail starts at an index divisible by 4: its lane parity is its index parity.
     for (l, &r) in tail.iter().enumerate() {
         let gap = a - r;
