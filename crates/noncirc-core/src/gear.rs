@@ -8,7 +8,7 @@ use crate::vec2::Vec2;
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 use std::sync::OnceLock;
-use wide::{f64x2, CmpLt};
+use wide::{f64x2, CmpGt, CmpLt};
 
 /// The solved closure condition.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -334,16 +334,7 @@ fn extremes_of(
     let n = samples.len();
     // `j` is at most 2n − 1 here: a subtraction wraps it (no integer division per sample).
     let kappa = |j: usize| kappa_at(samples[if j < n { j } else { j - n }]);
-    let (mut jmax, mut kmax, mut jmin, mut kmin) = (0, f64::NEG_INFINITY, 0, f64::INFINITY);
-    for (j, &p) in samples.iter().enumerate() {
-        let k = curvature_order(p, inv_unit, driven);
-        if k > kmax {
-            (jmax, kmax) = (j, k);
-        }
-        if k < kmin {
-            (jmin, kmin) = (j, k);
-        }
-    }
+    let ((jmax, kmax), (jmin, kmin)) = extreme_orders(samples, inv_unit, driven);
     let refine = |j: usize, sign: f64| {
         let (ym, y0, yp) = (
             sign * kappa(j + n - 1),
@@ -361,6 +352,60 @@ fn extremes_of(
         concave = concave.min(-1.0 / refine(jmin, 1.0));
     }
     (convex, concave)
+}
+
+/// The first samples of the largest and of the least [`curvature_order`], and those
+/// orders: `(0, −∞)` and `(0, +∞)` where none is a number. Even and odd samples in two
+/// vector lanes (`wide::f64x2`, each lane's arithmetic the scalar's), each keeping the
+/// first of its extremes; a tie between the lanes goes to the earlier sample. The
+/// divisions of two samples take one instruction.
+fn extreme_orders(samples: &[Polar], inv_unit: f64, driven: bool) -> ((usize, f64), (usize, f64)) {
+    let (pairs, tail) = samples.as_chunks::<2>();
+    let unit = f64x2::splat(inv_unit);
+    let (mut kmax, mut kmin) = (f64x2::splat(f64::NEG_INFINITY), f64x2::splat(f64::INFINITY));
+    // Sample indices as floats (exact below 2⁵³).
+    let (mut jmax, mut jmin, mut j) = (f64x2::ZERO, f64x2::ZERO, f64x2::new([0.0, 1.0]));
+    for [p, q] in pairs {
+        let [r, d1, d2] =
+            [[p.rho, q.rho], [p.d1, q.d1], [p.d2, q.d2]].map(|v| f64x2::new(v) * unit);
+        let s = r * r + d1 * d1;
+        let (numerator, gap) = if driven {
+            let g = f64x2::ONE - r;
+            (r * r * r + d1 * d1 * (r - g) + r * d2 * g, g)
+        } else {
+            (r * r + f64x2::splat(2.0) * d1 * d1 - r * d2, f64x2::ONE)
+        };
+        let k = numerator * numerator.abs() / (gap * gap * s * s * s);
+        let above = k.cmp_gt(kmax);
+        (kmax, jmax) = (above.blend(k, kmax), above.blend(j, jmax));
+        let below = k.cmp_lt(kmin);
+        (kmin, jmin) = (below.blend(k, kmin), below.blend(j, jmin));
+        j += f64x2::splat(2.0);
+    }
+    // The lanes' extremes, then the odd sample left, each against the earlier candidate.
+    let lanes = |k: f64x2, j: f64x2| {
+        let (k, j) = (k.to_array(), j.to_array());
+        [(j[0] as usize, k[0]), (j[1] as usize, k[1])]
+    };
+    let first_of = |best: (usize, f64), other: (usize, f64), beats: fn(f64, f64) -> bool| {
+        if beats(other.1, best.1) || (other.1 == best.1 && other.0 < best.0) {
+            other
+        } else {
+            best
+        }
+    };
+    let [max0, max1] = lanes(kmax, jmax);
+    let [min0, min1] = lanes(kmin, jmin);
+    let (mut largest, mut least) = (
+        first_of(max0, max1, |a, b| a > b),
+        first_of(min0, min1, |a, b| a < b),
+    );
+    for (i, &p) in tail.iter().enumerate() {
+        let k = (2 * pairs.len() + i, curvature_order(p, inv_unit, driven));
+        largest = first_of(largest, k, |a, b| a > b);
+        least = first_of(least, k, |a, b| a < b);
+    }
+    (largest, least)
 }
 
 /// The signed square `(κu)|κu|` of the curvature `κ` of the driver at `p`, or of its
