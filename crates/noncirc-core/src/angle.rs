@@ -8,6 +8,7 @@
 use crate::vec2::Vec2;
 use std::f64::consts::TAU;
 use std::sync::OnceLock;
+use wide::f64x2;
 
 /// Table steps per turn (a power of two: the index wraps with a mask).
 const STEPS: usize = 256;
@@ -94,6 +95,36 @@ pub fn unit(x: f64) -> Vec2 {
     Vec2::new(c * cos_r - s * sin_r, s * cos_r + c * sin_r)
 }
 
+/// `[unit(x[0]), unit(x[1])]`, bit for bit, with the two reductions and series in two
+/// vector lanes (`wide::f64x2`, each lane's arithmetic [`unit`]'s own): where the kinematics
+/// takes unit vectors of many angles at once.
+#[inline]
+pub(crate) fn unit_pair(x: [f64; 2]) -> [Vec2; 2] {
+    if x.iter().any(|x| x.abs() >= REDUCTION_LIMIT || x.is_nan()) {
+        return x.map(unit);
+    }
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let (xs, round) = (f64x2::new(x), f64x2::splat(ROUND));
+    let shifted = xs * f64x2::splat(1.0 / STEP_HI) + round;
+    let k = shifted - round;
+    let index = shifted
+        .to_array()
+        .map(|s| s.to_bits() as usize & (STEPS - 1));
+    let r = (xs - k * f64x2::splat(STEP_HI)) - k * f64x2::splat(STEP_LO);
+    let z = r * r;
+    let c = |v: f64| f64x2::splat(v);
+    let cos_r = c(1.0) - z * (c(0.5) - z * (c(1.0 / 24.0) - z * c(1.0 / 720.0)));
+    let sin_r = r * (c(1.0) - z * (c(1.0 / 6.0) - z * (c(1.0 / 120.0) - z * c(1.0 / 5040.0))));
+    let t = table();
+    let [[c0, s0], [c1, s1]] = index.map(|i| t[i]);
+    let (ct, st) = (f64x2::new([c0, c1]), f64x2::new([s0, s1]));
+    let (cos, sin) = (
+        (ct * cos_r - st * sin_r).to_array(),
+        (st * cos_r + ct * sin_r).to_array(),
+    );
+    [Vec2::new(cos[0], sin[0]), Vec2::new(cos[1], sin[1])]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -156,6 +187,25 @@ mod tests {
         #[test]
         fn matches_libm_anywhere(x in -1e4f64..1e4) {
             prop_assert!(error(x) <= 4e-16 + 2e-16 * x.abs(), "{x}: {}", error(x));
+        }
+
+        /// The pair is two scalar calls, bit for bit: any angles, table points and their
+        /// halves, and either beyond the reduction or not a number.
+        #[test]
+        fn a_pair_is_two_units_bit_for_bit(
+            x in prop_oneof![
+                -1e4f64..1e4,
+                (-600i32..600).prop_map(|k| f64::from(k) * 0.5 * STEP_HI),
+                Just(0.0), Just(-0.0), Just(f64::NAN), Just(f64::INFINITY), Just(2e9),
+            ],
+            y in -1e4f64..1e4,
+        ) {
+            let bits = |v: Vec2| [v.x.to_bits(), v.y.to_bits()];
+            for pair in [[x, y], [y, x]] {
+                let got = unit_pair(pair).map(bits);
+                let want = pair.map(|a| bits(unit(a)));
+                prop_assert!(got == want, "{pair:?}: {got:?} vs {want:?}");
+            }
         }
     }
 }
