@@ -361,15 +361,23 @@ impl Walk {
             (self.best, self.best_value) = (j, c);
         }
         if c > m && c >= p {
-            let peak = (j, -parabola_vertex(-m, -c, -p));
-            let peaks = &mut self.peaks;
-            if peak.1 > peaks[2].1 {
-                peaks[2] = peak;
-                if peaks[2].1 > peaks[1].1 {
-                    peaks.swap(1, 2);
-                    if peaks[1].1 > peaks[0].1 {
-                        peaks.swap(0, 1);
-                    }
+            Self::peak(&mut self.peaks, j, [m, c, p]);
+        }
+    }
+
+    /// Local maximum `j` with the values around it, among the three highest `peaks`.
+    /// Out of line: the walk meets a few peaks in a turn, and inlined, the peaks' six
+    /// values took registers that every node then moved about (half a node's
+    /// instructions).
+    #[inline(never)]
+    fn peak(peaks: &mut [(usize, f64); 3], j: usize, [m, c, p]: [f64; 3]) {
+        let peak = (j, -parabola_vertex(-m, -c, -p));
+        if peak.1 > peaks[2].1 {
+            peaks[2] = peak;
+            if peaks[2].1 > peaks[1].1 {
+                peaks.swap(1, 2);
+                if peaks[1].1 > peaks[0].1 {
+                    peaks.swap(0, 1);
                 }
             }
         }
