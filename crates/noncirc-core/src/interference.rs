@@ -104,11 +104,13 @@ pub(crate) fn mark_nodes_near_least_clearance(kin: &mut Kinematics, agro: &Agron
     // One pass: the nodes within the band of the least so far (their clearances exact),
     // then those within the band of the least.
     let mut near = vec![(0, least)];
+    let mut reach = scan.reach(least + band_mm);
     for k in 1..kin.len() {
-        let c = scan.below(k, least + band_mm);
+        let c = scan.below(k, &reach);
         if c <= least + band_mm {
             near.push((k, c));
             least = least.min(c);
+            reach = scan.reach(least + band_mm);
         }
     }
     let nodes = (near.into_iter())
@@ -133,6 +135,20 @@ struct Scan<'a> {
     inv_s2: f64,
     /// Half the arm's length, with a margin that covers rounding in |O3D| = S (mm).
     half: f64,
+    /// The number of nodes, and by how many nodes each arm lags the one before it.
+    n: usize,
+    nodes_per_arm: usize,
+}
+
+/// What [`Scan::below`] compares with, for one bound (mm): the squares of the distances
+/// from arm I's midpoint beyond which another arm's midpoint, that arm, or a planet
+/// centre cannot bring a part of the clearance below the bound. NaN for a distance that
+/// is not positive: no square compares at or above it, so nothing is left out. Computed
+/// where the bound changes, not at every node.
+struct Reach {
+    arm_midpoint: f64,
+    arm: f64,
+    planet: f64,
 }
 
 impl<'a> Scan<'a> {
@@ -148,6 +164,32 @@ impl<'a> Scan<'a> {
             s,
             inv_s2: 1.0 / (s * s),
             half: 0.5 * s * (1.0 + 1e-12),
+            n: kin.len(),
+            nodes_per_arm: kin.nodes_per_arm(),
+        }
+    }
+
+    /// The node of the arm `lag` arms behind arm I at node `k` (`lag < arms`, `k < n`):
+    /// [`Kinematics::arm_node`] without its wraps of arguments out of range.
+    #[inline(always)]
+    fn arm_node(&self, lag: usize, k: usize) -> usize {
+        debug_assert!(lag < self.arms && k < self.n);
+        let behind = lag * self.nodes_per_arm;
+        if k >= behind {
+            k - behind
+        } else {
+            k + self.n - behind
+        }
+    }
+
+    /// The reaches for `bound` (mm).
+    fn reach(&self, bound: f64) -> Reach {
+        let (w, half) = (self.w, self.half);
+        let square = |reach: f64| if reach > 0.0 { reach * reach } else { f64::NAN };
+        Reach {
+            arm_midpoint: square(bound + 2.0 * w + 2.0 * half),
+            arm: square(bound + 2.0 * w + half),
+            planet: square(bound + self.rmax + w + half),
         }
     }
 
@@ -186,25 +228,23 @@ impl<'a> Scan<'a> {
     /// cannot come below `bound`, the exact distance is skipped: squared distances only,
     /// no root.
     #[inline(always)]
-    fn below(&self, k: usize, bound: f64) -> f64 {
-        let (kin, arms, w, half) = (self.kin, self.arms, self.w, self.half);
-        let beyond = |d2: f64, reach: f64| reach > 0.0 && d2 >= reach * reach;
+    fn below(&self, k: usize, reach: &Reach) -> f64 {
+        let arms = self.arms;
         let dist_sq = |p: Vec2, q: Vec2| (p - q).hypot2();
         let seg = self.arm(k);
         let m = seg.midpoint();
-        let planet_reach = bound + self.rmax + w + half;
         let mut c = f64::INFINITY;
         for lag in 1..=arms / 2 {
-            let other = self.arm(kin.arm_node(lag, k));
-            let far = beyond(dist_sq(m, other.midpoint()), bound + 2.0 * w + 2.0 * half)
-                || beyond(other.distance_sq(m), bound + 2.0 * w + half);
+            let other = self.arm(self.arm_node(lag, k));
+            let far = dist_sq(m, other.midpoint()) >= reach.arm_midpoint
+                || other.distance_sq(m) >= reach.arm;
             if !far {
                 c = c.min(self.arms(&seg, &other));
             }
         }
         for lag in 1..arms {
-            let centre = self.centres[kin.arm_node(lag, k)];
-            if !beyond(dist_sq(m, centre), planet_reach) {
+            let centre = self.centres[self.arm_node(lag, k)];
+            if !(dist_sq(m, centre) >= reach.planet) {
                 c = c.min(self.planet(&seg, centre));
             }
         }
@@ -227,10 +267,12 @@ impl<'a> Scan<'a> {
     fn least_over(&self, mut nodes: impl Iterator<Item = usize>) -> Option<(usize, f64)> {
         let first = nodes.next()?;
         let (mut j, mut least) = (first, self.clearance(first));
+        let mut reach = self.reach(least);
         for k in nodes {
-            let c = self.below(k, least);
+            let c = self.below(k, &reach);
             if c < least || (least.is_nan() && c.is_finite()) {
                 (j, least) = (k, c);
+                reach = self.reach(least);
             }
         }
         Some((j, least))

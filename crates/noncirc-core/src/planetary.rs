@@ -1141,6 +1141,11 @@ impl Kinematics {
         TAU * (k % self.arms()) as f64 / self.arms() as f64
     }
 
+    /// Nodes by which each arm lags the one before it (`n / arms`).
+    pub(crate) fn nodes_per_arm(&self) -> usize {
+        self.nodes_per_arm
+    }
+
     /// Node index of arm `k` (0 … arms − 1) at node `j` of the carrier: arm k lags arm I
     /// by k·360°/arms (the samples per turn are a multiple of the arm count).
     pub fn arm_node(&self, k: usize, j: usize) -> usize {
