@@ -8,7 +8,7 @@
 use crate::vec2::Vec2;
 use std::f64::consts::TAU;
 use std::sync::OnceLock;
-use wide::f64x2;
+use wide::{f64x2, CmpLt};
 
 /// Table steps per turn (a power of two: the index wraps with a mask).
 const STEPS: usize = 256;
@@ -95,16 +95,33 @@ pub fn unit(x: f64) -> Vec2 {
     Vec2::new(c * cos_r - s * sin_r, s * cos_r + c * sin_r)
 }
 
-/// `[unit(x[0]), unit(x[1])]`, bit for bit, with the two reductions and series in two
-/// vector lanes (`wide::f64x2`, each lane's arithmetic [`unit`]'s own): where the kinematics
-/// takes unit vectors of many angles at once.
-#[inline]
-pub(crate) fn unit_pair(x: [f64; 2]) -> [Vec2; 2] {
-    if x.iter().any(|x| x.abs() >= REDUCTION_LIMIT || x.is_nan()) {
+/// `angles.iter().map(|a| unit(a + offset))`, bit for bit: two angles at a time in vector
+/// lanes (`wide::f64x2`, each lane's arithmetic [`unit`]'s own), the table fetched once.
+/// The kinematics takes a unit vector of every node's angle.
+pub(crate) fn units(angles: &[f64], offset: f64) -> Vec<Vec2> {
+    let table = table();
+    let mut out = vec![Vec2::ZERO; angles.len()];
+    let (pairs, tail) = angles.as_chunks::<2>();
+    let (out_pairs, out_tail) = out.as_chunks_mut::<2>();
+    for (o, &[a, b]) in out_pairs.iter_mut().zip(pairs) {
+        *o = unit_pair(table, [a + offset, b + offset]);
+    }
+    for (o, &a) in out_tail.iter_mut().zip(tail) {
+        *o = unit(a + offset);
+    }
+    out
+}
+
+/// `[unit(x[0]), unit(x[1])]`, bit for bit, from the `table`.
+#[inline(always)]
+fn unit_pair(table: &[[f64; 2]; STEPS], x: [f64; 2]) -> [Vec2; 2] {
+    let xs = f64x2::new(x);
+    // Both below the limit (a NaN is not).
+    if xs.abs().cmp_lt(f64x2::splat(REDUCTION_LIMIT)).move_mask() != 0b11 {
         return x.map(unit);
     }
     const ROUND: f64 = 6_755_399_441_055_744.0;
-    let (xs, round) = (f64x2::new(x), f64x2::splat(ROUND));
+    let round = f64x2::splat(ROUND);
     let shifted = xs * f64x2::splat(1.0 / STEP_HI) + round;
     let k = shifted - round;
     let index = shifted
@@ -115,8 +132,7 @@ pub(crate) fn unit_pair(x: [f64; 2]) -> [Vec2; 2] {
     let c = |v: f64| f64x2::splat(v);
     let cos_r = c(1.0) - z * (c(0.5) - z * (c(1.0 / 24.0) - z * c(1.0 / 720.0)));
     let sin_r = r * (c(1.0) - z * (c(1.0 / 6.0) - z * (c(1.0 / 120.0) - z * c(1.0 / 5040.0))));
-    let t = table();
-    let [[c0, s0], [c1, s1]] = index.map(|i| t[i]);
+    let [[c0, s0], [c1, s1]] = index.map(|i| table[i]);
     let (ct, st) = (f64x2::new([c0, c1]), f64x2::new([s0, s1]));
     let (cos, sin) = (
         (ct * cos_r - st * sin_r).to_array(),
@@ -189,23 +205,24 @@ mod tests {
             prop_assert!(error(x) <= 4e-16 + 2e-16 * x.abs(), "{x}: {}", error(x));
         }
 
-        /// The pair is two scalar calls, bit for bit: any angles, table points and their
-        /// halves, and either beyond the reduction or not a number.
+        /// Many unit vectors are each one's own, bit for bit: any angles, table points
+        /// and their halves, zeros, and angles beyond the reduction or not numbers, in
+        /// either lane or the odd one left.
         #[test]
-        fn a_pair_is_two_units_bit_for_bit(
-            x in prop_oneof![
-                -1e4f64..1e4,
-                (-600i32..600).prop_map(|k| f64::from(k) * 0.5 * STEP_HI),
-                Just(0.0), Just(-0.0), Just(f64::NAN), Just(f64::INFINITY), Just(2e9),
-            ],
-            y in -1e4f64..1e4,
+        fn many_units_are_each_ones_own_bit_for_bit(
+            angles in prop::collection::vec(prop_oneof![
+                4 => -1e4f64..1e4,
+                2 => (-600i32..600).prop_map(|k| f64::from(k) * 0.5 * STEP_HI),
+                1 => prop_oneof![
+                    Just(0.0), Just(-0.0), Just(f64::NAN), Just(f64::INFINITY), Just(2e9),
+                ],
+            ], 0..9),
+            offset in prop_oneof![Just(0.0), -4.0f64..4.0],
         ) {
-            let bits = |v: Vec2| [v.x.to_bits(), v.y.to_bits()];
-            for pair in [[x, y], [y, x]] {
-                let got = unit_pair(pair).map(bits);
-                let want = pair.map(|a| bits(unit(a)));
-                prop_assert!(got == want, "{pair:?}: {got:?} vs {want:?}");
-            }
+            let bits = |v: &Vec2| [v.x.to_bits(), v.y.to_bits()];
+            let got: Vec<_> = units(&angles, offset).iter().map(bits).collect();
+            let want: Vec<_> = angles.iter().map(|&a| bits(&unit(a + offset))).collect();
+            prop_assert_eq!(got, want);
         }
     }
 }

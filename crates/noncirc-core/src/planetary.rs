@@ -5,7 +5,7 @@
 //! intermediate carries a second pitch curve of its own (its layer B, on the same shaft),
 //! which drives a planet that is that curve's conjugate.
 
-use crate::angle::{node_index, unit, unit_pair};
+use crate::angle::{node_index, unit, units};
 use crate::blank::Blank;
 use crate::curve::{PitchCurve, Polar, TAU};
 use crate::error::{finite, length, positive, Error, Result};
@@ -974,14 +974,7 @@ impl Kinematics {
                 self.planet_base + sigma * (theta - lag) + self.gamma0 + std::f64::consts::PI
             })
             .collect();
-        // Two nodes' directions at a time (`unit_pair`), the odd one left alone.
-        let (pairs, tail) = self.theta3.as_chunks::<2>();
-        let mut arm_dir = Vec::with_capacity(n);
-        for &[a, b] in pairs {
-            arm_dir.extend_from_slice(&unit_pair([a + self.beta0, b + self.beta0]));
-        }
-        arm_dir.extend(tail.iter().map(|&theta3| unit(theta3 + self.beta0)));
-        self.arm_dir = arm_dir;
+        self.arm_dir = units(&self.theta3, self.beta0);
         // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
         let step = unit(sigma * h);
         let (mut e1, mut e2) = (unit(self.phi0), unit(self.phi0 + self.gamma0));
