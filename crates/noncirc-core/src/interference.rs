@@ -199,14 +199,16 @@ impl<'a> Scan<'a> {
         Segment::with_inv_len2(self.centres[j], self.tips[j], self.inv_s2)
     }
 
-    /// Arm I against another arm (mm).
-    #[inline]
+    /// Arm I against another arm (mm). Out of line, as [`Scan::planet`]: the scan takes
+    /// them at few nodes, and inlined, what they need of arm I was made ready at every
+    /// node.
+    #[inline(never)]
     fn arms(&self, seg: &Segment, other: &Segment) -> f64 {
         seg.distance_sq_to(other).sqrt() - 2.0 * self.w
     }
 
     /// Arm I against the planet centred at `c` (mm).
-    #[inline]
+    #[inline(never)]
     fn planet(&self, seg: &Segment, c: Vec2) -> f64 {
         seg.distance_sq(c).sqrt() - self.rmax - self.w
     }
@@ -268,11 +270,14 @@ impl<'a> Scan<'a> {
         let first = nodes.next()?;
         let (mut j, mut least) = (first, self.clearance(first));
         let mut reach = self.reach(least);
+        // Whether `least` is NaN, kept with it: tested at every node, it changes with it.
+        let mut broken = least.is_nan();
         for k in nodes {
             let c = self.below(k, &reach);
-            if c < least || (least.is_nan() && c.is_finite()) {
+            if c < least || (broken && c.is_finite()) {
                 (j, least) = (k, c);
                 reach = self.reach(least);
+                broken = false;
             }
         }
         Some((j, least))
