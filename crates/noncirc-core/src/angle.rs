@@ -50,12 +50,19 @@ pub(crate) fn degrees_in_turn(x: f64) -> f64 {
 /// `rem_euclid` does (at −2π it gives −0).
 #[inline]
 pub(crate) fn wrap_turn(x: f64) -> f64 {
-    if (0.0..TAU).contains(&x) {
+    wrap(x, TAU)
+}
+
+/// `x.rem_euclid(period)` for a positive `period`, bit for bit, as [`wrap_turn`] (one
+/// period either way of zero without `fmod`): angles in degrees take 360.
+#[inline]
+pub(crate) fn wrap(x: f64, period: f64) -> f64 {
+    if (0.0..period).contains(&x) {
         x
-    } else if x > -TAU && x < 0.0 {
-        x + TAU
+    } else if x > -period && x < 0.0 {
+        x + period
     } else {
-        x.rem_euclid(TAU)
+        x.rem_euclid(period)
     }
 }
 
@@ -162,12 +169,28 @@ mod tests {
             f64::NAN,
         ];
         let sweep = (-40_000..40_000).map(|k| k as f64 * 3.3e-4 + 1e-7);
+        let same = |got: f64, want: f64| {
+            got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan())
+        };
         for x in edges.into_iter().chain(sweep) {
             let (got, want) = (wrap_turn(x), x.rem_euclid(TAU));
-            assert!(
-                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
-                "{x}: {got} vs {want}"
-            );
+            assert!(same(got, want), "{x}: {got} vs {want}");
+        }
+        // In degrees, where a remainder near 180° rounds onto it: −180° + 1e-14 gives 180.
+        let degrees = [
+            -360.0,
+            -180.0 - 1e-14,
+            -180.0,
+            -180.0 + 1e-14,
+            -1e-20,
+            180.0,
+            359.9,
+            720.0,
+        ];
+        let sweep = (-40_000..40_000).map(|k| k as f64 * 0.0191 + 3e-9);
+        for x in degrees.into_iter().chain(edges).chain(sweep) {
+            let (got, want) = (wrap(x, 360.0), x.rem_euclid(360.0));
+            assert!(same(got, want), "{x}°: {got} vs {want}");
         }
     }
 

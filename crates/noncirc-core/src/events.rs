@@ -565,7 +565,7 @@ impl Picking {
         let jh = highest_node(tips, walk_nodes(kin, UP, Along::Up));
         let (_, y_max) = refine_extreme(kin, UP, jh, true);
         let event = |s: &AtExtreme| Event {
-            carrier_rad: s.theta.rem_euclid(TAU),
+            carrier_rad: crate::angle::wrap_turn(s.theta),
             tip_mm: s.tip,
             attitude_deg: attitude_deg(s.pusher_angle),
         };

@@ -196,7 +196,7 @@ impl TrainSpec {
                 expected: format!("0 <= H1 < S = {} mm", self.arm_length_mm),
             });
         }
-        let gamma = self.gamma0_deg.rem_euclid(360.0);
+        let gamma = crate::angle::wrap(self.gamma0_deg, 360.0);
         if gamma == 180.0 || gamma == 0.0 {
             return Err(Error::OutOfRange {
                 name: "train.gamma0_deg".into(),
@@ -877,7 +877,7 @@ impl Kinematics {
         ];
         let gamma0 = spec.gamma0_deg.to_radians();
         let beta0 = spec.beta0_deg.to_radians();
-        let delay = (sigma * (gamma0 - std::f64::consts::PI)).rem_euclid(TAU);
+        let delay = crate::angle::wrap_turn(sigma * (gamma0 - std::f64::consts::PI));
         let planet_base = planet_base(gears.second.is_some(), spec);
         let mut kin = Self {
             gears,

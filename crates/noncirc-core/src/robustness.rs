@@ -174,7 +174,7 @@ pub fn least_normalised_margin(eval: &Evaluation, scene: &Scene) -> f64 {
 
 /// Wrapped distance between two carrier angles (rad).
 fn angle_gap(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(TAU);
+    let d = crate::angle::wrap_turn(a - b);
     d.min(TAU - d)
 }
 
