@@ -232,21 +232,23 @@ impl<'a> Scan<'a> {
     #[inline(always)]
     fn below(&self, k: usize, reach: &Reach) -> f64 {
         let arms = self.arms;
+        // Beyond a reach (a NaN reach: never).
+        let beyond = |d2: f64, reach2: f64| d2 >= reach2;
         let dist_sq = |p: Vec2, q: Vec2| (p - q).hypot2();
         let seg = self.arm(k);
         let m = seg.midpoint();
         let mut c = f64::INFINITY;
         for lag in 1..=arms / 2 {
             let other = self.arm(self.arm_node(lag, k));
-            let far = dist_sq(m, other.midpoint()) >= reach.arm_midpoint
-                || other.distance_sq(m) >= reach.arm;
+            let far = beyond(dist_sq(m, other.midpoint()), reach.arm_midpoint)
+                || beyond(other.distance_sq(m), reach.arm);
             if !far {
                 c = c.min(self.arms(&seg, &other));
             }
         }
         for lag in 1..arms {
             let centre = self.centres[self.arm_node(lag, k)];
-            if !(dist_sq(m, centre) >= reach.planet) {
+            if !beyond(dist_sq(m, centre), reach.planet) {
                 c = c.min(self.planet(&seg, centre));
             }
         }
