@@ -144,11 +144,10 @@ fn ratio_sums(rho: &[f64], a: f64) -> Option<([f64; 2], f64)> {
             least_gap[p] = gap.cmp_lt(least_gap[p]).blend(gap, least_gap[p]);
         }
     }
-    let [q, dq, least_gap] = [q, dq, least_gap].map(|[lo, hi]| {
+    let [mut q, mut dq, mut least_gap] = [q, dq, least_gap].map(|[lo, hi]| {
         let (lo, hi) = (lo.to_array(), hi.to_array());
         [lo[0], lo[1], hi[0], hi[1]]
     });
-    let (mut q, mut dq, mut least_gap) = (q, dq, least_gap);
     // The tail starts at an index divisible by 4: its lane parity is its index parity.
     for (l, &r) in tail.iter().enumerate() {
         let gap = a - r;
@@ -923,7 +922,78 @@ mod tests {
         }
     }
 
+    /// Values that make ties, NaNs and infinities likely, for the lanes' tests.
+    fn awkward() -> impl proptest::strategy::Strategy<Value = f64> {
+        use proptest::prelude::*;
+        prop_oneof![
+            6 => 1.0f64..80.0,
+            2 => prop::sample::select(vec![5.0, 20.0, 40.0]),
+            1 => prop::sample::select(vec![0.0, -3.0, f64::NAN, f64::INFINITY, 1e300]),
+        ]
+    }
+
     proptest::proptest! {
+        /// The curvature scan in lanes finds the sequential scan's first largest and first
+        /// least order, bit for bit: samples with ties, NaNs and infinities, of odd and
+        /// even counts, for the driver and its conjugate.
+        #[test]
+        fn the_lanes_extreme_orders_are_the_sequential_scans(
+            values in proptest::collection::vec(proptest::prop_oneof![
+                (awkward(), awkward(), awkward()),
+                // Repeated samples: ties within a lane and between the lanes.
+                proptest::sample::select(vec![(30.0, 4.0, -9.0), (45.0, -2.0, 60.0)]),
+            ], 0..13),
+            inv_unit in proptest::prop_oneof![0.01f64..0.1, proptest::strategy::Just(1.0)],
+            driven in proptest::bool::ANY,
+        ) {
+            let samples: Vec<Polar> =
+                values.iter().map(|&(rho, d1, d2)| Polar { rho, d1, d2 }).collect();
+            let (mut largest, mut least) = ((0, f64::NEG_INFINITY), (0, f64::INFINITY));
+            for (j, &p) in samples.iter().enumerate() {
+                let k = curvature_order(p, inv_unit, driven);
+                if k > largest.1 {
+                    largest = (j, k);
+                }
+                if k < least.1 {
+                    least = (j, k);
+                }
+            }
+            let bits = |(j, k): (usize, f64)| (j, k.to_bits());
+            let (got_largest, got_least) = extreme_orders(&samples, inv_unit, driven);
+            proptest::prop_assert_eq!(bits(got_largest), bits(largest));
+            proptest::prop_assert_eq!(bits(got_least), bits(least));
+        }
+
+        /// The ratio sums in vector lanes are the four scalar lanes' sums, bit for bit,
+        /// and refuse the same centre distances: radii with ties, NaNs and infinities, of
+        /// any count, at centre distances below, among and above them.
+        #[test]
+        fn the_ratio_sums_in_lanes_are_the_scalar_lanes(
+            rho in proptest::collection::vec(awkward(), 0..23),
+            a in proptest::prop_oneof![1.0f64..200.0, proptest::strategy::Just(40.0)],
+        ) {
+            let (mut q, mut dq, mut least_gap) = ([0.0; 4], [0.0; 4], [f64::INFINITY; 4]);
+            for (j, &r) in rho.iter().enumerate() {
+                let (l, gap) = (j % 4, a - r);
+                if j < rho.len() / 4 * 4 {
+                    let inv = 1.0 / gap;
+                    q[l] += r * inv;
+                    dq[l] -= r * inv * inv;
+                } else {
+                    q[l] += r / gap;
+                    dq[l] -= r / (gap * gap);
+                }
+                least_gap[l] = least_gap[l].min(gap);
+            }
+            let least = least_gap.iter().fold(f64::INFINITY, |m, &g| m.min(g));
+            let want = (least > 0.0)
+                .then_some(([q[0] + q[2], q[1] + q[3]], dq.iter().sum::<f64>()));
+            let bits = |s: Option<([f64; 2], f64)>| {
+                s.map(|([e, o], d)| [e.to_bits(), o.to_bits(), d.to_bits()])
+            };
+            proptest::prop_assert_eq!(bits(ratio_sums(&rho, a)), bits(want));
+        }
+
         /// The module's bound from the driver alone, before the closure, is never below
         /// the pair's module: random 12-point splines (convex, concave and spiky), every
         /// reading, with and without a shaper, on either sense of the grid.

@@ -223,12 +223,12 @@ impl<'a> Scan<'a> {
         others.chain(planets).fold(f64::NAN, f64::min)
     }
 
-    /// The clearance at node `k` where it is below `bound`; otherwise a value at or above
-    /// `bound` (+∞ when every part is). Every point of an arm lies within S/2 of its
-    /// midpoint m, so arm I is at least |m − c| − S/2 from a planet centre c, and at least
-    /// |m − m₂| − S, then dist(m, arm II) − S/2, from another arm. Where such a bound
-    /// cannot come below `bound`, the exact distance is skipped: squared distances only,
-    /// no root.
+    /// The clearance at node `k` where it is below the bound of `reach`; otherwise a value
+    /// at or above that bound (+∞ when every part is). Every point of an arm lies within
+    /// S/2 of its midpoint m, so arm I is at least |m − c| − S/2 from a planet centre c, and
+    /// at least |m − m₂| − S, then dist(m, arm II) − S/2, from another arm. Where such a
+    /// bound cannot come below the bound, the exact distance is skipped: squared distances
+    /// only, no root.
     #[inline(always)]
     fn below(&self, k: usize, reach: &Reach) -> f64 {
         let arms = self.arms;
