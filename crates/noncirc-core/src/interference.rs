@@ -135,9 +135,6 @@ struct Scan<'a> {
     inv_s2: f64,
     /// Half the arm's length, with a margin that covers rounding in |O3D| = S (mm).
     half: f64,
-    /// The number of nodes, and by how many nodes each arm lags the one before it.
-    n: usize,
-    nodes_per_arm: usize,
 }
 
 /// What [`Scan::below`] compares with, for one bound (mm): the squares of the distances
@@ -164,21 +161,6 @@ impl<'a> Scan<'a> {
             s,
             inv_s2: 1.0 / (s * s),
             half: 0.5 * s * (1.0 + 1e-12),
-            n: kin.len(),
-            nodes_per_arm: kin.nodes_per_arm(),
-        }
-    }
-
-    /// The node of the arm `lag` arms behind arm I at node `k` (`lag < arms`, `k < n`):
-    /// [`Kinematics::arm_node`] without its wraps of arguments out of range.
-    #[inline(always)]
-    fn arm_node(&self, lag: usize, k: usize) -> usize {
-        debug_assert!(lag < self.arms && k < self.n);
-        let behind = lag * self.nodes_per_arm;
-        if k >= behind {
-            k - behind
-        } else {
-            k + self.n - behind
         }
     }
 
@@ -239,7 +221,7 @@ impl<'a> Scan<'a> {
         let m = seg.midpoint();
         let mut c = f64::INFINITY;
         for lag in 1..=arms / 2 {
-            let other = self.arm(self.arm_node(lag, k));
+            let other = self.arm(self.kin.arm_node_within(lag, k));
             let far = beyond(dist_sq(m, other.midpoint()), reach.arm_midpoint)
                 || beyond(other.distance_sq(m), reach.arm);
             if !far {
@@ -247,7 +229,7 @@ impl<'a> Scan<'a> {
             }
         }
         for lag in 1..arms {
-            let centre = self.centres[self.arm_node(lag, k)];
+            let centre = self.centres[self.kin.arm_node_within(lag, k)];
             if !beyond(dist_sq(m, centre), reach.planet) {
                 c = c.min(self.planet(&seg, centre));
             }

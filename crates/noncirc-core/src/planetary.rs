@@ -1134,24 +1134,26 @@ impl Kinematics {
         TAU * (k % self.arms()) as f64 / self.arms() as f64
     }
 
-    /// Nodes by which each arm lags the one before it (`n / arms`).
-    pub(crate) fn nodes_per_arm(&self) -> usize {
-        self.nodes_per_arm
-    }
-
     /// Node index of arm `k` (0 … arms − 1) at node `j` of the carrier: arm k lags arm I
     /// by k·360°/arms (the samples per turn are a multiple of the arm count).
     pub fn arm_node(&self, k: usize, j: usize) -> usize {
-        let n = self.len();
         // No integer division on the usual path (`k < arms`, `j < n`): this runs at every
         // node, several times.
         let k = if k < self.arms() { k } else { k % self.arms() };
+        let j = if j < self.len() { j } else { j % self.len() };
+        self.arm_node_within(k, j)
+    }
+
+    /// [`Kinematics::arm_node`] for `k < arms` and `j < n`, without wrapping them: the
+    /// interference scan's every node.
+    #[inline(always)]
+    pub(crate) fn arm_node_within(&self, k: usize, j: usize) -> usize {
+        debug_assert!(k < self.arms() && j < self.len());
         let lag = k * self.nodes_per_arm;
-        let j = if j < n { j } else { j % n };
         if j >= lag {
             j - lag
         } else {
-            j + n - lag
+            j + self.len() - lag
         }
     }
 
