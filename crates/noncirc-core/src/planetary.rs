@@ -1149,12 +1149,19 @@ impl Kinematics {
     #[inline(always)]
     pub(crate) fn arm_node_within(&self, k: usize, j: usize) -> usize {
         debug_assert!(k < self.arms() && j < self.len());
-        let lag = k * self.nodes_per_arm;
+        let lag = self.arm_lag_nodes(k);
         if j >= lag {
             j - lag
         } else {
             j + self.len() - lag
         }
+    }
+
+    /// Nodes by which arm `k` (`k < arms`) lags arm I: arm k at node `j` is arm I at node
+    /// `j` less these, wrapped ([`Kinematics::arm_node_within`]).
+    #[inline(always)]
+    pub(crate) fn arm_lag_nodes(&self, k: usize) -> usize {
+        k * self.nodes_per_arm
     }
 
     /// The node at or below carrier angle `u` (rad, any real), wrapped into one turn.
