@@ -327,12 +327,25 @@ fn extreme_and_runner_up(
 /// nodes alone (ascending) where every node that holds the largest height is among them
 /// ([`walk_nodes`]), with the same result.
 fn highest_node(tips: &[Vec2], marked: Option<&[usize]>) -> usize {
-    let higher = |&a: &usize, &b: &usize| tips[a].y.total_cmp(&tips[b].y);
     match marked {
-        Some(nodes) => nodes.iter().copied().max_by(higher),
-        None => (0..tips.len()).max_by(higher),
+        Some(nodes) => last_highest(tips, nodes.iter().copied()),
+        None => last_highest(tips, 0..tips.len()),
     }
     .unwrap_or(0)
+}
+
+/// `max_by`'s rule over `nodes` (the last of equals in `total_cmp`'s order), with the
+/// highest so far kept in a register rather than loaded through its node at every step.
+fn last_highest(tips: &[Vec2], mut nodes: impl Iterator<Item = usize>) -> Option<usize> {
+    let first = nodes.next()?;
+    let (mut best, mut top) = (first, tips[first].y);
+    for j in nodes {
+        let y = tips[j].y;
+        if y.total_cmp(&top).is_ge() {
+            (best, top) = (j, y);
+        }
+    }
+    Some(best)
 }
 
 /// A walk for the largest value over the nodes, in node order: the best node so far
@@ -738,6 +751,30 @@ mod tests {
             proptest::prop_assert_eq!(
                 extreme_and_runner_up(&tips, dir, None),
                 runner_up_by_definition(&tips, dir)
+            );
+        }
+    }
+
+    proptest::proptest! {
+        /// The highest node is `max_by`'s over `total_cmp` (the last of equals), over every
+        /// node and over marked nodes: heights drawn from a few values, so that ties are
+        /// common, with ±0, ±∞ and NaN among them.
+        #[test]
+        fn highest_node_is_max_by_total_cmp(
+            heights in proptest::collection::vec(0usize..8, 1..40),
+            marked in proptest::collection::vec(proptest::bool::ANY, 40),
+        ) {
+            let values = [-1.5, -0.0, 0.0, 2.0, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, -f64::NAN];
+            let tips: Vec<Vec2> = heights.iter().map(|&h| Vec2::new(0.0, values[h])).collect();
+            let higher = |&a: &usize, &b: &usize| tips[a].y.total_cmp(&tips[b].y);
+            let nodes: Vec<usize> = (0..tips.len()).filter(|&j| marked[j]).collect();
+            proptest::prop_assert_eq!(
+                highest_node(&tips, None),
+                (0..tips.len()).max_by(higher).unwrap()
+            );
+            proptest::prop_assert_eq!(
+                highest_node(&tips, Some(&nodes)),
+                nodes.iter().copied().max_by(higher).unwrap_or(0)
             );
         }
     }
