@@ -10,6 +10,7 @@ pub use spline::PeriodicSpline;
 use crate::error::{finite, finite_with, positive_with, Error, Result};
 use crate::vec2::Vec2;
 use serde::{Deserialize, Serialize};
+use wide::f64x2;
 
 pub(crate) const TAU: f64 = std::f64::consts::TAU;
 
@@ -241,7 +242,7 @@ impl PitchCurve {
     /// Perimeter (mm) from `samples` of this curve, uniform over one turn in either sense:
     /// the trapezoid rule of `ds/dψ`, spectrally accurate for a smooth periodic curve.
     pub fn perimeter(&self, samples: &[Polar]) -> f64 {
-        samples.iter().map(|p| p.arc_rate()).sum::<f64>() * TAU / samples.len() as f64
+        arc_rate_sum(samples) * TAU / samples.len() as f64
     }
 
     /// `(min, max)` of `rho` (mm): exact for the spline and the ellipse, Newton-refined for
@@ -259,6 +260,22 @@ impl PitchCurve {
             }
         }
     }
+}
+
+/// `Σ ds/dψ` over `samples`, added in order: the roots two at a time in vector lanes
+/// (`wide::f64x2`, each lane's arithmetic [`Polar::arc_rate`]'s own), since a root alone
+/// took as long as the rest of a sample's work.
+fn arc_rate_sum(samples: &[Polar]) -> f64 {
+    let pairs = samples.chunks_exact(2);
+    let last = pairs.remainder();
+    let mut sum = 0.0;
+    for pair in pairs {
+        let rho = f64x2::new([pair[0].rho, pair[1].rho]);
+        let d1 = f64x2::new([pair[0].d1, pair[1].d1]);
+        let [first, second] = (rho * rho + d1 * d1).sqrt().to_array();
+        sum = sum + first + second;
+    }
+    last.iter().fold(sum, |sum, p| sum + p.arc_rate())
 }
 
 /// Minimum of `f(values[j])` over a periodic uniform sample, refined by the parabola through
@@ -439,6 +456,26 @@ impl Ellipse {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    proptest::proptest! {
+        /// The roots in lanes, added in order, are the scalar sum of `arc_rate` bit for bit:
+        /// odd and even counts, radii and slopes over many scales, and NaN.
+        #[test]
+        fn arc_rates_in_lanes_sum_as_the_scalar_loop(
+            samples in proptest::collection::vec(
+                (
+                    proptest::prop_oneof![1e-3f64..1e3, proptest::strategy::Just(f64::NAN)],
+                    -1e3f64..1e3,
+                ),
+                0..50,
+            ),
+        ) {
+            let samples: Vec<Polar> =
+                samples.iter().map(|&(rho, d1)| Polar { rho, d1, d2: 0.0 }).collect();
+            let scalar = samples.iter().fold(0.0, |sum, p| sum + p.arc_rate());
+            proptest::prop_assert_eq!(arc_rate_sum(&samples).to_bits(), scalar.to_bits());
+        }
+    }
 
     #[test]
     fn fourier_harmonics_by_rotation_match_each_sine_cosine() {
