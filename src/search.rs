@@ -146,7 +146,7 @@ impl<'a> ParallelEvaluator<'a> {
             } else if let Some(rival) = rival {
                 problem.fitness_against(u, rival, evaluator, scratch, &resolution)
             } else {
-                problem.fitness(u, evaluator, scratch, &resolution).0
+                problem.fitness_alone(u, evaluator, scratch, &resolution)
             }
         };
         let fitness = if kept.len() == 1 {

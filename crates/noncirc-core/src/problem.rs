@@ -264,6 +264,20 @@ impl SceneProblem {
         (fitness, outcome.ok())
     }
 
+    /// As [`SceneProblem::fitness`], without the evaluation: a search's usual call. An
+    /// evaluation is some kilobytes, and handing it back would copy them.
+    pub fn fitness_alone(
+        &self,
+        u: &[f64],
+        evaluator: &mut Evaluator,
+        scratch: &mut Scene,
+        resolution: &Resolution,
+    ) -> Fitness {
+        self.apply(u, scratch);
+        let outcome = evaluator.evaluate_beside(scratch, Some(&self.base), resolution);
+        self.scored(evaluator, scratch, outcome.as_ref())
+    }
+
     /// As [`SceneProblem::fitness`] for a design that competes with a `rival` (DE's trial
     /// against its target): a design whose violation part-way already exceeds the rival's
     /// is not finished, and gets that lower bound of its violation with every goal at
@@ -279,7 +293,7 @@ impl SceneProblem {
         // A violation above INVALID_CV scores INVALID_CV: a rival there cannot be beaten
         // by the violation alone.
         if rival.cv.is_nan() || rival.cv >= INVALID_CV {
-            return self.fitness(u, evaluator, scratch, resolution).0;
+            return self.fitness_alone(u, evaluator, scratch, resolution);
         }
         self.apply(u, scratch);
         match evaluator.evaluate_beside_unless_beaten(
@@ -292,8 +306,8 @@ impl SceneProblem {
                 cv: violation_at_least.min(INVALID_CV),
                 f: vec![INVALID_CV; self.goals.len()],
             },
-            Ok(Screened::Evaluated(eval)) => self.scored(evaluator, scratch, Ok(eval)).0,
-            Err(e) => self.scored(evaluator, scratch, Err(e)).0,
+            Ok(Screened::Evaluated(eval)) => self.scored(evaluator, scratch, Ok(&eval)),
+            Err(e) => self.scored(evaluator, scratch, Err(&e)),
         }
     }
 
@@ -365,16 +379,17 @@ impl SceneProblem {
         resolution: &Resolution,
     ) -> (Fitness, Result<Evaluation>) {
         let outcome = evaluator.evaluate_beside(scratch, Some(&self.base), resolution);
-        self.scored(evaluator, scratch, outcome)
+        (self.scored(evaluator, scratch, outcome.as_ref()), outcome)
     }
 
-    /// The fitness of an evaluation of `scratch`, or of the model's refusal.
+    /// The fitness of an evaluation of `scratch`, or of the model's refusal. By reference:
+    /// an evaluation is some kilobytes, and each move of it a copy.
     fn scored(
         &self,
         evaluator: &mut Evaluator,
         scratch: &Scene,
-        outcome: Result<Evaluation>,
-    ) -> (Fitness, Result<Evaluation>) {
+        outcome: std::result::Result<&Evaluation, &Error>,
+    ) -> Fitness {
         match outcome {
             Ok(eval) => {
                 let cv = eval.normalised_violation(&scratch.bounds);
@@ -384,16 +399,13 @@ impl SceneProblem {
                     INVALID_CV
                 };
                 // Robust goals sample only designs that meet every objective as drawn.
-                let f = self.minimised(evaluator, &eval, scratch, cv == 0.0);
-                (Fitness { cv, f }, Ok(eval))
+                let f = self.minimised(evaluator, eval, scratch, cv == 0.0);
+                Fitness { cv, f }
             }
-            Err(e) => (
-                Fitness {
-                    cv: INVALID_CV,
-                    f: vec![INVALID_CV; self.goals.len()],
-                },
-                Err(e),
-            ),
+            Err(_) => Fitness {
+                cv: INVALID_CV,
+                f: vec![INVALID_CV; self.goals.len()],
+            },
         }
     }
 }
@@ -539,6 +551,9 @@ mod tests {
             let mut evaluator = Evaluator::new();
             let (f0, e0) = without.fitness(&u, &mut evaluator, &mut plain.clone(), &res);
             let (f1, e1) = with.fitness(&u, &mut evaluator, &mut constrained.clone(), &res);
+            // The search's call without the evaluation scores the same.
+            let alone = with.fitness_alone(&u, &mut evaluator, &mut constrained.clone(), &res);
+            proptest::prop_assert_eq!(&alone, &f1);
             match (e0, e1) {
                 (Some(e0), Some(e1)) => {
                     let scene = without.scene_at(&u);

@@ -42,11 +42,7 @@ impl SerialEvaluator {
         let evaluator = &mut self.planned[usize::from(confirming)];
         points
             .iter()
-            .map(|u| {
-                (self.problem)
-                    .fitness(u, evaluator, &mut self.scratch, &resolution)
-                    .0
-            })
+            .map(|u| (self.problem).fitness_alone(u, evaluator, &mut self.scratch, &resolution))
             .collect()
     }
 }
