@@ -17,6 +17,7 @@ use crate::curve::{parabola_vertex, TAU};
 use crate::planetary::{ArmState, Kinematics, MarkedWalks};
 use crate::vec2::Vec2;
 use serde::Serialize;
+use wide::{f64x2, CmpGe, CmpGt};
 
 /// A located event: carrier angle (rad) and the tip there.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -303,12 +304,8 @@ fn extreme_and_runner_up(
     let mut walk = Walk::starting_at(v(0));
     match marked {
         None => {
-            let (mut m, mut c) = (v(n - 1), v(0));
-            for j in 0..n {
-                let p = v(if j + 1 == n { 0 } else { j + 1 });
-                walk.node(j, m, c, p);
-                (m, c) = (c, p);
-            }
+            let values: Vec<f64> = tips.iter().map(|t| t.dot(dir)).collect();
+            walk.every_node(&values);
         }
         Some(nodes) => {
             for &j in nodes {
@@ -378,6 +375,41 @@ impl Walk {
         }
     }
 
+    /// [`Walk::node`] at every node of a closed turn of `values`, node 0's already seen:
+    /// the same walk, in vector lanes (`wide::f64x2`). The best node by two lanes, the even
+    /// and the odd nodes, each keeping its first best, a tie between them to the earlier
+    /// node; the local maxima by comparisons two nodes at a time, taken in node order.
+    fn every_node(&mut self, values: &[f64]) {
+        let n = values.len();
+        self.best = first_largest(values);
+        self.best_value = values[self.best];
+        let value = |j: usize| values[if j == n { 0 } else { j }];
+        let mut peak_at = |j: usize, m: f64| {
+            let (c, p) = (values[j], value(j + 1));
+            if c > m && c >= p {
+                Self::peak(&mut self.peaks, j, [m, c, p]);
+            }
+        };
+        peak_at(0, values[n - 1]);
+        // Nodes 1 … n − 2 in pairs, both neighbours inside the turn; then the rest.
+        let inner = n.saturating_sub(2);
+        let pairs = |from: usize| {
+            (values.get(from..from + inner)).map_or(&[][..], |v| v.as_chunks::<2>().0)
+        };
+        let (before, nodes, after) = (pairs(0), pairs(1), pairs(2));
+        for (k, ((&m, &c), &p)) in before.iter().zip(nodes).zip(after).enumerate() {
+            let [m, c, p] = [m, c, p].map(f64x2::new);
+            if (c.cmp_gt(m) & c.cmp_ge(p)).any() {
+                let j = 2 * k + 1;
+                peak_at(j, values[j - 1]);
+                peak_at(j + 1, values[j]);
+            }
+        }
+        for j in 1 + 2 * nodes.len()..n {
+            peak_at(j, values[j - 1]);
+        }
+    }
+
     /// Local maximum `j` with the values around it, among the three highest `peaks`.
     /// Out of line: the walk meets a few peaks in a turn, and inlined, the peaks' six
     /// values took registers that every node then moved about (half a node's
@@ -409,6 +441,40 @@ impl Walk {
             .map(|&(_, value)| value);
         (best, runner_up)
     }
+}
+
+/// The first node of the largest value, as a walk that moves on only to a strictly larger
+/// number from node 0 finds it (node 0 where it is not a number): two lanes, the even and
+/// the odd nodes, each keeping its first largest, a tie between them to the earlier node.
+fn first_largest(values: &[f64]) -> usize {
+    let Some(&first) = values.first().filter(|v| !v.is_nan()) else {
+        return 0;
+    };
+    let (pairs, tail) = values.as_chunks::<2>();
+    // Node indices as floats (exact below 2⁵³); the odd lane starts with none.
+    let (mut best, mut node) = (
+        f64x2::new([first, f64::NEG_INFINITY]),
+        f64x2::new([0.0, f64::INFINITY]),
+    );
+    let mut j = f64x2::new([0.0, 1.0]);
+    for &pair in pairs {
+        let v = f64x2::new(pair);
+        let above = v.cmp_gt(best);
+        (best, node) = (above.blend(v, best), above.blend(j, node));
+        j += f64x2::splat(2.0);
+    }
+    let ([b0, b1], [j0, j1]) = (best.to_array(), node.to_array());
+    let (mut top, mut at) = if b1 > b0 || (b1 == b0 && j1 < j0) {
+        (b1, j1)
+    } else {
+        (b0, j0)
+    };
+    for (k, &v) in tail.iter().enumerate() {
+        if v > top {
+            (top, at) = (v, (2 * pairs.len() + k) as f64);
+        }
+    }
+    at as usize
 }
 
 /// The events' walks, by the direction they walk along.
@@ -776,6 +842,32 @@ mod tests {
                 highest_node(&tips, Some(&nodes)),
                 nodes.iter().copied().max_by(higher).unwrap_or(0)
             );
+        }
+    }
+
+    proptest::proptest! {
+        /// The walk over every node in lanes is the node-by-node walk, bit for bit: its best
+        /// node and its three highest local maxima, on turns of one node up, with values
+        /// drawn from a few (ties everywhere), ±0, ±∞ and NaN among them.
+        #[test]
+        fn every_node_in_lanes_is_the_node_by_node_walk(
+            picks in proptest::collection::vec(0usize..9, 1..40),
+        ) {
+            let choices = [-1.5, -0.0, 0.0, 2.0, 2.5, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 1.0];
+            let values: Vec<f64> = picks.iter().map(|&k| choices[k]).collect();
+            let n = values.len();
+            let mut by_node = Walk::starting_at(values[0]);
+            let (mut m, mut c) = (values[n - 1], values[0]);
+            for j in 0..n {
+                let p = values[(j + 1) % n];
+                by_node.node(j, m, c, p);
+                (m, c) = (c, p);
+            }
+            let mut in_lanes = Walk::starting_at(values[0]);
+            in_lanes.every_node(&values);
+            let bits = |w: &Walk| w.peaks.map(|(j, v)| (j, v.to_bits()));
+            proptest::prop_assert_eq!(in_lanes.best, by_node.best);
+            proptest::prop_assert_eq!(bits(&in_lanes), bits(&by_node));
         }
     }
 
