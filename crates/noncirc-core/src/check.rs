@@ -58,8 +58,9 @@ impl Scene {
     /// passed it: a table whose numbers are still `checked`'s is not held to its intervals
     /// again. A search's design writes its free parameters (the curve, the train) over the
     /// base scene, and its agronomy, bounds, dynamics and CAD tables stay the base's: four
-    /// comparisons instead of about fifty interval checks. The rules that code checks run
-    /// whole.
+    /// comparisons instead of about fifty interval checks. The settings that code checks on
+    /// their own (resolution, module, teeth, the bounds' order, tolerances) are passed
+    /// over where they equal `checked`'s; the rules over several fields run whole.
     pub(crate) fn validate_beside(&self, checked: Option<&Scene>) -> Result<()> {
         // The scene's own numbers (agronomy, bounds) against their intervals in the field
         // table, then what code checks: the models' numbers, rules over several fields,
@@ -70,11 +71,24 @@ impl Scene {
         (interval_checks().iter())
             .filter(|c| checks[c.table])
             .try_for_each(|c| c.check(self))?;
-        self.resolution.validate()?;
-        self.gear.module.validate()?;
-        self.gear.teeth.validate()?;
-        self.bounds.check_order()?;
-        self.tolerances.validate()?;
+        // A part equal to the checked scene's passed these checks there (a search's
+        // designs change the curve and the train, not these).
+        let beside = |same: fn(&Scene, &Scene) -> bool| checked.is_some_and(|c| same(self, c));
+        if !beside(|a, b| a.resolution == b.resolution) {
+            self.resolution.validate()?;
+        }
+        if !beside(|a, b| a.gear.module == b.gear.module) {
+            self.gear.module.validate()?;
+        }
+        if !beside(|a, b| a.gear.teeth == b.gear.teeth) {
+            self.gear.teeth.validate()?;
+        }
+        if !beside(|a, b| a.bounds == b.bounds) {
+            self.bounds.check_order()?;
+        }
+        if !beside(|a, b| a.tolerances == b.tolerances) {
+            self.tolerances.validate()?;
+        }
         if matches!(self.kind, SceneKind::MovingBox | SceneKind::Transplanter) {
             self.moving_box.validate()?;
         }
@@ -380,5 +394,54 @@ mod tests {
         moved.validate_beside(Some(&base)).unwrap();
         moved.train.arm_length_mm = 0.0;
         assert!(moved.validate_beside(Some(&base)).is_err());
+    }
+
+    /// Beside its checked base, a design gets the whole check's verdict whatever it
+    /// changes: each number of every table, the tables that code checks (resolution,
+    /// module, teeth) as well as the field table's, set to NaN, to 0 and to a large
+    /// negative value in turn; bounds out of order; tolerances' counts out of range.
+    #[test]
+    fn a_design_beside_its_checked_base_gets_the_whole_checks_verdict() {
+        let base = Scene::default();
+        let mut compared = 0;
+        for (_, _, fields) in TABLES {
+            for field in fields.iter() {
+                for value in [f64::NAN, 0.0, -1e6] {
+                    let mut design = base.clone();
+                    let written = match field.number {
+                        Some(Number::Scalar(_, set) | Number::Optional(_, set)) => {
+                            set(&mut design, value)
+                        }
+                        Some(Number::List(_, set)) => (set(&mut design))
+                            .and_then(|v| v.first_mut())
+                            .map(|x| *x = value)
+                            .is_some(),
+                        None => false,
+                    };
+                    if written {
+                        assert_eq!(
+                            design.validate_beside(Some(&base)).is_err(),
+                            design.validate().is_err(),
+                            "{} = {value}",
+                            field.key
+                        );
+                        compared += 1;
+                    }
+                }
+            }
+        }
+        assert!(compared > 150, "{compared} settings");
+        // What the tables do not hold: the bounds' order and the tolerances' counts.
+        let bad: [fn(&mut Scene); 3] = [
+            |s| s.bounds.picking_angle_deg = [10.0, 5.0],
+            |s| s.tolerances.samples = 0,
+            |s| s.tolerances.assemblies_per_part_set = s.tolerances.samples + 1,
+        ];
+        for spoil in bad {
+            let mut design = base.clone();
+            spoil(&mut design);
+            assert!(design.validate().is_err());
+            assert!(design.validate_beside(Some(&base)).is_err());
+        }
     }
 }
