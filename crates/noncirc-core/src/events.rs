@@ -301,13 +301,10 @@ fn extreme_and_runner_up(
         return (0, None);
     }
     let v = |j: usize| tips[j].dot(dir);
-    let mut walk = Walk::starting_at(v(0));
-    match marked {
-        None => {
-            let values: Vec<f64> = tips.iter().map(|t| t.dot(dir)).collect();
-            walk.every_node(&values);
-        }
+    let walk = match marked {
+        None => Walk::over_every_node(&tips.iter().map(|t| t.dot(dir)).collect::<Vec<_>>()),
         Some(nodes) => {
+            let mut walk = Walk::starting_at(v(0));
             for &j in nodes {
                 let (prev, next) = (
                     if j == 0 { n } else { j } - 1,
@@ -315,8 +312,9 @@ fn extreme_and_runner_up(
                 );
                 walk.node(j, v(prev), v(j), v(next));
             }
+            walk
         }
-    }
+    };
     walk.best_and_runner_up(n)
 }
 
@@ -375,19 +373,24 @@ impl Walk {
         }
     }
 
-    /// [`Walk::node`] at every node of a closed turn of `values`, node 0's already seen:
-    /// the same walk, in vector lanes (`wide::f64x2`). The best node by two lanes, the even
-    /// and the odd nodes, each keeping its first best, a tie between them to the earlier
-    /// node; the local maxima by comparisons two nodes at a time, taken in node order.
-    fn every_node(&mut self, values: &[f64]) {
+    /// The walk that has seen every node of a closed turn of `values` ([`Walk::node`] at
+    /// each, from [`Walk::starting_at`] node 0), in vector lanes (`wide::f64x2`). The best
+    /// node by two lanes, the even and the odd nodes, each keeping its first best, a tie
+    /// between them to the earlier node; the local maxima by comparisons two nodes at a
+    /// time, taken in node order.
+    fn over_every_node(values: &[f64]) -> Self {
         let n = values.len();
-        self.best = first_largest(values);
-        self.best_value = values[self.best];
+        let best = first_largest(values);
+        let mut walk = Self {
+            best,
+            best_value: values[best],
+            ..Self::starting_at(values[0])
+        };
         let value = |j: usize| values[if j == n { 0 } else { j }];
         let mut peak_at = |j: usize, m: f64| {
             let (c, p) = (values[j], value(j + 1));
             if c > m && c >= p {
-                Self::peak(&mut self.peaks, j, [m, c, p]);
+                Self::peak(&mut walk.peaks, j, [m, c, p]);
             }
         };
         peak_at(0, values[n - 1]);
@@ -408,6 +411,7 @@ impl Walk {
         for j in 1 + 2 * nodes.len()..n {
             peak_at(j, values[j - 1]);
         }
+        walk
     }
 
     /// Local maximum `j` with the values around it, among the three highest `peaks`.
@@ -863,8 +867,7 @@ mod tests {
                 by_node.node(j, m, c, p);
                 (m, c) = (c, p);
             }
-            let mut in_lanes = Walk::starting_at(values[0]);
-            in_lanes.every_node(&values);
+            let in_lanes = Walk::over_every_node(&values);
             let bits = |w: &Walk| w.peaks.map(|(j, v)| (j, v.to_bits()));
             proptest::prop_assert_eq!(in_lanes.best, by_node.best);
             proptest::prop_assert_eq!(bits(&in_lanes), bits(&by_node));
