@@ -946,15 +946,7 @@ impl Kinematics {
                 // θ_s at every node: sorted targets, so each cell is found forward from
                 // the last.
                 let inverse = self.gears.first.phi_inverse();
-                let rises = inverse.rises_strictly();
-                let mut previous = 0;
-                (self.gears.first.pair.phi2_nodes().iter())
-                    .map(|&phi| {
-                        let (ts, cell) = inverse.eval_after(phi - self.delay, previous, rises);
-                        previous = cell;
-                        ts
-                    })
-                    .collect()
+                (inverse.eval_ascending(self.gears.first.pair.phi2_nodes(), self.delay)).into()
             }
             Some(second) => {
                 let phi_b = second.phi();

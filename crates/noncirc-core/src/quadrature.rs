@@ -3,7 +3,9 @@
 use crate::angle::node_index;
 use realfft::num_complex::Complex64;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
+use std::ops::{Add, Div, Mul, Sub};
 use std::sync::Arc;
+use wide::{f64x2, CmpGt, CmpLt};
 
 /// Spectral cumulative integration of periodic samples on a uniform grid.
 ///
@@ -111,34 +113,84 @@ impl SpectralIntegrator {
     }
 }
 
-/// The quintic Hermite interpolant on one cell of width `h`, from values, first and second
-/// derivatives at both ends, as a polynomial in the cell position `s ∈ [0, 1]`: built once,
-/// evaluated by Estrin's scheme.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct QuinticCell {
-    /// Coefficients of `s⁰..s⁵`.
-    c: [f64; 6],
-    h: f64,
+/// What a [`QuinticCell`] is built and evaluated on: one number, or two in vector lanes
+/// (`wide::f64x2`), each lane's arithmetic the scalar's own, bit for bit.
+pub(crate) trait Lanes:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
+{
+    /// `v` in every lane.
+    fn splat(v: f64) -> Self;
+    /// `f64::clamp(x, 0, 1)` in every lane (a NaN stays NaN, −0 stays −0).
+    fn clamp_unit(self) -> Self;
 }
 
-impl QuinticCell {
+impl Lanes for f64 {
+    #[inline(always)]
+    fn splat(v: f64) -> Self {
+        v
+    }
+
+    #[inline(always)]
+    fn clamp_unit(self) -> Self {
+        self.clamp(0.0, 1.0)
+    }
+}
+
+impl Lanes for f64x2 {
+    #[inline(always)]
+    fn splat(v: f64) -> Self {
+        f64x2::splat(v)
+    }
+
+    /// `clamp`'s two steps as written: below 0 becomes 0, then above 1 becomes 1.
+    #[inline(always)]
+    fn clamp_unit(self) -> Self {
+        let (zero, one) = (f64x2::ZERO, f64x2::ONE);
+        let raised = self.cmp_lt(zero).blend(zero, self);
+        raised.cmp_gt(one).blend(one, raised)
+    }
+}
+
+/// The quintic Hermite interpolant on one cell of width `h`, from values, first and second
+/// derivatives at both ends, as a polynomial in the cell position `s ∈ [0, 1]`: built once,
+/// evaluated by Estrin's scheme. On [`Lanes`]: one cell, or two side by side.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct QuinticCell<T = f64> {
+    /// Coefficients of `s⁰..s⁵`.
+    c: [T; 6],
+    h: T,
+}
+
+impl<T: Lanes> QuinticCell<T> {
     #[inline]
-    pub(crate) fn new(y: [f64; 2], d1: [f64; 2], d2: [f64; 2], h: f64) -> Self {
+    pub(crate) fn new(y: [T; 2], d1: [T; 2], d2: [T; 2], h: T) -> Self {
+        let k = T::splat;
         let (rise, p0, p1) = (y[1] - y[0], h * d1[0], h * d1[1]);
-        let (q0, q1) = (0.5 * h * h * d2[0], 0.5 * h * h * d2[1]);
+        let (q0, q1) = (k(0.5) * h * h * d2[0], k(0.5) * h * h * d2[1]);
         Self {
             c: [
                 y[0],
                 p0,
                 q0,
-                10.0 * rise - 6.0 * p0 - 4.0 * p1 - 3.0 * q0 + q1,
-                -15.0 * rise + 8.0 * p0 + 7.0 * p1 + 3.0 * q0 - 2.0 * q1,
-                6.0 * rise - 3.0 * p0 - 3.0 * p1 - q0 + q1,
+                k(10.0) * rise - k(6.0) * p0 - k(4.0) * p1 - k(3.0) * q0 + q1,
+                k(-15.0) * rise + k(8.0) * p0 + k(7.0) * p1 + k(3.0) * q0 - k(2.0) * q1,
+                k(6.0) * rise - k(3.0) * p0 - k(3.0) * p1 - q0 + q1,
             ],
             h,
         }
     }
 
+    /// The value at cell position `s`.
+    #[inline]
+    fn value_in_cell(&self, s: T) -> T {
+        let c = &self.c;
+        // Estrin's scheme: half the dependent multiply-adds of Horner's rule.
+        let s2 = s * s;
+        (c[0] + c[1] * s) + s2 * ((c[2] + c[3] * s) + s2 * (c[4] + c[5] * s))
+    }
+}
+
+impl QuinticCell {
     /// The value and its derivative per unit of the abscissa at cell position `s`.
     #[inline]
     pub(crate) fn eval(&self, s: f64) -> (f64, f64) {
@@ -150,11 +202,8 @@ impl QuinticCell {
     #[inline]
     fn eval_in_cell(&self, s: f64) -> (f64, f64) {
         let c = &self.c;
-        // Estrin's scheme: half the dependent multiply-adds of Horner's rule.
-        let s2 = s * s;
-        let value = (c[0] + c[1] * s) + s2 * ((c[2] + c[3] * s) + s2 * (c[4] + c[5] * s));
         let slope = c[1] + s * (2.0 * c[2] + s * (3.0 * c[3] + s * (4.0 * c[4] + s * 5.0 * c[5])));
-        (value, slope)
+        (self.value_in_cell(s), slope)
     }
 }
 
@@ -241,9 +290,8 @@ impl DriftInverse<'_> {
     /// returns `(u, cell)` so that sorted targets cost O(1) each.
     #[inline(always)]
     pub(crate) fn eval(&self, target: f64, hint: usize) -> (f64, usize) {
-        let (turns, rest) = self.turns_and_rest(target);
-        let j = self.cell_from(rest, hint);
-        (self.at(turns, rest, j), j)
+        let located = self.locate(target, hint);
+        (self.at(located), located.cell)
     }
 
     /// Whether `F`'s node values rise strictly over the period (then each value of one
@@ -254,13 +302,50 @@ impl DriftInverse<'_> {
             && value.last().is_some_and(|&last| last < value[0] + period)
     }
 
-    /// As [`DriftInverse::eval`] with the hint `previous`, for ascending targets with
+    /// `F⁻¹(t − offset)` at each of the ascending `targets`, each bit for bit
+    /// [`DriftInverse::eval`] with the cell of the one before as its hint (node 0 for the
+    /// first). Where the node values rise strictly, each cell is found by a merge, forward
+    /// from the one before ([`DriftInverse::locate_after`]); the values are then taken two
+    /// at a time in vector lanes.
+    pub(crate) fn eval_ascending(&self, targets: &[f64], offset: f64) -> Vec<f64> {
+        let rises = self.rises_strictly();
+        let mut previous = 0;
+        let mut locate = |t: f64| {
+            let located = self.locate_after(t - offset, previous, rises);
+            previous = located.cell;
+            located
+        };
+        let mut out = vec![0.0; targets.len()];
+        let (pairs, tail) = targets.as_chunks::<2>();
+        let (out_pairs, out_tail) = out.as_chunks_mut::<2>();
+        for (o, &[a, b]) in out_pairs.iter_mut().zip(pairs) {
+            let located = [locate(a), locate(b)];
+            *o = self.at_pair(located);
+        }
+        for (o, &t) in out_tail.iter_mut().zip(tail) {
+            *o = self.at(locate(t));
+        }
+        out
+    }
+
+    /// Where `target` lies, its cell walked to from `hint`.
+    #[inline(always)]
+    fn locate(&self, target: f64, hint: usize) -> Located {
+        let (turns, rest) = self.turns_and_rest(target);
+        Located {
+            turns,
+            rest,
+            cell: self.cell_from(rest, hint),
+        }
+    }
+
+    /// As [`DriftInverse::locate`] with the hint `previous`, for ascending targets with
     /// `previous` the cell of the one before. Where `rises` ([`DriftInverse::rises_strictly`]:
     /// one cell holds each value) the cell is found by a merge, forward from `previous`
     /// (from the first cell once the targets pass into the next period), and is the cell
     /// the walk finds; where the merge finds none, or without `rises`, the walk runs.
     #[inline(always)]
-    pub(crate) fn eval_after(&self, target: f64, previous: usize, rises: bool) -> (f64, usize) {
+    fn locate_after(&self, target: f64, previous: usize, rises: bool) -> Located {
         let value = self.forward.value;
         if rises && previous < value.len() {
             let (turns, rest) = self.turns_and_rest(target);
@@ -278,10 +363,14 @@ impl DriftInverse<'_> {
                 }
             }
             if self.holds(j, rest) {
-                return (self.at(turns, rest, j), j);
+                return Located {
+                    turns,
+                    rest,
+                    cell: j,
+                };
             }
         }
-        self.eval(target, previous)
+        self.locate(target, previous)
     }
 
     /// Whole periods of `target` from the first node's value, and what is left within one.
@@ -350,23 +439,59 @@ impl DriftInverse<'_> {
         j
     }
 
-    /// `F⁻¹` at `rest` in cell `j`, `turns` periods on.
+    /// `F⁻¹` at a located target.
     #[inline(always)]
-    fn at(&self, turns: f64, rest: f64, j: usize) -> f64 {
-        let n = self.forward.value.len();
+    fn at(&self, located: Located) -> f64 {
+        let Located { turns, rest, cell } = located;
+        value_in_cell(turns, rest, self.cell_data(cell))
+    }
+
+    /// [`DriftInverse::at`] at two located targets, bit for bit, in vector lanes.
+    #[inline(always)]
+    fn at_pair(&self, located: [Located; 2]) -> [f64; 2] {
+        let lanes = |f: fn(&Located) -> f64| f64x2::new(located.each_ref().map(f));
+        let [a, b] = located.map(|l| self.cell_data(l.cell));
+        let data = std::array::from_fn(|r| std::array::from_fn(|c| f64x2::new([a[r][c], b[r][c]])));
+        value_in_cell(lanes(|l| l.turns), lanes(|l| l.rest), data).to_array()
+    }
+
+    /// Cell `j`'s ends: the inverse's abscissae `[u_j, u_{j+1}]` (its values), `F` there
+    /// (its arguments; the next period's first past the last node), and the inverse's
+    /// first and second derivatives.
+    #[inline(always)]
+    fn cell_data(&self, j: usize) -> [[f64; 2]; 4] {
+        let value = self.forward.value;
+        let n = value.len();
+        // Cut to the values' length: one bounds check covers all three.
+        let (d1, d2) = (&self.d1[..n], &self.d2[..n]);
         let h = self.forward.h();
         let j1 = if j + 1 == n { 0 } else { j + 1 };
-        let (y0, y1) = (self.forward.value[j], self.upper(j));
-        let width = y1 - y0;
-        let s = ((rest - y0) / width).clamp(0.0, 1.0);
-        let cell = QuinticCell::new(
+        [
             [node_index(j) * h, node_index(j + 1) * h],
-            [self.d1[j], self.d1[j1]],
-            [self.d2[j], self.d2[j1]],
-            width,
-        );
-        turns * std::f64::consts::TAU + cell.eval_in_cell(s).0
+            [value[j], self.upper(j)],
+            [d1[j], d1[j1]],
+            [d2[j], d2[j1]],
+        ]
     }
+}
+
+/// Where a target of a [`DriftInverse`] lies: whole periods from the first node's value,
+/// the rest within one, and the cell that holds the rest.
+#[derive(Debug, Clone, Copy)]
+struct Located {
+    turns: f64,
+    rest: f64,
+    cell: usize,
+}
+
+/// `F⁻¹` at `rest`, `turns` periods on, in the cell of `data` ([`DriftInverse::cell_data`]),
+/// on one target or two in lanes.
+#[inline(always)]
+fn value_in_cell<T: Lanes>(turns: T, rest: T, data: [[T; 2]; 4]) -> T {
+    let [u, y, d1, d2] = data;
+    let width = y[1] - y[0];
+    let s = ((rest - y[0]) / width).clamp_unit();
+    turns * T::splat(std::f64::consts::TAU) + QuinticCell::new(u, d1, d2, width).value_in_cell(s)
 }
 
 #[cfg(test)]
@@ -391,6 +516,30 @@ mod tests {
             let u = TAU * j as f64 / n as f64;
             let exact = 1.5 * u + (3.0 * u).sin() / 3.0 + 0.5 * (1.0 - u.cos());
             assert!((o - exact).abs() < 1e-13, "{j}: {o} vs {exact}");
+        }
+    }
+
+    #[test]
+    fn clamp_in_lanes_is_f64_clamp() {
+        let edges = [
+            -1.0,
+            -1e-300,
+            -0.0,
+            0.0,
+            0.5,
+            1.0 - f64::EPSILON,
+            1.0,
+            1.0 + f64::EPSILON,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ];
+        for a in edges {
+            for b in edges {
+                let lanes = f64x2::new([a, b]).clamp_unit().to_array();
+                let scalar = [a, b].map(|x| Lanes::clamp_unit(x));
+                assert_eq!(lanes.map(f64::to_bits), scalar.map(f64::to_bits), "{a} {b}");
+            }
         }
     }
 
@@ -490,10 +639,11 @@ mod tests {
     }
 
     proptest::proptest! {
-        /// The merge over ascending targets (`eval_after`) finds the walk's cell and value bit
-        /// for bit: targets `F(u_j) − delay` over two periods and a half, as the planet's lag
-        /// takes them (and `stride` nodes apart, so that the merge steps over several
-        /// cells at once), and on drifts whose nodes do not rise it leaves them to the walk.
+        /// The merge over ascending targets (`eval_ascending`, its values in lanes) finds
+        /// the walk's values bit for bit: targets `F(u_j) − delay` over two periods and a
+        /// half, as the planet's lag takes them (and `stride` nodes apart, so that the merge
+        /// steps over several cells at once; an odd or even count, so that the last may be
+        /// taken alone), and on drifts whose nodes do not rise it leaves them to the walk.
         #[test]
         fn merge_over_ascending_targets_is_the_walk(
             n in 12usize..200,
@@ -516,17 +666,17 @@ mod tests {
             dented[offset % n] = dented[(offset + n - 1) % n] - 1e-3;
             let dented_inverse = inverse(&dented);
             proptest::prop_assert!(!dented_inverse.rises_strictly());
+            let targets: Vec<f64> = (0..5 * n / 2)
+                .step_by(stride)
+                .map(|k| v[(k + offset) % n] + TAU * ((k + offset) / n) as f64)
+                .collect();
             for inv in [smooth, dented_inverse] {
-                let rises = inv.rises_strictly();
-                let (mut merged, mut walked) = (0, 0);
-                for k in (0..5 * n / 2).step_by(stride) {
-                    let j = (k + offset) % n;
-                    let target = v[j] - delay + TAU * ((k + offset) / n) as f64;
-                    let (a, cell_a) = inv.eval_after(target, merged, rises);
-                    let (b, cell_b) = inv.eval(target, walked);
-                    proptest::prop_assert_eq!(cell_a, cell_b, "target {}", target);
+                let merged = inv.eval_ascending(&targets, delay);
+                let mut walked = 0;
+                for (&target, a) in targets.iter().zip(merged) {
+                    let (b, cell) = inv.eval(target - delay, walked);
                     proptest::prop_assert_eq!(a.to_bits(), b.to_bits(), "target {}", target);
-                    (merged, walked) = (cell_a, cell_b);
+                    walked = cell;
                 }
             }
         }
