@@ -24,7 +24,7 @@ CORE = ROOT / "crates/noncirc-core/src"
 SEARCH = ROOT / "crates/noncirc-search"
 
 LAYERS = [  # lowest first; a module may use its own layer and those below
-    "error vec2 angle quadrature resolution golden segment_tree",                          # util
+    "error vec2 angle lanes quadrature resolution golden segment_tree",                    # util
     "curve gear planetary teeth moving_box gearbox blank",                             # model
     "scene check reference messages params agronomy objective_kind measure goal constraint tolerance target dynamics_spec cad_spec whole_number",  # scene
     "evaluation evaluator events interference anatomy dynamics flywheel objectives measure_value accuracy fit inverse strength",           # evaluate

@@ -17,6 +17,7 @@
 mod angle;
 mod error;
 mod golden;
+mod lanes;
 mod quadrature;
 mod resolution;
 mod segment_tree;

@@ -3,7 +3,9 @@
 use crate::angle::node_index;
 use crate::curve::{Polar, TAU};
 use crate::error::{finite_with, positive_with, Error, Result};
+use crate::lanes::Lanes;
 use std::cell::RefCell;
+use wide::{f64x2, CmpGe, CmpLt};
 
 /// A C² periodic cubic spline through `(psi_i, rho_i)`, period 2π.
 #[derive(Debug, Clone, PartialEq)]
@@ -107,59 +109,33 @@ impl PeriodicSpline {
     }
 
     /// Samples at `start + step·j` for `j = 0..n` (rad): the same values as [`Self::eval`],
-    /// found by walking the segments along the grid instead of searching for each point.
+    /// found by walking the segments along the grid instead of searching for each point,
+    /// two samples at a time in vector lanes where both lie in one segment.
     pub fn sample_uniform(&self, start: f64, step: f64, n: usize) -> Vec<Polar> {
-        let (first, last) = (self.knots[0], self.knots.len() - 1);
-        // Segment `i`'s span within the turn from `first`: a sample inside it needs none
-        // of the walks below (ten samples a segment at the default resolution).
-        let span = |i: usize| {
-            let upper = if i < last {
-                self.knots[i + 1]
-            } else {
-                first + TAU
-            };
-            (self.knots[i], upper)
+        let mut walk = GridWalk::new(self, start, step);
+        // Pairs collected at their known count (no capacity check per pair), one sample
+        // past the last for an odd count.
+        let pairs: Vec<[Polar; 2]> = (0..n.div_ceil(2)).map(|k| walk.pair(2 * k)).collect();
+        let mut out = pairs.into_flattened();
+        out.truncate(n);
+        out
+    }
+
+    /// Segment `i`'s span within the turn from the first knot (rad).
+    #[inline(always)]
+    fn span(&self, i: usize) -> (f64, f64) {
+        let upper = match self.knots.get(i + 1) {
+            Some(&next) => next,
+            None => self.knots[0] + TAU,
         };
-        let (mut i, t0) = self.locate(start);
-        let base = self.knots[i] + t0;
-        let (mut lower, mut upper) = span(i);
-        let mut turns = 0.0;
-        (0..n)
-            .map(|j| {
-                let mut x = base + step * node_index(j) + turns;
-                if !(lower <= x && x < upper) {
-                    while x >= first + TAU {
-                        x -= TAU;
-                        turns -= TAU;
-                        i = 0;
-                    }
-                    while x < first {
-                        x += TAU;
-                        turns += TAU;
-                        i = last;
-                    }
-                    while x < self.knots[i] {
-                        i -= 1;
-                    }
-                    while i < last && x >= self.knots[i + 1] {
-                        i += 1;
-                    }
-                    (lower, upper) = span(i);
-                }
-                self.eval_in(i, x - lower)
-            })
-            .collect()
+        (self.knots[i], upper)
     }
 
     /// rho and its first two derivatives at offset `t` (rad) into segment `i`.
     #[inline]
     fn eval_in(&self, i: usize, t: f64) -> Polar {
-        let [a, b, c, d] = self.coeffs[i];
-        Polar {
-            rho: a + t * (b + t * (c + t * d)),
-            d1: b + t * (2.0 * c + 3.0 * t * d),
-            d2: 2.0 * c + 6.0 * t * d,
-        }
+        let [rho, d1, d2] = cubic(self.coeffs[i], t);
+        Polar { rho, d1, d2 }
     }
 
     /// Exact minimum and maximum of the spline, each as `(psi, rho)`, in one pass.
@@ -452,6 +428,101 @@ fn solve_cyclic_tridiagonal(
     rows.iter().map(|r| r[1] - factor * r[2]).collect()
 }
 
+/// A walk along the grid `base + step·j` (rad): the segment it stands in, that segment's
+/// span within the turn from the first knot, and the whole turns taken off so far.
+struct GridWalk<'a> {
+    spline: &'a PeriodicSpline,
+    base: f64,
+    step: f64,
+    segment: usize,
+    lower: f64,
+    upper: f64,
+    turns: f64,
+    /// The segment's coefficients in both lanes.
+    coeffs: [f64x2; 4],
+}
+
+impl<'a> GridWalk<'a> {
+    /// The walk from `start` by `step` (rad), at the segment that holds `start`.
+    fn new(spline: &'a PeriodicSpline, start: f64, step: f64) -> Self {
+        let (segment, t0) = spline.locate(start);
+        let (lower, upper) = spline.span(segment);
+        Self {
+            spline,
+            base: spline.knots[segment] + t0,
+            step,
+            segment,
+            lower,
+            upper,
+            turns: 0.0,
+            coeffs: spline.coeffs[segment].map(f64x2::splat),
+        }
+    }
+
+    /// The sample at node `j`, the walk moved on to its segment (ten samples a segment at
+    /// the default resolution: most need none of the walks).
+    #[inline(always)]
+    fn sample(&mut self, j: usize) -> Polar {
+        let spline = self.spline;
+        let (first, last) = (spline.knots[0], spline.knots.len() - 1);
+        let mut x = self.base + self.step * node_index(j) + self.turns;
+        if !(self.lower <= x && x < self.upper) {
+            while x >= first + TAU {
+                x -= TAU;
+                self.turns -= TAU;
+                self.segment = 0;
+            }
+            while x < first {
+                x += TAU;
+                self.turns += TAU;
+                self.segment = last;
+            }
+            while x < spline.knots[self.segment] {
+                self.segment -= 1;
+            }
+            while self.segment < last && x >= spline.knots[self.segment + 1] {
+                self.segment += 1;
+            }
+            (self.lower, self.upper) = spline.span(self.segment);
+            self.coeffs = spline.coeffs[self.segment].map(f64x2::splat);
+        }
+        spline.eval_in(self.segment, x - self.lower)
+    }
+
+    /// The samples at nodes `j` and `j + 1`, bit for bit [`GridWalk::sample`]'s: in vector
+    /// lanes where both lie in the walk's segment (which the walk would not move for),
+    /// else one at a time.
+    #[inline(always)]
+    fn pair(&mut self, j: usize) -> [Polar; 2] {
+        let splat = f64x2::splat;
+        let nodes = f64x2::new([node_index(j), node_index(j + 1)]);
+        let x = splat(self.base) + splat(self.step) * nodes + splat(self.turns);
+        let lower = splat(self.lower);
+        if (x.cmp_ge(lower) & x.cmp_lt(splat(self.upper))).move_mask() != 0b11 {
+            return [self.sample(j), self.sample(j + 1)];
+        }
+        let [rho, d1, d2] = cubic(self.coeffs, x - lower).map(f64x2::to_array);
+        [0, 1].map(|k| Polar {
+            rho: rho[k],
+            d1: d1[k],
+            d2: d2[k],
+        })
+    }
+}
+
+/// A cubic segment `[a, b, c, d]` (`rho = a + b t + c t² + d t³`) at offset `t` (rad), at
+/// one offset or two in lanes: `[rho, rho', rho'']`.
+#[inline(always)]
+fn cubic<T: Lanes>(coeffs: [T; 4], t: T) -> [T; 3] {
+    let [a, b, c, d] = coeffs;
+    let k = T::splat;
+    [
+        a + t * (b + t * (c + t * d)),
+        b + t * (k(2.0) * c + k(3.0) * t * d),
+        k(2.0) * c + k(6.0) * t * d,
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -545,6 +616,65 @@ mod tests {
                     "start {start} step {step} j {j}: {p:?} vs {q:?}"
                 );
             }
+        }
+    }
+
+    proptest::proptest! {
+        /// Samples taken two at a time in lanes are the walk's one at a time, bit for bit:
+        /// random splines, starts anywhere, steps either way (some over several segments
+        /// at once), odd and even counts.
+        #[test]
+        fn samples_in_lanes_are_the_walk_one_at_a_time(
+            gaps in proptest::collection::vec(0.3f64..1.0, 4..14),
+            radii in proptest::collection::vec(35.0f64..45.0, 14),
+            first in -1.0f64..1.0,
+            start in -20.0f64..20.0,
+            step in -1.5f64..1.5,
+            n in 1usize..160,
+        ) {
+            // Knots over less than a turn, from `first`.
+            let scale = 6.0 / gaps.iter().sum::<f64>();
+            let psi: Vec<f64> = (gaps.iter())
+                .scan(first, |at, g| {
+                    let knot = *at;
+                    *at += g * scale;
+                    Some(knot)
+                })
+                .collect();
+            let spline = PeriodicSpline::new("spline", psi.clone(), &radii[..psi.len()]).unwrap();
+            assert_samples_in_lanes_are_the_walks(&spline, start, step, n);
+        }
+    }
+
+    /// [`PeriodicSpline::sample_uniform`] against [`GridWalk::sample`] one at a time.
+    fn assert_samples_in_lanes_are_the_walks(
+        spline: &PeriodicSpline,
+        start: f64,
+        step: f64,
+        n: usize,
+    ) {
+        let mut walk = GridWalk::new(spline, start, step);
+        let one_at_a_time: Vec<Polar> = (0..n).map(|j| walk.sample(j)).collect();
+        let bits = |p: &Polar| [p.rho, p.d1, p.d2].map(f64::to_bits);
+        let lanes = spline.sample_uniform(start, step, n);
+        assert_eq!(lanes.len(), n);
+        for (j, (a, b)) in lanes.iter().zip(&one_at_a_time).enumerate() {
+            assert_eq!(bits(a), bits(b), "start {start} step {step} sample {j}");
+        }
+    }
+
+    /// Samples that fall exactly on knots (eighths of a turn, sampled by sixteenths) go to
+    /// the segment they start, in lanes as one at a time.
+    #[test]
+    fn samples_on_the_knots_in_lanes_are_the_walks() {
+        let psi: Vec<f64> = (0..8).map(|i| i as f64 * (TAU / 8.0)).collect();
+        let spline = PeriodicSpline::new("spline", psi, &RADII.repeat(2)[..8]).unwrap();
+        for (start, step) in [
+            (0.0, TAU / 16.0),
+            (0.0, -TAU / 16.0),
+            (TAU / 16.0, TAU / 16.0),
+        ] {
+            assert_samples_in_lanes_are_the_walks(&spline, start, step, 37);
         }
     }
 
