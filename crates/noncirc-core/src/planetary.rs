@@ -287,10 +287,12 @@ impl SolvedPair {
         let dg: Vec<f64> = (pair.samples().iter())
             .map(|p| sense * a * p.d1 / ((a - p.rho) * (a - p.rho)))
             .collect();
-        let (inv_d1, inv_d2) = (pair.ratio_nodes().iter())
-            .zip(&dg)
-            .map(|(&g, &dg)| DriftInverse::node_derivatives(g, dg))
-            .unzip();
+        // Written in place: `unzip` pushes, a capacity check per node.
+        let (mut inv_d1, mut inv_d2) = (vec![0.0; dg.len()], vec![0.0; dg.len()]);
+        let nodes = pair.ratio_nodes().iter().zip(&dg);
+        for ((d1, d2), (&g, &dg)) in inv_d1.iter_mut().zip(&mut inv_d2).zip(nodes) {
+            (*d1, *d2) = DriftInverse::node_derivatives(g, dg);
+        }
         let phi_period = pair.phi2_mean_rate() * TAU;
         Self {
             pair,
@@ -537,7 +539,7 @@ pub struct Kinematics {
     /// Per node: the planet's lag `lag(θ_j)` (the paper's train: `θ_s`, the carrier angle
     /// at which the intermediate's point now at the planet met the sun; two pairs:
     /// `Φ_B(Φ_A(θ_j))`; shared by its reassemblies), planet orientation, planet centre, tip.
-    planet_lag: Arc<[f64]>,
+    planet_lag: Arc<Vec<f64>>,
     theta3: Vec<f64>,
     o3: Vec<Vec2>,
     tip: Vec<Vec2>,
@@ -895,7 +897,7 @@ impl Kinematics {
                 } * (spec.pusher_offset_mm / spec.arm_length_mm).asin(),
             delay,
             carrier_a: [a[0] + centre_offset_mm, a[1] + centre_offset_mm],
-            planet_lag: Arc::from([]),
+            planet_lag: Arc::default(),
             theta3: Vec::new(),
             o3: Vec::new(),
             tip: Vec::new(),
@@ -941,12 +943,13 @@ impl Kinematics {
     /// `Φ⁻¹`, or the second pair's drift), then its orientation, its centre and the arm's
     /// direction.
     fn place_arms(&mut self) {
-        self.planet_lag = match &self.gears.second {
+        // In an `Arc` of its own `Vec`: no copy into a shared slice.
+        self.planet_lag = Arc::new(match &self.gears.second {
             None => {
                 // θ_s at every node: sorted targets, so each cell is found forward from
                 // the last.
                 let inverse = self.gears.first.phi_inverse();
-                (inverse.eval_ascending(self.gears.first.pair.phi2_nodes(), self.delay)).into()
+                inverse.eval_ascending(self.gears.first.pair.phi2_nodes(), self.delay)
             }
             Some(second) => {
                 let phi_b = second.phi();
@@ -954,7 +957,7 @@ impl Kinematics {
                     .map(|&phi_a| phi_b.eval(phi_a).0)
                     .collect()
             }
-        };
+        });
         // Each array in a loop of its own over its known length: no capacity check per
         // node, as a push has.
         let n = self.planet_lag.len();
