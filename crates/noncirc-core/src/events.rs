@@ -330,14 +330,20 @@ fn highest_node(tips: &[Vec2], marked: Option<&[usize]>) -> usize {
 }
 
 /// `max_by`'s rule over `nodes` (the last of equals in `total_cmp`'s order), with the
-/// highest so far kept in a register rather than loaded through its node at every step.
+/// highest so far kept in a register as its `total_cmp` key rather than loaded through its
+/// node, or its key taken again, at every step.
 fn last_highest(tips: &[Vec2], mut nodes: impl Iterator<Item = usize>) -> Option<usize> {
+    // `f64::total_cmp`'s own key: its order is that of these integers.
+    let key = |y: f64| {
+        let bits = y.to_bits() as i64;
+        bits ^ (((bits >> 63) as u64) >> 1) as i64
+    };
     let first = nodes.next()?;
-    let (mut best, mut top) = (first, tips[first].y);
+    let (mut best, mut top) = (first, key(tips[first].y));
     for j in nodes {
-        let y = tips[j].y;
-        if y.total_cmp(&top).is_ge() {
-            (best, top) = (j, y);
+        let k = key(tips[j].y);
+        if k >= top {
+            (best, top) = (j, k);
         }
     }
     Some(best)
