@@ -310,8 +310,11 @@ impl<'a> Scan<'a> {
         };
         let above = self.clearance(nearest(&apart.planets));
         let ceiling = self.reach(above);
-        self.least_over(0..self.kin.len(), |k, reach| {
-            let (arms, planets) = (apart.arms[k], apart.planets[k]);
+        // Cut to the nodes' count: the nodes below it need no bounds check.
+        let n = self.kin.len();
+        let (arms_apart, planets_apart) = (&apart.arms[..n], &apart.planets[..n]);
+        self.least_over(0..n, |k, reach| {
+            let (arms, planets) = (arms_apart[k], planets_apart[k]);
             (arms >= reach.arm_midpoint && planets >= reach.planet)
                 || (arms > ceiling.arm_midpoint && planets > ceiling.planet)
         })
