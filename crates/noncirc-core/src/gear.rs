@@ -8,7 +8,7 @@ use crate::vec2::Vec2;
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 use std::sync::OnceLock;
-use wide::{f64x2, CmpGt, CmpLt};
+use wide::{f64x2, CmpEq, CmpGt, CmpLt};
 
 /// The solved closure condition.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -499,6 +499,25 @@ pub(crate) struct SampledDriver {
     driver_extremes: OnceLock<(f64, f64)>,
 }
 
+/// Whether a driver sample's radius is positive and its derivatives finite.
+fn valid(p: &Polar) -> bool {
+    p.rho > 0.0 && p.d1.is_finite() && p.d2.is_finite()
+}
+
+/// Whether every sample is [`valid`]: two samples at a time in vector lanes, without a
+/// branch each (the first bad sample is looked for only where there is one).
+fn all_valid(samples: &[Polar]) -> bool {
+    let (pairs, tail) = samples.as_chunks::<2>();
+    // `is_finite` in lanes: |x| < ∞, false for a NaN.
+    let finite = |x: f64x2| x.abs().cmp_lt(f64x2::splat(f64::INFINITY));
+    let mut all = f64x2::ZERO.cmp_eq(f64x2::ZERO); // true in both lanes
+    for [p, q] in pairs {
+        let [rho, d1, d2] = [[p.rho, q.rho], [p.d1, q.d1], [p.d2, q.d2]].map(f64x2::new);
+        all &= rho.cmp_gt(f64x2::ZERO) & finite(d1) & finite(d2);
+    }
+    all.move_mask() == 0b11 && tail.iter().all(valid)
+}
+
 impl SampledDriver {
     /// Samples `curve` on `grid` at `resolution`; the samples must be positive and finite.
     pub(crate) fn sample(
@@ -510,10 +529,9 @@ impl SampledDriver {
         let n = resolution.samples_per_turn;
         let sense = grid.sense.sign();
         let samples = curve.sample_uniform(grid.start, sense * TAU / n as f64, n);
-        if let Some((j, p)) = samples
-            .iter()
-            .enumerate()
-            .find(|(_, p)| !(p.rho > 0.0 && p.d1.is_finite() && p.d2.is_finite()))
+        if let Some((j, p)) = (!all_valid(&samples))
+            .then(|| samples.iter().enumerate().find(|(_, p)| !valid(p)))
+            .flatten()
         {
             return Err(Error::NonPositiveRadius {
                 psi_deg: (grid.start.to_degrees() + sense * 360.0 * j as f64 / n as f64)
@@ -930,6 +948,27 @@ mod tests {
             2 => prop::sample::select(vec![5.0, 20.0, 40.0]),
             1 => prop::sample::select(vec![0.0, -3.0, f64::NAN, f64::INFINITY, 1e300]),
         ]
+    }
+
+    proptest::proptest! {
+        /// The check in lanes is the check of each sample: radii and derivatives drawn
+        /// from a few values (±0, negative, huge, ±∞, NaN among them), odd and even counts.
+        #[test]
+        fn samples_checked_in_lanes_are_each_checked(
+            picks in proptest::collection::vec((0usize..40, 0usize..40, 0usize..40), 0..12),
+        ) {
+            let values = [1.5, -0.0, 0.0, -2.0, 1e300, f64::INFINITY, f64::NEG_INFINITY, f64::NAN];
+            // Mostly good values, so that a bad one is often alone among good ones.
+            let pick = |i: usize, good: f64| values.get(i).copied().unwrap_or(good);
+            let samples: Vec<Polar> = (picks.iter())
+                .map(|&(r, a, b)| Polar {
+                    rho: pick(r, 30.0),
+                    d1: pick(a, -4.0),
+                    d2: pick(b, 0.5),
+                })
+                .collect();
+            proptest::prop_assert_eq!(all_valid(&samples), samples.iter().all(valid));
+        }
     }
 
     proptest::proptest! {
