@@ -27,17 +27,7 @@ pub struct Closure {
 /// Safeguarded Newton on `H(a) = 1/M(a) - 1` (nearly linear near the singular end) inside the
 /// bracket `[max(ρmax, 2ρmin), 2ρmax]`, falling back to bisection: it cannot fail to converge.
 pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
-    let (mut rmin, mut rmax) = (f64::INFINITY, 0.0f64);
-    for &r in rho {
-        // Comparisons, not `min` and `max`, whose NaN rule costs four instructions each: a
-        // NaN radius fails both and is passed over, as they pass it over.
-        if r < rmin {
-            rmin = r;
-        }
-        if r > rmax {
-            rmax = r;
-        }
-    }
+    let (rmin, rmax) = radius_extremes(rho);
     let (mut lo, mut hi) = (rmax.max(2.0 * rmin), 2.0 * rmax);
     // Start from the second-order expansion of the closure about the mean radius:
     // a ≈ 2ρ̄ + 2 var(ρ)/ρ̄ = 2·mean(ρ²)/mean(ρ).
@@ -54,7 +44,7 @@ pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
     if hi - lo > res.newton_rel_tol * hi {
         loop {
             iterations += 1;
-            let sums = ratio_sums(rho, a);
+            let sums = ratio_sums(rho, a, rmax);
             last_sums = sums;
             let (m, dm) = match sums {
                 Some((s, ds)) => ((s[0] + s[1]) / n, ds / n),
@@ -98,7 +88,7 @@ pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
     }
     // Error estimate: the same integral on the even half of the grid.
     let (sums, dm_sum) = last_sums
-        .or_else(|| ratio_sums(rho, a))
+        .or_else(|| ratio_sums(rho, a, rmax))
         .unwrap_or(([f64::INFINITY; 2], f64::NEG_INFINITY));
     let (m_full, dm) = ((sums[0] + sums[1]) / n, dm_sum / n);
     let m_half = sums[0] / rho.len().div_ceil(2) as f64;
@@ -121,30 +111,43 @@ pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
     })
 }
 
+/// The least and the largest of the radii (`+∞` and 0 for none), a NaN passed over.
+fn radius_extremes(rho: &[f64]) -> (f64, f64) {
+    let (mut rmin, mut rmax) = (f64::INFINITY, 0.0f64);
+    for &r in rho {
+        // Comparisons, not `min` and `max`, whose NaN rule costs four instructions each: a
+        // NaN radius fails both and is passed over, as they pass it over.
+        if r < rmin {
+            rmin = r;
+        }
+        if r > rmax {
+            rmax = r;
+        }
+    }
+    (rmin, rmax)
+}
+
 /// Sums of `rho/(a - rho)` over the even and over the odd samples, and the sum of its
-/// derivative in `a` over all; `None` if `a ≤ max rho`. One division per sample, in four
-/// lanes (a sample's lane is its index mod 4), each summed in sample order: two pairs of
-/// vector lanes (`wide::f64x2`), whose arithmetic is each lane's own IEEE operation. The
-/// compiler left to itself vectorised half of the lanes and kept `f64::min`'s NaN rule
-/// (four instructions a lane); the least gap is kept by a comparison instead: a NaN gap
-/// (a NaN radius) fails `<` and leaves it, as `min` would, and only `least > 0` is read.
+/// derivative in `a` over all; `None` if `a ≤ rmax`, the largest radius
+/// ([`radius_extremes`]). One division per sample, in four lanes (a sample's lane is its
+/// index mod 4), each summed in sample order: two pairs of vector lanes (`wide::f64x2`),
+/// whose arithmetic is each lane's own IEEE operation. The least gap `a − ρ` is
+/// `a − rmax` itself, as rounding keeps the order, so it is not tracked per sample.
 #[inline]
-fn ratio_sums(rho: &[f64], a: f64) -> Option<([f64; 2], f64)> {
+fn ratio_sums(rho: &[f64], a: f64, rmax: f64) -> Option<([f64; 2], f64)> {
     let (zero, a2) = (f64x2::ZERO, f64x2::splat(a));
-    let (mut q, mut dq, mut least_gap) = ([zero; 2], [zero; 2], [f64x2::splat(f64::INFINITY); 2]);
+    let (mut q, mut dq) = ([zero; 2], [zero; 2]);
     let (chunks, tail) = rho.as_chunks::<4>();
     for c in chunks {
         let pairs = [f64x2::new([c[0], c[1]]), f64x2::new([c[2], c[3]])];
         for (p, r) in pairs.into_iter().enumerate() {
-            let gap = a2 - r;
-            let inv = f64x2::ONE / gap;
+            let inv = f64x2::ONE / (a2 - r);
             let term = r * inv;
             q[p] += term;
             dq[p] -= term * inv;
-            least_gap[p] = gap.cmp_lt(least_gap[p]).blend(gap, least_gap[p]);
         }
     }
-    let [mut q, mut dq, mut least_gap] = [q, dq, least_gap].map(|[lo, hi]| {
+    let [mut q, mut dq] = [q, dq].map(|[lo, hi]| {
         let (lo, hi) = (lo.to_array(), hi.to_array());
         [lo[0], lo[1], hi[0], hi[1]]
     });
@@ -153,13 +156,8 @@ fn ratio_sums(rho: &[f64], a: f64) -> Option<([f64; 2], f64)> {
         let gap = a - r;
         q[l] += r / gap;
         dq[l] -= r / (gap * gap);
-        least_gap[l] = least_gap[l].min(gap);
     }
-    let least = least_gap[0]
-        .min(least_gap[1])
-        .min(least_gap[2])
-        .min(least_gap[3]);
-    (least > 0.0).then_some(([q[0] + q[2], q[1] + q[3]], dq.iter().sum()))
+    (a - rmax > 0.0).then_some(([q[0] + q[2], q[1] + q[3]], dq.iter().sum()))
 }
 
 /// The driven curve's `(ρ2, dρ2/dφ2, d²ρ2/dφ2²)` at the contact where the driver shows `p`.
@@ -1030,7 +1028,8 @@ mod tests {
             let bits = |s: Option<([f64; 2], f64)>| {
                 s.map(|([e, o], d)| [e.to_bits(), o.to_bits(), d.to_bits()])
             };
-            proptest::prop_assert_eq!(bits(ratio_sums(&rho, a)), bits(want));
+            let rmax = radius_extremes(&rho).1;
+            proptest::prop_assert_eq!(bits(ratio_sums(&rho, a, rmax)), bits(want));
         }
 
         /// The module's bound from the driver alone, before the closure, is never below
