@@ -15,6 +15,7 @@ use crate::resolution::Resolution;
 use crate::vec2::Vec2;
 use serde::{Deserialize, Serialize};
 use std::sync::{Arc, Mutex};
+use wide::f64x2;
 
 /// Which of the two lines through the tip at distance `H1` from `O3` is the pusher axis,
 /// seen looking from `O3` along the arm towards the tip.
@@ -630,6 +631,27 @@ fn planet_base(two_pairs: bool, spec: &TrainSpec) -> f64 {
     }
 }
 
+/// The planet centres `O3 = a1·e1 + a2·e2` at `n` nodes (mm), the carrier directions
+/// `e1 = e(φH)` and `e2 = e(φH + γ0)` turned by `step` (a unit complex number) from node
+/// to node: no trigonometry. Bit for bit the recurrence
+/// `o3 = e1·a1 + e2·a2; (e1, e2) = (e1.rotated(step), e2.rotated(step))`, with `e1` and
+/// `e2` side by side in vector lanes.
+fn planet_centres(directions: [Vec2; 2], step: Vec2, carrier_a: [f64; 2], n: usize) -> Vec<Vec2> {
+    let [e1, e2] = directions;
+    // Lane 0 holds e1, lane 1 e2: their x in one vector, their y in another.
+    let (mut x, mut y) = (f64x2::new([e1.x, e2.x]), f64x2::new([e1.y, e2.y]));
+    let (cos, sin) = (f64x2::splat(step.x), f64x2::splat(step.y));
+    let a = f64x2::new(carrier_a);
+    (0..n)
+        .map(|_| {
+            let ([x1, x2], [y1, y2]) = ((x * a).to_array(), (y * a).to_array());
+            let [ox, oy] = (f64x2::new([x1, y1]) + f64x2::new([x2, y2])).to_array();
+            (x, y) = (x * cos - y * sin, x * sin + y * cos);
+            Vec2::new(ox, oy)
+        })
+        .collect()
+}
+
 /// How a train on the same gears and carrier angle `γ0` as `src` lies against it: each
 /// node's planet orientation, arm direction and planet centre follow from `src`'s by one
 /// turn each ([`Kinematics::reassembled`]).
@@ -970,17 +992,12 @@ impl Kinematics {
             })
             .collect();
         self.arm_dir = units(&self.theta3, self.beta0);
-        // Carrier directions e(φH) and e(φH + γ0), turned by σh per node (no trigonometry).
-        let step = unit(sigma * h);
-        let (mut e1, mut e2) = (unit(self.phi0), unit(self.phi0 + self.gamma0));
-        let [a1, a2] = self.carrier_a;
-        self.o3 = (0..n)
-            .map(|_| {
-                let o3 = e1 * a1 + e2 * a2;
-                (e1, e2) = (e1.rotated(step), e2.rotated(step));
-                o3
-            })
-            .collect();
+        self.o3 = planet_centres(
+            [unit(self.phi0), unit(self.phi0 + self.gamma0)],
+            unit(sigma * h),
+            self.carrier_a,
+            n,
+        );
     }
 
     /// The sun–intermediate gear pair on the carrier grid. In the paper's train the
@@ -1419,5 +1436,37 @@ impl Kinematics {
     /// Carrier angular speed (rad/s).
     pub fn carrier_speed(&self) -> f64 {
         self.spec.carrier_rpm() * TAU / 60.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    proptest::proptest! {
+        /// The planet centres in lanes are the scalar recurrence's, bit for bit: any
+        /// carrier angles, steps either way, carrier distances, odd and even counts.
+        #[test]
+        fn planet_centres_in_lanes_are_the_recurrence(
+            phi0 in -7.0f64..7.0,
+            gamma0 in -7.0f64..7.0,
+            step in -0.5f64..0.5,
+            a1 in 20.0f64..80.0,
+            a2 in 20.0f64..80.0,
+            n in 0usize..50,
+        ) {
+            let (mut e1, mut e2) = (unit(phi0), unit(phi0 + gamma0));
+            let turn = unit(step);
+            let recurrence: Vec<Vec2> = (0..n)
+                .map(|_| {
+                    let o3 = e1 * a1 + e2 * a2;
+                    (e1, e2) = (e1.rotated(turn), e2.rotated(turn));
+                    o3
+                })
+                .collect();
+            let lanes = planet_centres([unit(phi0), unit(phi0 + gamma0)], turn, [a1, a2], n);
+            let bits = |v: &[Vec2]| v.iter().map(|p| [p.x.to_bits(), p.y.to_bits()]).collect::<Vec<_>>();
+            proptest::prop_assert_eq!(bits(&lanes), bits(&recurrence));
+        }
     }
 }
