@@ -21,6 +21,9 @@ pub(crate) struct SpectralIntegrator {
     /// Coefficients `k = 0 … n/2`.
     spectrum: Vec<Complex64>,
     scratch: Vec<Complex64>,
+    /// `(1/n)/k` for `k = 0 … n/2` (the first unused): the integral's factors, divided
+    /// once per plan rather than once per coefficient of every integral.
+    integral_factors: Vec<f64>,
 }
 
 impl std::fmt::Debug for SpectralIntegrator {
@@ -36,10 +39,13 @@ impl SpectralIntegrator {
         let forward = planner.plan_fft_forward(n);
         let inverse = planner.plan_fft_inverse(n);
         let scratch_len = forward.get_scratch_len().max(inverse.get_scratch_len());
+        let spectrum = forward.make_output_vec();
+        let scale = 1.0 / n as f64;
         Self {
             n,
             real: forward.make_input_vec(),
-            spectrum: forward.make_output_vec(),
+            integral_factors: (0..spectrum.len()).map(|k| scale / k as f64).collect(),
+            spectrum,
             scratch: vec![Complex64::default(); scratch_len],
             forward,
             inverse,
@@ -88,13 +94,14 @@ impl SpectralIntegrator {
         self.transform(f);
         let mean = self.spectrum[0].re / n as f64;
         self.spectrum[0] = Complex64::default();
-        let scale = 1.0 / n as f64;
-        for (k, c) in self.spectrum.iter_mut().enumerate().skip(1) {
+        let factors = &self.integral_factors[..self.spectrum.len()];
+        for (k, &factor) in factors.iter().enumerate().skip(1) {
+            let c = &mut self.spectrum[k];
             *c = if 2 * k == n {
                 Complex64::default()
             } else {
                 // Divide by i·k: (x + i y)/(i k) = (y - i x)/k.
-                Complex64::new(c.im, -c.re) * (scale / k as f64)
+                Complex64::new(c.im, -c.re) * factor
             };
         }
         // The spectrum's zero and Nyquist terms are real (set to 0 above): cannot fail.
