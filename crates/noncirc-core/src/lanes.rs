@@ -63,7 +63,7 @@ mod tests {
         for a in edges {
             for b in edges {
                 let lanes = f64x2::new([a, b]).clamp_unit().to_array();
-                let scalar = [a, b].map(|x| Lanes::clamp_unit(x));
+                let scalar = [a, b].map(<f64 as Lanes>::clamp_unit);
                 assert_eq!(lanes.map(f64::to_bits), scalar.map(f64::to_bits), "{a} {b}");
             }
         }
