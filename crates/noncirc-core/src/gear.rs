@@ -26,12 +26,18 @@ pub struct Closure {
 ///
 /// Safeguarded Newton on `H(a) = 1/M(a) - 1` (nearly linear near the singular end) inside the
 /// bracket `[max(ρmax, 2ρmin), 2ρmax]`, falling back to bisection: it cannot fail to converge.
+/// The radii must be positive and finite, and there must be at least one: else the error
+/// names the first bad radius, or the empty list.
 pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
     let (rmin, rmax) = radius_extremes(rho);
-    let (mut lo, mut hi) = (rmax.max(2.0 * rmin), 2.0 * rmax);
     // Start from the second-order expansion of the closure about the mean radius:
     // a ≈ 2ρ̄ + 2 var(ρ)/ρ̄ = 2·mean(ρ²)/mean(ρ).
     let (sum, sum_sq) = rho.iter().fold((0.0, 0.0), |(s, q), &r| (s + r, q + r * r));
+    // The extremes pass a NaN over, but the sum takes it: three checks, not one a radius.
+    if !(rmin > 0.0 && rmax < f64::INFINITY && !sum.is_nan()) || rho.is_empty() {
+        return Err(bad_radii(rho));
+    }
+    let (mut lo, mut hi) = (rmax.max(2.0 * rmin), 2.0 * rmax);
     let mut a = (2.0 * sum_sq / sum).clamp(lo, hi);
     if a <= rmax {
         a = 0.5 * (lo + hi);
@@ -109,6 +115,19 @@ pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
         error_estimate,
         iterations,
     })
+}
+
+/// What is wrong with radii that admit no closure: the first that is not positive and
+/// finite, by its sample, or their absence.
+#[cold]
+fn bad_radii(rho: &[f64]) -> Error {
+    (rho.iter().enumerate())
+        .find_map(|(j, &r)| positive(&format!("the closure's radius at sample {j}"), r).err())
+        .unwrap_or(Error::TooFewPoints {
+            kind: "the closure's radii",
+            min: 1,
+            got: rho.len(),
+        })
 }
 
 /// The least and the largest of the radii (`+∞` and 0 for none), a NaN passed over.
@@ -946,6 +965,35 @@ mod tests {
             2 => prop::sample::select(vec![5.0, 20.0, 40.0]),
             1 => prop::sample::select(vec![0.0, -3.0, f64::NAN, f64::INFINITY, 1e300]),
         ]
+    }
+
+    proptest::proptest! {
+        /// The closure takes radii that are all positive and finite, and refuses any
+        /// other list with the error that names its first bad radius (or its emptiness),
+        /// never a panic: lists of any length with ±0, negatives, ±∞ and NaN among them.
+        #[test]
+        fn the_closure_refuses_bad_radii_by_name(
+            picks in proptest::collection::vec(0usize..24, 0..15),
+        ) {
+            let values = [0.0, -0.0, -3.0, f64::INFINITY, f64::NEG_INFINITY, f64::NAN];
+            let rho: Vec<f64> = (picks.iter())
+                .map(|&i| values.get(i).copied().unwrap_or(30.0 + i as f64))
+                .collect();
+            let first_bad = rho.iter().position(|r| !(*r > 0.0 && r.is_finite()));
+            match (solve_closure(&rho, &Resolution::DEFAULT), first_bad) {
+                (Err(Error::TooFewPoints { got: 0, .. }), None) => {
+                    proptest::prop_assert!(rho.is_empty())
+                }
+                (Err(Error::NonFinite { name, value }), Some(j))
+                | (Err(Error::OutOfRange { name, value, .. }), Some(j)) => {
+                    proptest::prop_assert!(name.ends_with(&format!("sample {j}")), "{}", name);
+                    proptest::prop_assert_eq!(value.to_bits(), rho[j].to_bits());
+                }
+                (Ok(c), None) => proptest::prop_assert!(c.centre_distance > 0.0),
+                (Err(Error::UnderResolved { .. }), None) => {}
+                (other, bad) => proptest::prop_assert!(false, "{:?} for {:?}", other, bad),
+            }
+        }
     }
 
     proptest::proptest! {
