@@ -1445,7 +1445,7 @@ mod tests {
 
     proptest::proptest! {
         /// The planet centres in lanes are the scalar recurrence's, bit for bit: any
-        /// carrier angles, steps either way, carrier distances, odd and even counts.
+        /// carrier angles, steps either way, carrier distances and counts.
         #[test]
         fn planet_centres_in_lanes_are_the_recurrence(
             phi0 in -7.0f64..7.0,
@@ -1465,7 +1465,9 @@ mod tests {
                 })
                 .collect();
             let lanes = planet_centres([unit(phi0), unit(phi0 + gamma0)], turn, [a1, a2], n);
-            let bits = |v: &[Vec2]| v.iter().map(|p| [p.x.to_bits(), p.y.to_bits()]).collect::<Vec<_>>();
+            let bits = |v: &[Vec2]| {
+                v.iter().map(|p| [p.x.to_bits(), p.y.to_bits()]).collect::<Vec<_>>()
+            };
             proptest::prop_assert_eq!(bits(&lanes), bits(&recurrence));
         }
     }
