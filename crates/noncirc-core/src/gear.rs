@@ -26,15 +26,16 @@ pub struct Closure {
 ///
 /// Safeguarded Newton on `H(a) = 1/M(a) - 1` (nearly linear near the singular end) inside the
 /// bracket `[max(ρmax, 2ρmin), 2ρmax]`, falling back to bisection: it cannot fail to converge.
-/// The radii must be positive and finite, and there must be at least one: else the error
-/// names the first bad radius, or the empty list.
+/// The radii must be positive and finite, twice the largest finite too (the bracket's upper
+/// end), and there must be at least one: else the error names the first bad radius, or the
+/// empty list.
 pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
     let (rmin, rmax) = radius_extremes(rho);
     // Start from the second-order expansion of the closure about the mean radius:
     // a ≈ 2ρ̄ + 2 var(ρ)/ρ̄ = 2·mean(ρ²)/mean(ρ).
     let (sum, sum_sq) = rho.iter().fold((0.0, 0.0), |(s, q), &r| (s + r, q + r * r));
     // The extremes pass a NaN over, but the sum takes it: three checks, not one a radius.
-    if !(rmin > 0.0 && rmax < f64::INFINITY && !sum.is_nan()) || rho.is_empty() {
+    if !(rmin > 0.0 && 2.0 * rmax < f64::INFINITY && !sum.is_nan()) || rho.is_empty() {
         return Err(bad_radii(rho));
     }
     let (mut lo, mut hi) = (rmax.max(2.0 * rmin), 2.0 * rmax);
@@ -118,11 +119,22 @@ pub fn solve_closure(rho: &[f64], res: &Resolution) -> Result<Closure> {
 }
 
 /// What is wrong with radii that admit no closure: the first that is not positive and
-/// finite, by its sample, or their absence.
+/// finite, or whose double is not finite, by its sample, or their absence.
 #[cold]
 fn bad_radii(rho: &[f64]) -> Error {
     (rho.iter().enumerate())
-        .find_map(|(j, &r)| positive(&format!("the closure's radius at sample {j}"), r).err())
+        .find_map(|(j, &r)| {
+            let name = format!("the closure's radius at sample {j}");
+            let huge = || Error::OutOfRange {
+                name: name.clone(),
+                value: r,
+                expected: "at most half the largest f64 (mm): the centre distance may reach \
+                           twice the largest radius"
+                    .into(),
+            };
+            let err = positive(&name, r).err();
+            err.or_else(|| (2.0 * r == f64::INFINITY).then(huge))
+        })
         .unwrap_or(Error::TooFewPoints {
             kind: "the closure's radii",
             min: 1,
@@ -975,11 +987,11 @@ mod tests {
         fn the_closure_refuses_bad_radii_by_name(
             picks in proptest::collection::vec(0usize..24, 0..15),
         ) {
-            let values = [0.0, -0.0, -3.0, f64::INFINITY, f64::NEG_INFINITY, f64::NAN];
+            let values = [0.0, -0.0, -3.0, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 1e308];
             let rho: Vec<f64> = (picks.iter())
                 .map(|&i| values.get(i).copied().unwrap_or(30.0 + i as f64))
                 .collect();
-            let first_bad = rho.iter().position(|r| !(*r > 0.0 && r.is_finite()));
+            let first_bad = rho.iter().position(|r| !(*r > 0.0 && (2.0 * r).is_finite()));
             match (solve_closure(&rho, &Resolution::DEFAULT), first_bad) {
                 (Err(Error::TooFewPoints { got: 0, .. }), None) => {
                     proptest::prop_assert!(rho.is_empty())
